@@ -1,0 +1,1 @@
+//! Camera geometry (filled in by the camera work).

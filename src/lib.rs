@@ -1,0 +1,32 @@
+//! # lanepf: particle-filter lane tracking
+//!
+//! The pipeline of one frame, in five lines:
+//!
+//! 1. an RGBA frame arrives (browser `ImageData`, a decoded file) and becomes a grey
+//!    [`image::Image`];
+//! 2. [`vision`] turns it into the cues a tracker weighs: a top view through the
+//!    [`camera`], gradients, edges, dark-light-dark markings, distance maps;
+//! 3. a tracker's motion model moves the particles of a [`filter`] (drift + diffusion);
+//! 4. its measurement model gives each particle a log-likelihood from the cues;
+//! 5. the filter normalises, estimates and resamples, and the estimate becomes lane boundaries.
+//!
+//! Notation: image pixels (x right, y down, origin top-left); road frame ISO 8855 (x forward,
+//! y left, z up, metres, origin on the road under the camera); angles in radians.
+//!
+//! Start reading at [`filter`] (the generic particle filter) and [`camera`] (the geometry).
+//! JavaScript users see only the `wasm` module's classes.
+
+#![deny(missing_docs)]
+
+pub mod camera;
+pub mod error;
+pub mod filter;
+pub mod image;
+pub mod math;
+pub mod vision;
+pub mod wasm;
+
+pub use error::{Error, Result};
+
+/// The crate version, as in Cargo.toml.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -1,0 +1,1 @@
+//! Image preprocessing, one operation per file.
