@@ -1,1 +1,0 @@
-//! Camera geometry (filled in by the camera work).
