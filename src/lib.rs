@@ -22,7 +22,10 @@ pub mod camera;
 pub mod error;
 pub mod filter;
 pub mod image;
+pub mod lane;
 pub mod math;
+pub mod synth;
+pub mod trackers;
 pub mod vision;
 pub mod wasm;
 

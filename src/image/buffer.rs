@@ -224,10 +224,7 @@ mod tests {
 
     #[test]
     fn rejects_zero_huge_and_mismatched_sizes() {
-        assert!(matches!(
-            Image::<u8>::new(0, 10),
-            Err(Error::Dimensions(_))
-        ));
+        assert!(matches!(Image::<u8>::new(0, 10), Err(Error::Dimensions(_))));
         assert!(matches!(
             Image::<u8>::new(MAX_SIDE + 1, 1),
             Err(Error::Dimensions(_))

@@ -1,4 +1,18 @@
 //! The JavaScript binding: the only module with wasm-bindgen types.
+//!
+//! Each class wraps a core type (`Camera`, `TestRoad`, `Tracker`); every fallible call returns
+//! `Result<_, JsError>`, so JavaScript gets a thrown `Error` with the core's message and the
+//! object stays usable.
+
+mod camera;
+mod error;
+mod test_road;
+mod tracker;
+
+pub use camera::JsCamera;
+pub use error::to_js;
+pub use test_road::JsTestRoad;
+pub use tracker::{tracker_ids, JsTracker};
 
 use wasm_bindgen::prelude::*;
 
@@ -12,4 +26,12 @@ pub fn start() {
 #[wasm_bindgen]
 pub fn version() -> String {
     crate::VERSION.to_string()
+}
+
+/// Serialises a core value into a plain JS object (by way of JSON, so field names are the
+/// contract's snake_case names).
+fn to_js_value<T: serde::Serialize>(value: &T) -> Result<JsValue, JsError> {
+    let text = serde_json::to_string(value)
+        .map_err(|e| JsError::new(&format!("cannot serialise the result: {e}")))?;
+    js_sys::JSON::parse(&text).map_err(|_| JsError::new("cannot parse the result JSON"))
 }

@@ -1,0 +1,91 @@
+// Static server for the lanepf demo: http://127.0.0.1:PORT/ serves www/, /pkg/ serves pkg/.
+// It honours HTTP Range requests (video seeking needs them), serves .wasm as application/wasm,
+// binds to 127.0.0.1 only, and refuses paths outside those two folders.
+//   node scripts/serve.mjs [--port 8080]
+import { createServer } from 'node:http';
+import { createReadStream, promises as fs } from 'node:fs';
+import { extname, join, normalize, resolve, sep } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = resolve(fileURLToPath(new URL('..', import.meta.url)));
+const mounts = [['/pkg/', join(root, 'pkg')], ['/', join(root, 'www')]];
+const types = {
+  '.html': 'text/html; charset=utf-8', '.js': 'text/javascript; charset=utf-8',
+  '.mjs': 'text/javascript; charset=utf-8', '.css': 'text/css; charset=utf-8',
+  '.json': 'application/json', '.wasm': 'application/wasm', '.ts': 'text/plain; charset=utf-8',
+  '.png': 'image/png', '.jpg': 'image/jpeg', '.jpeg': 'image/jpeg', '.svg': 'image/svg+xml',
+  '.mp4': 'video/mp4', '.webm': 'video/webm', '.txt': 'text/plain; charset=utf-8',
+  '.md': 'text/plain; charset=utf-8',
+};
+
+/** Maps a URL path to a file inside one of the mounts, or null when it escapes them. */
+export function resolvePath(urlPath) {
+  let path;
+  try { path = decodeURIComponent(urlPath.split('?')[0]); } catch { return null; }
+  for (const [prefix, dir] of mounts) {
+    if (!path.startsWith(prefix)) continue;
+    const file = normalize(join(dir, path.slice(prefix.length)));
+    return file === dir || file.startsWith(dir + sep) ? file : null;
+  }
+  return null;
+}
+
+/** Parses a single `bytes=a-b` range against a file size; null when absent, 'bad' when unsatisfiable. */
+export function parseRange(header, size) {
+  if (!header) return null;
+  const m = /^bytes=(\d*)-(\d*)$/.exec(header.trim());
+  if (!m || (m[1] === '' && m[2] === '')) return 'bad';
+  let start, end;
+  if (m[1] === '') { start = Math.max(0, size - Number(m[2])); end = size - 1; }
+  else { start = Number(m[1]); end = m[2] === '' ? size - 1 : Math.min(Number(m[2]), size - 1); }
+  return start <= end && start < size ? { start, end } : 'bad';
+}
+
+async function handle(req, res) {
+  if (req.method !== 'GET' && req.method !== 'HEAD') {
+    res.writeHead(405, { Allow: 'GET, HEAD' }).end('method not allowed\n');
+    return;
+  }
+  let file = resolvePath(req.url);
+  if (!file) { res.writeHead(403).end('forbidden\n'); return; }
+  let stat;
+  try {
+    stat = await fs.stat(file);
+    if (stat.isDirectory()) { file = join(file, 'index.html'); stat = await fs.stat(file); }
+  } catch { res.writeHead(404).end('not found\n'); return; }
+  const headers = {
+    'Content-Type': types[extname(file).toLowerCase()] ?? 'application/octet-stream',
+    'Accept-Ranges': 'bytes', 'Cache-Control': 'no-cache',
+  };
+  const range = parseRange(req.headers.range, stat.size);
+  if (range === 'bad') {
+    res.writeHead(416, { 'Content-Range': `bytes */${stat.size}` }).end();
+    return;
+  }
+  const { start, end } = range ?? { start: 0, end: stat.size - 1 };
+  headers['Content-Length'] = stat.size === 0 ? 0 : end - start + 1;
+  if (range) headers['Content-Range'] = `bytes ${start}-${end}/${stat.size}`;
+  res.writeHead(range ? 206 : 200, headers);
+  if (req.method === 'HEAD' || stat.size === 0) { res.end(); return; }
+  createReadStream(file, { start, end }).on('error', () => res.destroy()).pipe(res);
+}
+
+/** Starts the server on 127.0.0.1; resolves to the http.Server once listening. */
+export function serve(port) {
+  return new Promise((ok, fail) => {
+    const server = createServer((req, res) => {
+      handle(req, res).catch(() => { if (!res.headersSent) res.writeHead(500); res.end(); });
+    });
+    server.once('error', fail);
+    server.listen(port, '127.0.0.1', () => ok(server));
+  });
+}
+
+if (process.argv[1] && resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
+  const i = process.argv.indexOf('--port');
+  const port = Number(i > 0 ? process.argv[i + 1] : process.env.PORT ?? 8080);
+  serve(port).then(
+    (s) => console.log(`lanepf demo: http://127.0.0.1:${s.address().port}/  (Ctrl-C stops)`),
+    (e) => { console.error(`cannot listen on 127.0.0.1:${port}: ${e.message}`); process.exit(1); },
+  );
+}

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Installs everything lanepf's build, demo and tests need, on a Debian machine with Rust (rustup)
+# and Node/npm. Idempotent: each step checks first and does nothing when already done.
+#   scripts/setup.sh          everything (wasm target, wasm-bindgen CLI, npm tools, Chromium)
+#   scripts/setup.sh --no-browser   skip Chromium/chromedriver (enough for `make demo`)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+want_browser=1
+[ "${1:-}" = "--no-browser" ] && want_browser=0
+
+say() { printf '[setup] %s\n' "$*"; }
+die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
+
+command -v cargo >/dev/null || die "cargo not found: install Rust with rustup (https://rustup.rs) first"
+command -v rustup >/dev/null || die "rustup not found: lanepf needs rustup to add the wasm32 target"
+command -v npm >/dev/null || die "npm not found: install Node.js 18+ and npm first"
+
+# 1. Rust pieces: the wasm32 target, rustfmt and clippy.
+if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+  say "adding the wasm32-unknown-unknown target"
+  rustup target add wasm32-unknown-unknown
+fi
+for comp in rustfmt clippy; do
+  if ! rustup component list --installed 2>/dev/null | grep -q "^$comp"; then
+    say "adding rustup component $comp"
+    rustup component add "$comp"
+  fi
+done
+
+# 2. wasm-bindgen CLI, exactly the version Cargo.lock pins (the CLI and the library must agree).
+wb_version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
+[ -n "$wb_version" ] || die "cannot read the wasm-bindgen version from Cargo.lock"
+have=$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)
+if [ "$have" != "$wb_version" ] || ! command -v wasm-bindgen-test-runner >/dev/null; then
+  say "installing wasm-bindgen-cli $wb_version (about 3 minutes; not --locked, see ../shared/TOOLCHAIN.md)"
+  cargo install wasm-bindgen-cli --version "$wb_version"
+fi
+
+# 3. npm tools: binaryen (wasm-opt 132; Debian's is too old) and playwright-core (no browser download).
+if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ] \
+   || [ package.json -nt node_modules/.package-lock.json ]; then
+  say "installing npm dev tools (binaryen, playwright-core)"
+  if [ -f package-lock.json ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
+fi
+
+# 4. Chromium and chromedriver from Debian, for the wasm tests and the end-to-end tests.
+if [ "$want_browser" = 1 ]; then
+  if [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; then
+    if [ "$(id -u)" != 0 ]; then
+      die "Chromium and chromedriver are missing and installing them needs root. Run:
+    sudo apt-get update && sudo apt-get install -y chromium chromium-driver
+then run this command again."
+    fi
+    say "installing chromium and chromium-driver from apt (about 30 seconds)"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq chromium chromium-driver >/dev/null
+  fi
+fi
+say "ready"

@@ -1,0 +1,153 @@
+//! The output every tracker (and the simulator's ground truth) produces for a frame.
+//!
+//! It is the JSON object of the command-line contract (one per line of `lanepf track` output):
+//! boundaries as image polylines ordered from the bottom of the image upward, no more than
+//! [`MAX_POINT_SPACING_PX`] apart in y, plus the lane parameters every paper shares and a map of
+//! tracker-specific state.
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Largest vertical gap between consecutive polyline points, in pixels.
+pub const MAX_POINT_SPACING_PX: f64 = 10.0;
+
+/// Which lane boundary a polyline is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Role {
+    /// Left boundary of the ego lane.
+    EgoLeft,
+    /// Right boundary of the ego lane.
+    EgoRight,
+    /// Left boundary of the lane left of the ego lane.
+    LeftAdjacent,
+    /// Right boundary of the lane right of the ego lane.
+    RightAdjacent,
+}
+
+impl Role {
+    /// The role's name as written in JSON (`ego-left`, ...).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Role::EgoLeft => "ego-left",
+            Role::EgoRight => "ego-right",
+            Role::LeftAdjacent => "left-adjacent",
+            Role::RightAdjacent => "right-adjacent",
+        }
+    }
+}
+
+/// One lane boundary.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Boundary {
+    /// Which boundary this is.
+    pub role: Role,
+    /// Image points [x, y] in pixels, bottom of the image first.
+    pub points: Vec<[f64; 2]>,
+    /// The same boundary on the road plane, [x forward, y left] in metres (ISO 8855), near first.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub road_points: Vec<[f64; 2]>,
+}
+
+/// A tracker's (or the ground truth's) description of the lane in one frame.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct LaneEstimate {
+    /// Frame name (file name or index).
+    #[serde(default)]
+    pub frame: String,
+    /// Whether the tracker is confident in this estimate.
+    pub valid: bool,
+    /// Processing time in milliseconds (0 for ground truth).
+    #[serde(default)]
+    pub ms: f64,
+    /// The boundaries, in any order.
+    pub boundaries: Vec<Boundary>,
+    /// Lateral offset of the camera from the lane centre, metres, positive when the camera is
+    /// left of the centre (ISO 8855 y).
+    pub lateral_offset_m: f64,
+    /// Heading of the lane relative to the camera's forward axis, radians, positive left.
+    pub heading_rad: f64,
+    /// Horizontal curvature of the lane at the camera, 1/m, positive turning left.
+    pub curvature_per_m: f64,
+    /// Lane width, metres.
+    pub lane_width_m: f64,
+    /// Tracker-specific parameters by name (e.g. Lee's psi, y0, w, w', c, delta).
+    #[serde(default)]
+    pub state: BTreeMap<String, f64>,
+}
+
+impl Boundary {
+    /// Checks the polyline rules of the contract: points ordered bottom-up (y non-increasing)
+    /// and no gap larger than [`MAX_POINT_SPACING_PX`] in y. Returns a description of the first
+    /// violation.
+    pub fn check_polyline(&self) -> Result<(), String> {
+        for (i, pair) in self.points.windows(2).enumerate() {
+            let dy = pair[0][1] - pair[1][1];
+            if dy < 0.0 {
+                return Err(format!(
+                    "{}: point {} goes down the image",
+                    self.role.as_str(),
+                    i + 1
+                ));
+            }
+            if dy > MAX_POINT_SPACING_PX + 1e-9 {
+                return Err(format!(
+                    "{}: points {i} and {} are {dy:.1} px apart in y",
+                    self.role.as_str(),
+                    i + 1
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn serialises_in_the_contract_format() {
+        let e = LaneEstimate {
+            frame: "f00000.png".into(),
+            valid: true,
+            ms: 1.5,
+            boundaries: vec![Boundary {
+                role: Role::EgoLeft,
+                points: vec![[10.0, 470.0], [12.0, 460.0]],
+                road_points: vec![],
+            }],
+            lateral_offset_m: 0.12,
+            heading_rad: -0.004,
+            curvature_per_m: 0.0008,
+            lane_width_m: 3.62,
+            state: BTreeMap::from([("w".to_string(), 3.62)]),
+        };
+        let json = serde_json::to_string(&e).unwrap();
+        assert!(json.contains(r#""role":"ego-left""#), "{json}");
+        assert!(
+            json.contains(r#""points":[[10.0,470.0],[12.0,460.0]]"#),
+            "{json}"
+        );
+        assert!(
+            !json.contains("road_points"),
+            "empty road polylines are omitted"
+        );
+        let back: LaneEstimate = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, e);
+    }
+
+    #[test]
+    fn polyline_rules_are_checked() {
+        let mut b = Boundary {
+            role: Role::EgoRight,
+            points: vec![[0.0, 400.0], [0.0, 390.0], [0.0, 385.0]],
+            road_points: vec![],
+        };
+        assert_eq!(b.check_polyline(), Ok(()));
+        b.points.push([0.0, 370.0]);
+        assert!(b.check_polyline().unwrap_err().contains("15.0 px apart"));
+        b.points = vec![[0.0, 300.0], [0.0, 301.0]];
+        assert!(b.check_polyline().unwrap_err().contains("goes down"));
+    }
+}

@@ -1,0 +1,133 @@
+//! The [`Tracker`] trait every paper's tracker implements, and the registry that builds them by
+//! id from a configuration.
+//!
+//! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
+//! `danescu-stereo`, `danescu-mono`. An id is listed in [`TRACKER_IDS`] only once its tracker
+//! is implemented; asking for any other id is an [`Error::UnknownTracker`] that lists the
+//! available ones.
+
+use crate::camera::{Camera, CameraFile};
+use crate::error::{Error, Result};
+use crate::lane::LaneEstimate;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// A lane tracker: one frame in, one estimate out.
+pub trait Tracker {
+    /// The tracker's id.
+    fn id(&self) -> &'static str;
+    /// Processes one RGBA frame of the configured camera size.
+    ///
+    /// # Errors
+    /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
+    fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate>;
+    /// Forgets the past: the next frame starts from the initial distribution.
+    fn reset(&mut self);
+}
+
+/// The ids of the trackers implemented so far.
+pub const TRACKER_IDS: &[&str] = &[];
+
+/// Largest accepted particle count.
+pub const MAX_PARTICLES: usize = 200_000;
+
+/// What every tracker is built from: the camera, the particle budget, the seed, and
+/// tracker-specific options (checked by the tracker itself).
+#[derive(Debug, Clone, Deserialize)]
+pub struct TrackerConfig {
+    /// The camera (the `camera.json` format).
+    pub camera: CameraFile,
+    /// Number of particles N.
+    #[serde(default = "default_particles")]
+    pub particles: usize,
+    /// RNG seed: the same seed gives the same run natively and in the browser.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Tracker-specific options by name.
+    #[serde(flatten)]
+    pub options: BTreeMap<String, serde_json::Value>,
+}
+
+fn default_particles() -> usize {
+    500
+}
+fn default_seed() -> u64 {
+    1
+}
+
+impl TrackerConfig {
+    /// Parses a JSON configuration.
+    ///
+    /// # Errors
+    /// [`Error::Config`] when the JSON is malformed or a field has the wrong type.
+    pub fn from_json_str(text: &str) -> Result<Self> {
+        serde_json::from_str(text).map_err(|e| Error::Config(format!("tracker config: {e}")))
+    }
+
+    /// Checks the configuration and returns the validated camera.
+    ///
+    /// # Errors
+    /// Camera errors as [`Camera::from_file`] gives them; [`Error::Parameter`] for a particle
+    /// count of 0 or above [`MAX_PARTICLES`].
+    pub fn validate(&self) -> Result<Camera> {
+        if self.particles == 0 || self.particles > MAX_PARTICLES {
+            return Err(Error::parameter(
+                "particles",
+                self.particles,
+                &format!("must be between 1 and {MAX_PARTICLES}"),
+            ));
+        }
+        Camera::from_file(&self.camera)
+    }
+}
+
+/// Builds the tracker `id` from `config`.
+///
+/// # Errors
+/// [`Error::UnknownTracker`] for an id not in [`TRACKER_IDS`]; configuration errors as
+/// [`TrackerConfig::validate`] gives them.
+pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
+    let _camera = config.validate()?;
+    Err(Error::UnknownTracker {
+        id: id.to_string(),
+        available: if TRACKER_IDS.is_empty() {
+            "none yet (the trackers of the four papers are being built)".to_string()
+        } else {
+            TRACKER_IDS.join(", ")
+        },
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const CAMERA: &str = r#"{"width": 640, "height": 480, "fx": 309.4, "fy": 344.2, "cx": 317.9,
+        "cy": 256.5, "height_m": 2.18, "pitch_deg": 14.0, "yaw_deg": 0.0, "roll_deg": 0.0}"#;
+
+    #[test]
+    fn config_defaults_and_validation() {
+        let c = TrackerConfig::from_json_str(&format!(r#"{{"camera": {CAMERA}}}"#)).unwrap();
+        assert_eq!((c.particles, c.seed), (500, 1));
+        assert!(c.validate().is_ok());
+        let c = TrackerConfig::from_json_str(&format!(
+            r#"{{"camera": {CAMERA}, "particles": 0, "sigma": 2}}"#
+        ))
+        .unwrap();
+        assert_eq!(c.options["sigma"], serde_json::json!(2));
+        let e = c.validate().unwrap_err().to_string();
+        assert!(e.contains("`particles` = 0"), "{e}");
+        let e = TrackerConfig::from_json_str(r#"{"particles": 10}"#).unwrap_err();
+        assert!(e.to_string().contains("missing field `camera`"), "{e}");
+    }
+
+    #[test]
+    fn unknown_ids_list_what_exists() {
+        let c = TrackerConfig::from_json_str(&format!(r#"{{"camera": {CAMERA}}}"#)).unwrap();
+        let e = create("kalman-magic", &c).err().unwrap();
+        assert!(matches!(e, Error::UnknownTracker { .. }));
+        assert!(e
+            .to_string()
+            .starts_with("unknown tracker `kalman-magic`; available: "));
+    }
+}

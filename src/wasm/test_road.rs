@@ -1,0 +1,56 @@
+//! `TestRoad` for JavaScript: the straight synthetic road with ground truth.
+
+use super::camera::camera_from_js;
+use super::error::{from_js_object, to_js};
+use crate::synth::{TestRoad, TestRoadConfig};
+use wasm_bindgen::prelude::*;
+
+/// A synthetic straight road rendered through a camera, with exact ground truth.
+#[wasm_bindgen(js_name = TestRoad)]
+pub struct JsTestRoad {
+    road: TestRoad,
+    frame: Vec<u8>,
+}
+
+#[wasm_bindgen(js_class = TestRoad)]
+impl JsTestRoad {
+    /// `new TestRoad(camera, { lane_width_m?, marking_width_m?, dash_length_m?, dash_period_m?,
+    /// speed_mps?, fps?, sway_amplitude_m?, sway_period_s?, max_distance_m? })`.
+    #[wasm_bindgen(constructor)]
+    pub fn new(camera: JsValue, options: JsValue) -> Result<JsTestRoad, JsError> {
+        let camera = camera_from_js(&camera)?;
+        let config: TestRoadConfig = if options.is_undefined() || options.is_null() {
+            TestRoadConfig::default()
+        } else {
+            from_js_object(&options, "test road options")?
+        };
+        let road = TestRoad::new(camera, config).map_err(to_js)?;
+        let frame = vec![0; road.width() * road.height() * 4];
+        Ok(JsTestRoad { road, frame })
+    }
+
+    /// Image width.
+    #[wasm_bindgen(getter)]
+    pub fn width(&self) -> usize {
+        self.road.width()
+    }
+
+    /// Image height.
+    #[wasm_bindgen(getter)]
+    pub fn height(&self) -> usize {
+        self.road.height()
+    }
+
+    /// Renders frame `index` and returns a new `Uint8ClampedArray` (width*height*4, RGBA) that
+    /// can go straight into `new ImageData(...)`.
+    pub fn render(&mut self, index: u32) -> Result<js_sys::Uint8ClampedArray, JsError> {
+        self.road.render(index, &mut self.frame).map_err(to_js)?;
+        Ok(js_sys::Uint8ClampedArray::from(&self.frame[..]))
+    }
+
+    /// Ground truth of frame `index`: `{ valid, boundaries: [{ role, points, road_points }],
+    /// lateral_offset_m, heading_rad, curvature_per_m, lane_width_m, ... }`.
+    pub fn truth(&self, index: u32) -> Result<JsValue, JsError> {
+        super::to_js_value(&self.road.truth(index))
+    }
+}

@@ -1,0 +1,84 @@
+// End-to-end: the demo page loads the wasm package in a worker and draws a synthetic road with
+// its ground-truth boundaries. Checked on the canvas pixels, not on the DOM.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdirSync } from 'node:fs';
+import { start, open } from './browser.mjs';
+
+const env = await start();
+test.after(() => env.close());
+
+/** Reads the canvas as { width, height, data: number[] } inside the page. */
+const readCanvas = (page) => page.evaluate(() => {
+  const c = document.getElementById('view');
+  const d = c.getContext('2d').getImageData(0, 0, c.width, c.height);
+  return { width: d.width, height: d.height, data: Array.from(d.data) };
+});
+
+const lum = (img, x, y) => {
+  const i = 4 * (Math.round(y) * img.width + Math.round(x));
+  return 0.299 * img.data[i] + 0.587 * img.data[i + 1] + 0.114 * img.data[i + 2];
+};
+
+/** Brightest luma within +-r px horizontally of (x, y). */
+const peak = (img, x, y, r) => {
+  let best = 0;
+  for (let dx = -r; dx <= r; dx++) {
+    const xx = Math.round(x) + dx;
+    if (xx >= 0 && xx < img.width) best = Math.max(best, lum(img, xx, y));
+  }
+  return best;
+};
+
+test('demo draws the synthetic road with markings where the ground truth says', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/`);
+  await page.waitForFunction(() => document.body.dataset.state === 'running'
+    && window.lanepfDemo.frames >= 3, null, { timeout: 30000 });
+  assert.match(await page.textContent('#version'), /^lanepf \d+\.\d+\.\d+/);
+
+  // Freeze the stream, hide the overlay and draw one clean frame.
+  await page.click('#play');
+  await page.uncheck('#show-truth');
+  const before = await page.evaluate(() => window.lanepfDemo.frames);
+  await page.click('#step');
+  await page.waitForFunction((n) => window.lanepfDemo.frames > n, before);
+  const truth = await page.evaluate(() => window.lanepfDemo.lastTruth);
+  const img = await readCanvas(page);
+  assert.equal(img.width, 640);
+  assert.equal(img.height, 480);
+
+  const left = truth.boundaries.find((b) => b.role === 'ego-left');
+  const right = truth.boundaries.find((b) => b.role === 'ego-right');
+  assert.ok(left && right, 'ground truth has both ego boundaries');
+  assert.ok(left.points.length >= 10, 'boundary polylines are sampled densely');
+
+  // The solid left marking is bright along (nearly) all of its projected polyline, the dashed
+  // right one along a good part of it, and the lane centre between them is dark asphalt.
+  const near = (pts) => pts.filter(([, y]) => y > 200);
+  const hit = (pts) => near(pts).filter(([x, y]) => peak(img, x, y, 3) > 150).length / near(pts).length;
+  assert.ok(hit(left.points) > 0.9, `solid marking found on ${hit(left.points)} of the left polyline`);
+  assert.ok(hit(right.points) > 0.2, `dashed marking found on ${hit(right.points)} of the right polyline`);
+  for (let k = 0; k < near(left.points).length; k += 3) {
+    const [xl, y] = near(left.points)[k];
+    const xr = right.points.reduce((a, p) => (Math.abs(p[1] - y) < Math.abs(a[1] - y) ? p : a))[0];
+    assert.ok(lum(img, (xl + xr) / 2, y) < 140, `lane centre at row ${y} is asphalt`);
+  }
+
+  // With the overlay on, the role colours appear on the canvas.
+  await page.check('#show-truth');
+  const n2 = await page.evaluate(() => window.lanepfDemo.frames);
+  await page.click('#step');
+  await page.waitForFunction((n) => window.lanepfDemo.frames > n, n2);
+  const withOverlay = await readCanvas(page);
+  let yellow = 0;
+  for (let i = 0; i < withOverlay.data.length; i += 4) {
+    const [r, g, b] = [withOverlay.data[i], withOverlay.data[i + 1], withOverlay.data[i + 2]];
+    if (r === 0xff && g === 0xd5 && b === 0x4f) yellow++;
+  }
+  assert.ok(yellow > 100, `ego-left overlay drawn (${yellow} px)`);
+
+  mkdirSync('test-results', { recursive: true });
+  await page.screenshot({ path: 'test-results/demo.png' });
+  assert.deepEqual(errors, []);
+  await page.close();
+});

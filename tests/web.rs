@@ -1,0 +1,131 @@
+//! wasm-bindgen-test suite, run in headless Chromium by `make test-wasm`:
+//! `CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner cargo test --target
+//! wasm32-unknown-unknown --test web`. It exercises the JS-facing classes as JavaScript sees
+//! them (thrown errors and their messages, objects still usable afterwards) and checks that the
+//! seeded core gives bit-identical results in the browser.
+#![cfg(target_arch = "wasm32")]
+
+use lanepf::wasm::{tracker_ids, version, JsCamera, JsTestRoad, JsTracker};
+use wasm_bindgen::{JsCast, JsValue};
+use wasm_bindgen_test::*;
+
+wasm_bindgen_test_configure!(run_in_browser);
+
+/// Parses a JS object literal written as JSON.
+fn obj(json: &str) -> JsValue {
+    js_sys::JSON::parse(json).expect("test JSON")
+}
+
+const CAMERA: &str = r#"{"width": 640, "height": 480, "fx": 309.4362, "fy": 344.2161,
+    "cx": 317.9034, "cy": 256.5352, "height_m": 2.1798, "pitch_deg": 14.0}"#;
+
+/// The message of the `Error` a call threw.
+fn message<T>(r: Result<T, wasm_bindgen::JsError>) -> String {
+    match r {
+        Ok(_) => panic!("expected a thrown Error"),
+        Err(e) => {
+            let v: JsValue = e.into();
+            let err: js_sys::Error = v.dyn_into().expect("a JS Error object");
+            err.message().into()
+        }
+    }
+}
+
+/// Sets `obj[key] = value` on a parsed object.
+fn with(json: &str, key: &str, value: JsValue) -> JsValue {
+    let o = obj(json);
+    js_sys::Reflect::set(&o, &key.into(), &value).unwrap();
+    o
+}
+
+#[wasm_bindgen_test]
+fn version_is_the_crate_version() {
+    assert_eq!(version(), env!("CARGO_PKG_VERSION"));
+}
+
+#[wasm_bindgen_test]
+fn camera_round_trips_and_projects() {
+    let cam = JsCamera::new(obj(CAMERA)).unwrap();
+    assert_eq!((cam.width(), cam.height()), (640, 480));
+    let p = cam.project_road(20.0, 0.0).unwrap();
+    assert!(
+        (p[0] - 317.9034).abs() < 1e-6,
+        "centre line projects to cx: {p:?}"
+    );
+    let back = cam.road_point(p[0], p[1]).unwrap();
+    assert!(
+        (back[0] - 20.0).abs() < 1e-6 && back[1].abs() < 1e-6,
+        "{back:?}"
+    );
+}
+
+#[wasm_bindgen_test]
+fn camera_rejects_nan_missing_and_absurd_values_by_name() {
+    let m = message(JsCamera::new(with(
+        CAMERA,
+        "fx",
+        JsValue::from_f64(f64::NAN),
+    )));
+    assert!(m.contains("camera.fx is NaN"), "{m}");
+    let m = message(JsCamera::new(with(
+        CAMERA,
+        "height_m",
+        JsValue::from_f64(-2.0),
+    )));
+    assert!(m.contains("height_m"), "{m}");
+    let m = message(JsCamera::new(with(CAMERA, "width", JsValue::from_f64(0.0))));
+    assert!(m.contains("width"), "{m}");
+    let m = message(JsCamera::new(with(CAMERA, "width", JsValue::from_f64(1e6))));
+    assert!(m.contains("1000000"), "{m}");
+    let m = message(JsCamera::new(obj(r#"{"width": 640}"#)));
+    assert!(m.contains("missing field"), "{m}");
+    let m = message(JsCamera::new(JsValue::UNDEFINED));
+    assert!(m.contains("camera is missing"), "{m}");
+}
+
+#[wasm_bindgen_test]
+fn camera_stays_usable_after_bad_calls() {
+    let cam = JsCamera::new(obj(CAMERA)).unwrap();
+    let m = message(cam.project_road(f64::NAN, 0.0));
+    assert!(m.contains("`x` = NaN"), "{m}");
+    let m = message(cam.road_point(320.0, 10.0));
+    assert!(m.contains("horizon"), "{m}");
+    assert!(cam.project_road(10.0, 1.8).is_ok());
+}
+
+#[wasm_bindgen_test]
+fn test_road_renders_full_frames_and_truth() {
+    let mut road = JsTestRoad::new(obj(CAMERA), JsValue::UNDEFINED).unwrap();
+    let px = road.render(5).unwrap();
+    assert_eq!(px.length() as usize, 640 * 480 * 4);
+    let truth = road.truth(5).unwrap();
+    let boundaries = js_sys::Reflect::get(&truth, &"boundaries".into()).unwrap();
+    assert_eq!(js_sys::Array::from(&boundaries).length(), 2);
+    let m = message(JsTestRoad::new(
+        obj(CAMERA),
+        obj(r#"{"lane_width_m": 3.6, "marking_width_m": 2.5}"#),
+    ));
+    assert!(m.contains("marking_width_m"), "{m}");
+    let m = message(JsTestRoad::new(obj(CAMERA), obj(r#"{"lane_wdth_m": 3}"#)));
+    assert!(m.contains("unknown field `lane_wdth_m`"), "{m}");
+}
+
+#[wasm_bindgen_test]
+fn tracker_factory_explains_unknown_ids_and_bad_configs() {
+    let config = obj(&format!(
+        r#"{{"camera": {CAMERA}, "particles": 300, "seed": 7}}"#
+    ));
+    let m = message(JsTracker::new("no-such-tracker", config));
+    assert!(
+        m.starts_with("unknown tracker `no-such-tracker`; available: "),
+        "{m}"
+    );
+    for id in tracker_ids() {
+        assert!(m.contains(&id), "{m} lists {id}");
+    }
+    let bad = obj(&format!(r#"{{"camera": {CAMERA}, "particles": 0}}"#));
+    let m = message(JsTracker::new("no-such-tracker", bad));
+    assert!(m.contains("`particles` = 0"), "{m}");
+    let m = message(JsTracker::new("no-such-tracker", JsValue::NULL));
+    assert!(m.contains("tracker config is missing"), "{m}");
+}

@@ -1,0 +1,59 @@
+// The demo page: wires the worker, a frame source, the renderer and the controls together.
+// One frame at a time: ask the source for a frame, draw it, draw the overlays, repeat.
+import { WorkerClient } from './worker-client.js';
+import { TestRoadSource } from './source.js';
+import { Controls } from './controls.js';
+import { drawFrame, drawBoundaries } from './render.js';
+
+const controls = new Controls();
+const ctx = document.getElementById('view').getContext('2d');
+const client = new WorkerClient();
+// Read by the end-to-end tests and handy in the console.
+const demo = (window.lanepfDemo = { frames: 0, lastTruth: null, lastFrame: null });
+
+function draw(frame) {
+  drawFrame(ctx, frame.rgba, frame.width, frame.height);
+  if (controls.showTruth.checked && frame.truth) {
+    drawBoundaries(ctx, frame.truth.boundaries, { dashed: true, width: 2 });
+  }
+  demo.frames += 1;
+  demo.lastTruth = frame.truth;
+  demo.lastFrame = { index: frame.index, width: frame.width, height: frame.height };
+  controls.timing.textContent = `frame ${frame.index} · render ${frame.ms.toFixed(1)} ms`;
+}
+
+async function main() {
+  const { version, trackers } = await client.request('hello');
+  controls.version.textContent = `lanepf ${version}`;
+  controls.setTrackers(trackers);
+  const source = new TestRoadSource(client);
+  await source.open();
+  controls.say(source.label);
+  document.body.dataset.state = 'running';
+
+  let busy = false;
+  const advance = async () => {
+    if (busy) return;
+    busy = true;
+    try {
+      draw(await source.next());
+    } catch (err) {
+      document.body.dataset.state = 'error';
+      controls.say(err.message, true);
+      controls.setPaused(true);
+    } finally {
+      busy = false;
+    }
+  };
+  controls.onStep = advance;
+  const loop = async () => {
+    if (!controls.paused) await advance();
+    requestAnimationFrame(loop);
+  };
+  requestAnimationFrame(loop);
+}
+
+main().catch((err) => {
+  document.body.dataset.state = 'error';
+  controls.say(`Could not start: ${err.message}`, true);
+});

@@ -1,0 +1,29 @@
+// Frame sources. Each source yields frames { rgba, width, height, truth? } on demand.
+// The synthetic test road is rendered inside the worker by the wasm module.
+
+/** The camera of the synthetic sources (the Caltech Lanes camera: 640x480, 2.18 m, 14 deg down). */
+export const DEFAULT_CAMERA = {
+  width: 640, height: 480, fx: 309.4362, fy: 344.2161, cx: 317.9034, cy: 256.5352,
+  height_m: 2.1798, pitch_deg: 14.0, yaw_deg: 0.0, roll_deg: 0.0,
+};
+
+export class TestRoadSource {
+  constructor(client, camera = DEFAULT_CAMERA, options = {}) {
+    this.client = client;
+    this.camera = camera;
+    this.options = options;
+    this.index = 0;
+    this.label = 'Synthetic test road (straight, dashed markings, known ground truth)';
+  }
+
+  async open() {
+    return this.client.request('openTestRoad', { camera: this.camera, options: this.options });
+  }
+
+  /** Renders the next frame. */
+  async next() {
+    const frame = await this.client.request('renderFrame', { index: this.index });
+    frame.index = this.index++;
+    return frame;
+  }
+}
