@@ -211,6 +211,11 @@ impl<'a, T: Copy> ImageView<'a, T> {
     pub fn get(&self, x: usize, y: usize) -> T {
         self.data[y * self.stride + x]
     }
+    /// The underlying elements from pixel (0, 0) on; pixel (x, y) is at `y * stride + x`.
+    #[inline]
+    pub fn as_slice(&self) -> &'a [T] {
+        self.data
+    }
     /// Row y (exactly `width` elements).
     #[inline]
     pub fn row(&self, y: usize) -> &'a [T] {

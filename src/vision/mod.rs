@@ -1,1 +1,24 @@
-//! Image preprocessing, one operation per file.
+//! Image preprocessing, one operation per file. Each operation is an executor struct that owns
+//! its output and scratch buffers, so that a tracker builds it once and calls it every frame
+//! without allocating.
+//!
+//! - [`Ipm`]: inverse perspective mapping to a metric top view (lookup table, bilinear);
+//! - [`Gradients`]: Sobel gx, gy, magnitude and orientation;
+//! - [`GaussianBlur`]: separable Gaussian smoothing;
+//! - [`Canny`]: Canny edges with hysteresis;
+//! - [`Dld`]: the dark-light-dark marking detector of Lee et al. (eqs. 21-24);
+//! - [`DistanceTransform`]: the exact Euclidean distance transform.
+
+mod blur;
+mod canny;
+mod distance_transform;
+mod dld;
+mod gradient;
+mod ipm;
+
+pub use blur::{GaussianBlur, MAX_SIGMA};
+pub use canny::{Canny, CannyConfig, EDGE};
+pub use distance_transform::DistanceTransform;
+pub use dld::{Dld, DldConfig, FALLING, RISING};
+pub use gradient::Gradients;
+pub use ipm::{Ipm, TopViewConfig};
