@@ -1,5 +1,26 @@
 //! Synthetic road scenes with exact ground truth.
+//!
+//! A [`SceneConfig`] (road of clothoid segments, lanes, markings, ego motion, vehicles,
+//! shadows, appearance) is built for a [`crate::camera::Camera`] into a [`Scene`] that renders
+//! frames by ray casting through the same camera model the trackers use, mono or stereo, with
+//! the exact depth of every pixel.
 
+mod appearance;
+mod ego;
+mod markings;
+mod render;
+mod road;
+mod scenarios;
+mod scene;
+mod simulator;
 mod test_road;
 
+pub use appearance::hash_unit;
+pub use ego::{EgoConfig, LaneChange, Pose};
+pub use markings::{BoundaryStyle, Coverage, MarkingConfig, MarkingStyle, Paint, Pattern, Wear};
+pub use render::MAX_RANGE_M;
+pub use road::{LaneGap, Road, RoadConfig, Sample, Segment, WidthChange};
+pub use scenarios::{scenario, SCENARIOS};
+pub use scene::{Appearance, RoadPaint, SceneConfig, Shadow, Vehicle, VerticalProfile};
+pub use simulator::{Eye, Scene, DEFAULT_BASELINE_M};
 pub use test_road::{TestRoad, TestRoadConfig};
