@@ -14,6 +14,7 @@ mod scenarios;
 mod scene;
 mod simulator;
 mod test_road;
+mod truth;
 
 pub use appearance::hash_unit;
 pub use ego::{EgoConfig, LaneChange, Pose};
@@ -24,3 +25,4 @@ pub use scenarios::{scenario, SCENARIOS};
 pub use scene::{Appearance, RoadPaint, SceneConfig, Shadow, Vehicle, VerticalProfile};
 pub use simulator::{Eye, Scene, DEFAULT_BASELINE_M};
 pub use test_road::{TestRoad, TestRoadConfig};
+pub use truth::TRUTH_RANGE_M;

@@ -16,8 +16,9 @@
 //! win when nearer. A road hit (X, Y) becomes road coordinates (s, d) by Newton steps on a
 //! per-frame table of the reference line in the vehicle frame (every 0.5 m, linear
 //! interpolation: < 0.4 mm off on a 100 m radius), seeded with the neighbouring pixel's s.
-//! The pixel's footprint on the road (f_d = X / f_x across, f_s = X^2 / (f_y h) along)
-//! anti-aliases the markings. Appearance effects follow in [`super::appearance`].
+//! The pixel's footprint on the road anti-aliases the markings: along the road
+//! f_s = X^2 / (f_y h) (one image row), across f_d = X / f_x + |Y / X| f_s (one column, plus
+//! the lateral drift of a row step on rays that converge to the vanishing point). Appearance effects follow in [`super::appearance`].
 
 use super::appearance::value_noise;
 use super::ego::Pose;
@@ -366,7 +367,9 @@ pub(super) fn shade_road(
         [g, g, g * 1.02]
     };
     let m = config.markings.coverage(road, s, d, fd, fs);
-    blend(&mut rgb, m.rgb, m.alpha);
+    // Road paint is retroreflective: at night it returns more of the headlights' light.
+    let gain = if a.night { 1.8 } else { 1.0 };
+    blend(&mut rgb, m.rgb.map(|c| c * gain), m.alpha);
     for p in &config.road_paint {
         let along = super::markings::interval(s - (p.s + p.size_m[0] / 2.0), p.size_m[0] / 2.0, fs);
         let across = super::markings::interval(d - p.d, p.size_m[1] / 2.0, fd);

@@ -169,8 +169,8 @@ impl Scene {
                             s_row = s;
                             first_in_row = false;
                         }
-                        let fd = (x / fx).max(0.003);
                         let fs = (x * x / (fy * cam_h)).max(0.003);
+                        let fd = (x / fx + (y / x).abs() * fs).max(0.003);
                         let mut c =
                             render::shade_road(&self.config, &self.road, s, d, fd, fs, self.seed);
                         let light = geo.under_vehicle(x, y)
