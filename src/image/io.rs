@@ -83,6 +83,65 @@ pub fn write_rgba_png(path: &Path, rgba: &[u8], width: usize, height: usize) -> 
     })
 }
 
+/// Writes a disparity map as a 16-bit grey PNG in the KITTI convention: value = round(256 d),
+/// 0 where the disparity is unknown (d <= 0 or not finite); disparities above 255.99 saturate.
+///
+/// # Errors
+/// [`Error::BufferSize`] for a wrong length, [`Error::Io`] when the file cannot be written.
+pub fn write_disparity_png(
+    path: &Path,
+    disparity: &[f32],
+    width: usize,
+    height: usize,
+) -> Result<()> {
+    check_dimensions(width, height)?;
+    if disparity.len() != width * height {
+        return Err(Error::BufferSize {
+            what: format!("a {width}x{height} disparity map"),
+            expected: width * height,
+            actual: disparity.len(),
+        });
+    }
+    let data: Vec<u16> = disparity
+        .iter()
+        .map(|&d| {
+            if d.is_finite() && d > 0.0 {
+                (d * 256.0).round().clamp(1.0, 65535.0) as u16
+            } else {
+                0
+            }
+        })
+        .collect();
+    let img = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(
+        width as u32,
+        height as u32,
+        data,
+    )
+    .ok_or_else(|| Error::Dimensions(format!("{width}x{height}")))?;
+    img.save(path).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    })
+}
+
+/// Reads a KITTI-convention 16-bit disparity PNG (0 becomes 0.0: unknown).
+///
+/// # Errors
+/// [`Error::Io`] / [`Error::Decode`] when the file cannot be read or is not a grey image.
+pub fn read_disparity_png(path: &Path) -> Result<(Vec<f32>, usize, usize)> {
+    let img = image::open(path).map_err(|e| Error::Decode {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    let g = img.to_luma16();
+    let (w, h) = (g.width() as usize, g.height() as usize);
+    Ok((
+        g.into_raw().into_iter().map(|v| v as f32 / 256.0).collect(),
+        w,
+        h,
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -93,6 +152,23 @@ mod tests {
         assert!(matches!(e, Error::Decode { .. }), "{e}");
         let e = read_rgba(Path::new("/nonexistent/x.png")).unwrap_err();
         assert!(matches!(e, Error::Io { .. }));
+    }
+
+    #[test]
+    fn disparity_png_round_trip_keeps_a_256th_of_a_pixel() {
+        let dir = std::env::temp_dir().join(format!("lanepf-disp-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("d.png");
+        let d = [0.0, 1.5, 37.123, f32::NAN, -2.0, 300.0];
+        write_disparity_png(&path, &d, 3, 2).unwrap();
+        let (back, w, h) = read_disparity_png(&path).unwrap();
+        assert_eq!((w, h), (3, 2));
+        assert_eq!(&back[..2], &[0.0, 1.5]);
+        assert!((back[2] - 37.123).abs() <= 0.5 / 256.0);
+        assert_eq!(&back[3..5], &[0.0, 0.0]);
+        assert!((back[5] - 65535.0 / 256.0).abs() < 1e-3, "saturates");
+        assert!(write_disparity_png(&path, &d, 2, 2).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

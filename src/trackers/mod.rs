@@ -23,6 +23,25 @@ pub trait Tracker {
     fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate>;
     /// Forgets the past: the next frame starts from the initial distribution.
     fn reset(&mut self);
+    /// Milliseconds spent in each stage of the last [`Tracker::step`] (for `lanepf bench`).
+    fn stage_times(&self) -> StageTimes {
+        StageTimes::default()
+    }
+}
+
+/// Time spent per stage of one frame, milliseconds.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct StageTimes {
+    /// Grey conversion, top view, gradients, edges, distance maps.
+    pub preprocess: f64,
+    /// Motion model: drift and diffusion (and injection).
+    pub predict: f64,
+    /// Measurement model: likelihoods of all particles.
+    pub weigh: f64,
+    /// Resampling.
+    pub resample: f64,
+    /// Estimation and conversion to boundaries.
+    pub estimate: f64,
 }
 
 /// The ids of the trackers implemented so far.

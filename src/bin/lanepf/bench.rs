@@ -1,0 +1,151 @@
+//! `lanepf bench`: time trackers on a standard synthetic sequence (`highway-curve`, seed 1)
+//! at 640x480 and 1280x720 (or the given size): median and 95th-percentile ms per frame, and
+//! the mean split per stage.
+
+use super::frames::default_camera;
+use lanepf::synth::{scenario, Eye, Scene};
+use lanepf::trackers::{self, StageTimes, TrackerConfig, TRACKER_IDS};
+use lanepf::{Error, Result};
+use std::time::Instant;
+
+/// Options of `lanepf bench`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Tracker id, or `all`.
+    #[arg(long, default_value = "all")]
+    tracker: String,
+    /// Frames per run.
+    #[arg(long, default_value_t = 100)]
+    frames: u32,
+    /// Only this width (with --height); default: 640x480 and 1280x720.
+    #[arg(long, requires = "height")]
+    width: Option<usize>,
+    /// Only this height.
+    #[arg(long, requires = "width")]
+    height: Option<usize>,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// One tracker at one size.
+#[derive(serde::Serialize)]
+struct Row {
+    tracker: String,
+    width: usize,
+    height: usize,
+    frames: u32,
+    median_ms: f64,
+    p95_ms: f64,
+    stages_ms: StageTimes,
+}
+
+fn percentile(sorted: &[f64], p: f64) -> f64 {
+    let k = ((sorted.len() - 1) as f64 * p).round() as usize;
+    sorted[k]
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> Result<()> {
+    let ids: Vec<String> = if args.tracker == "all" {
+        TRACKER_IDS.iter().map(|s| s.to_string()).collect()
+    } else {
+        vec![args.tracker.clone()]
+    };
+    if ids.is_empty() {
+        return Err(Error::Config(
+            "no tracker is implemented yet, so there is nothing to benchmark (the paper \
+             trackers land one by one; `cargo bench` times the vision operations and the filter)"
+                .into(),
+        ));
+    }
+    if args.frames == 0 {
+        return Err(Error::parameter("--frames", 0, "must be at least 1"));
+    }
+    let sizes = match (args.width, args.height) {
+        (Some(w), Some(h)) => vec![(w, h)],
+        _ => vec![(640, 480), (1280, 720)],
+    };
+    let mut rows = Vec::new();
+    for (w, h) in sizes {
+        let camera = default_camera(w, h)?;
+        let mut scene = Scene::new(scenario("highway-curve")?, camera.clone(), 1)?;
+        let mut frames = vec![vec![0u8; w * h * 4]; args.frames as usize];
+        for (i, f) in frames.iter_mut().enumerate() {
+            scene.render(i as u32, Eye::Left, f, None)?;
+        }
+        for id in &ids {
+            let config = TrackerConfig::from_json_str(&format!(
+                r#"{{"camera": {}, "seed": 1}}"#,
+                serde_json::to_string(&camera.to_file())
+                    .map_err(|e| Error::Config(e.to_string()))?
+            ))?;
+            let mut tracker = trackers::create(id, &config)?;
+            let mut times = Vec::with_capacity(frames.len());
+            let mut stages = StageTimes::default();
+            for f in &frames {
+                let start = Instant::now();
+                tracker.step(f, w, h)?;
+                times.push(start.elapsed().as_secs_f64() * 1e3);
+                let s = tracker.stage_times();
+                stages.preprocess += s.preprocess;
+                stages.predict += s.predict;
+                stages.weigh += s.weigh;
+                stages.resample += s.resample;
+                stages.estimate += s.estimate;
+            }
+            let n = times.len() as f64;
+            times.sort_by(f64::total_cmp);
+            rows.push(Row {
+                tracker: id.clone(),
+                width: w,
+                height: h,
+                frames: args.frames,
+                median_ms: percentile(&times, 0.5),
+                p95_ms: percentile(&times, 0.95),
+                stages_ms: StageTimes {
+                    preprocess: stages.preprocess / n,
+                    predict: stages.predict / n,
+                    weigh: stages.weigh / n,
+                    resample: stages.resample / n,
+                    estimate: stages.estimate / n,
+                },
+            });
+        }
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).map_err(|e| Error::Config(e.to_string()))?
+        );
+    } else {
+        println!(
+            "{:18} {:>10} {:>9} {:>9} {:>11} {:>9} {:>9} {:>10} {:>10}",
+            "tracker",
+            "size",
+            "median",
+            "p95",
+            "preprocess",
+            "predict",
+            "weigh",
+            "resample",
+            "estimate"
+        );
+        for r in rows {
+            let s = r.stages_ms;
+            println!(
+                "{:18} {:>10} {:>9.2} {:>9.2} {:>11.2} {:>9.2} {:>9.2} {:>10.2} {:>10.2}",
+                r.tracker,
+                format!("{}x{}", r.width, r.height),
+                r.median_ms,
+                r.p95_ms,
+                s.preprocess,
+                s.predict,
+                s.weigh,
+                s.resample,
+                s.estimate
+            );
+        }
+    }
+    Ok(())
+}

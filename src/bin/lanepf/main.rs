@@ -1,0 +1,54 @@
+//! `lanepf`: the command-line tool (see ../shared/DESIGN.md, "The command-line contract").
+//!
+//! ```text
+//! lanepf synth --scenario NAME --seed N --frames N [--width W --height H] [--stereo] --out DIR
+//! lanepf track --tracker ID --camera FILE --frames DIR [--right DIR] [--seed N] [--config FILE]
+//!              [--still K] --out FILE.jsonl
+//! lanepf eval --pred FILE.jsonl --gt PATH --format synthetic|caltech|tusimple|culane [--json]
+//! lanepf bench [--tracker ID|all] [--frames N] [--width W --height H] [--json]
+//! ```
+//!
+//! Every error is one line on stderr (`lanepf: error: ...`) and exit status 1; usage errors
+//! exit with 2 (clap's convention).
+
+mod bench;
+mod frames;
+mod synth;
+mod track;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Particle-filter lane tracking: synthetic scenes, tracking, evaluation and benchmarks.
+#[derive(Parser)]
+#[command(name = "lanepf", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a named synthetic scenario with its exact ground truth.
+    Synth(synth::Args),
+    /// Run a tracker on a folder of frames and write one JSON line per frame.
+    Track(track::Args),
+    /// Time trackers on a standard synthetic sequence.
+    Bench(bench::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Synth(args) => synth::run(args),
+        Command::Track(args) => track::run(args),
+        Command::Bench(args) => bench::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("lanepf: error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,142 @@
+//! The command-line tool, run as a user would: files in, files and exit codes out.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn lanepf(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_lanepf"))
+        .args(args)
+        .output()
+        .expect("the lanepf binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lanepf-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn files(dir: &Path) -> usize {
+    std::fs::read_dir(dir).map_or(0, |d| d.count())
+}
+
+#[test]
+fn synth_writes_frames_stereo_disparity_camera_and_truth() {
+    let out = temp("synth");
+    let o = out.to_str().unwrap();
+    let (code, _, err) = lanepf(&[
+        "synth",
+        "--scenario",
+        "lane-change",
+        "--seed",
+        "4",
+        "--frames",
+        "3",
+        "--width",
+        "160",
+        "--height",
+        "120",
+        "--stereo",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(files(&out.join("frames")), 3);
+    assert_eq!(files(&out.join("right")), 3);
+    assert_eq!(files(&out.join("disparity")), 3);
+    let camera = lanepf::camera::Camera::load(&out.join("camera.json")).unwrap();
+    assert_eq!((camera.width(), camera.height()), (160, 120));
+    let gt = std::fs::read_to_string(out.join("gt.jsonl")).unwrap();
+    let lines: Vec<lanepf::lane::LaneEstimate> = gt
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 3);
+    assert_eq!(lines[2].frame, "000002.png");
+    assert!(lines[0].boundaries.len() >= 2 && lines[0].state.contains_key("danescu.w0"));
+    // The disparity of the bottom row (road a few metres ahead) is positive and finite.
+    let (d, w, h) = lanepf::image::read_disparity_png(&out.join("disparity/000000.png")).unwrap();
+    assert_eq!((w, h), (160, 120));
+    assert!(d[119 * 160 + 80] > 1.0 && d[0] == 0.0, "sky has none");
+    // Same seed, same frames.
+    let again = temp("synth-again");
+    lanepf(&[
+        "synth",
+        "--scenario",
+        "lane-change",
+        "--seed",
+        "4",
+        "--frames",
+        "1",
+        "--width",
+        "160",
+        "--height",
+        "120",
+        "--out",
+        again.to_str().unwrap(),
+    ]);
+    let a = std::fs::read(out.join("frames/000000.png")).unwrap();
+    let b = std::fs::read(again.join("frames/000000.png")).unwrap();
+    assert_eq!(a, b);
+    std::fs::remove_dir_all(&out).unwrap();
+    std::fs::remove_dir_all(&again).unwrap();
+}
+
+#[test]
+fn errors_are_one_clear_line_and_a_failure_status() {
+    let (code, _, err) = lanepf(&["synth", "--scenario", "moon", "--out", "/tmp/never"]);
+    assert_eq!(code, 1);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("unknown scenario `moon`") && err.contains("urban"),
+        "{err}"
+    );
+
+    let (code, _, err) = lanepf(&[
+        "track",
+        "--tracker",
+        "nope",
+        "--camera",
+        "/no/camera.json",
+        "--frames",
+        "/tmp",
+        "--out",
+        "/tmp/x.jsonl",
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("/no/camera.json"), "{err}");
+
+    // A real camera but an unknown tracker: the message lists what exists.
+    let dir = temp("track");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cam = dir.join("camera.json");
+    std::fs::write(
+        &cam,
+        r#"{"width": 64, "height": 48, "fx": 50, "fy": 50, "cx": 32, "cy": 24, "height_m": 1.5, "pitch_deg": 3}"#,
+    )
+    .unwrap();
+    let (code, _, err) = lanepf(&[
+        "track",
+        "--tracker",
+        "nope",
+        "--camera",
+        cam.to_str().unwrap(),
+        "--frames",
+        dir.to_str().unwrap(),
+        "--out",
+        dir.join("o.jsonl").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("unknown tracker `nope`; available:"), "{err}");
+    assert!(!err.contains("panicked"));
+
+    let (code, _, err) = lanepf(&["bench"]);
+    assert_eq!(code, 1);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
