@@ -5,12 +5,15 @@ export class Controls {
     this.play = doc.getElementById('play');
     this.step = doc.getElementById('step');
     this.tracker = doc.getElementById('tracker');
+    this.source = doc.getElementById('source');
     this.showTruth = doc.getElementById('show-truth');
     this.status = doc.getElementById('status');
     this.timing = doc.getElementById('timing');
     this.version = doc.getElementById('version');
     this.paused = false;
     this.onStep = () => {};
+    this.onSource = () => {};
+    this.source.addEventListener('change', () => this.onSource(this.source.value));
     this.play.addEventListener('click', () => this.setPaused(!this.paused));
     this.step.addEventListener('click', () => this.onStep());
   }
@@ -32,6 +35,15 @@ export class Controls {
     }
     for (const id of ids) this.tracker.add(new Option(id, id));
     this.tracker.disabled = false;
+  }
+
+  /** Adds the simulator's scenarios after the test road. */
+  setScenarios(list) {
+    for (const { name, description } of list) {
+      const o = new Option(`Scene: ${name}`, name);
+      o.title = description;
+      this.source.add(o);
+    }
   }
 
   say(text, isError = false) {

@@ -1,7 +1,7 @@
 // The demo page: wires the worker, a frame source, the renderer and the controls together.
 // One frame at a time: ask the source for a frame, draw it, draw the overlays, repeat.
 import { WorkerClient } from './worker-client.js';
-import { TestRoadSource } from './source.js';
+import { SceneSource, TestRoadSource } from './source.js';
 import { Controls } from './controls.js';
 import { drawFrame, drawBoundaries } from './render.js';
 
@@ -23,12 +23,20 @@ function draw(frame) {
 }
 
 async function main() {
-  const { version, trackers } = await client.request('hello');
+  const { version, trackers, scenarios } = await client.request('hello');
   controls.version.textContent = `lanepf ${version}`;
   controls.setTrackers(trackers);
-  const source = new TestRoadSource(client);
-  await source.open();
-  controls.say(source.label);
+  controls.setScenarios(scenarios);
+  let source = null;
+  const open = async (value) => {
+    const scene = scenarios.find((s) => s.name === value);
+    const next = scene ? new SceneSource(client, scene.name, scene.description) : new TestRoadSource(client);
+    await next.open();
+    source = next;
+    controls.say(source.label);
+  };
+  await open(controls.source.value);
+  controls.onSource = (value) => open(value).catch((err) => controls.say(err.message, true));
   document.body.dataset.state = 'running';
 
   let busy = false;

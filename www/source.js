@@ -1,5 +1,6 @@
 // Frame sources. Each source yields frames { rgba, width, height, truth? } on demand.
-// The synthetic test road is rendered inside the worker by the wasm module.
+// The synthetic test road and the simulator's scenes are rendered inside the worker by the
+// wasm module.
 
 /** The camera of the synthetic sources (the Caltech Lanes camera: 640x480, 2.18 m, 14 deg down). */
 export const DEFAULT_CAMERA = {
@@ -24,6 +25,32 @@ export class TestRoadSource {
   async next() {
     const frame = await this.client.request('renderFrame', { index: this.index });
     frame.index = this.index++;
+    return frame;
+  }
+}
+
+/** A named scenario of the simulator (curves, lane changes, night, ...), looped. */
+export class SceneSource {
+  constructor(client, name, description, options = { width: 640, height: 480, seed: 1 }) {
+    this.client = client;
+    this.name = name;
+    this.options = options;
+    this.index = 0;
+    this.frames = 1;
+    this.label = `Synthetic scene “${name}”: ${description}`;
+  }
+
+  async open() {
+    const info = await this.client.request('openScene', { name: this.name, options: this.options });
+    this.frames = info.frames;
+    this.camera = info.camera;
+    return info;
+  }
+
+  async next() {
+    const frame = await this.client.request('renderFrame', { index: this.index });
+    frame.index = this.index;
+    this.index = (this.index + 1) % this.frames;
     return frame;
   }
 }

@@ -1,14 +1,15 @@
-// The Web Worker that owns the WebAssembly module: it renders synthetic frames and (as the
+// The Web Worker that owns the WebAssembly module: it renders synthetic frames (the test road
+// or a named simulator scenario) and (as the
 // trackers land) runs them, so the page's main thread only draws.
 // Protocol: { id, type, ...payload } -> { id, ok: true, result } | { id, ok: false, error }.
-import init, { version, trackerIds, TestRoad } from '../pkg/web/lanepf.js';
+import init, { version, trackerIds, scenarios, Scene, TestRoad } from '../pkg/web/lanepf.js';
 
 const ready = init();
 let road = null;
 
 const handlers = {
   async hello() {
-    return { version: version(), trackers: trackerIds() };
+    return { version: version(), trackers: trackerIds(), scenarios: scenarios() };
   },
   async openTestRoad({ camera, options }) {
     road?.free();
@@ -16,8 +17,14 @@ const handlers = {
     road = new TestRoad(camera, options ?? {});
     return { width: road.width, height: road.height };
   },
+  async openScene({ name, options }) {
+    road?.free();
+    road = null;
+    road = new Scene(name, options ?? {});
+    return { width: road.width, height: road.height, frames: road.frames, camera: road.camera() };
+  },
   async renderFrame({ index }) {
-    if (!road) throw new Error('no source is open: call openTestRoad first');
+    if (!road) throw new Error('no source is open: call openTestRoad or openScene first');
     const t0 = performance.now();
     const rgba = road.render(index);
     const ms = performance.now() - t0;

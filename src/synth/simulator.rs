@@ -36,6 +36,34 @@ pub struct Scene {
 /// Stereo baseline used when the camera file gives none, metres.
 pub const DEFAULT_BASELINE_M: f64 = 0.3;
 
+/// The simulator's default camera for a `width` x `height` image: 60 degrees horizontal field
+/// of view, square pixels, principal point at the centre, 1.5 m above the road, pitched 4
+/// degrees down, stereo baseline [`DEFAULT_BASELINE_M`].
+///
+/// # Errors
+/// [`Error::Dimensions`] for an unusable size.
+pub fn default_camera(width: usize, height: usize) -> Result<Camera> {
+    let f = width as f64 / 2.0 / crate::math::tan(crate::math::deg_to_rad(30.0));
+    Camera::from_file(&crate::camera::CameraFile {
+        width,
+        height,
+        fx: f,
+        fy: f,
+        cx: (width as f64 - 1.0) / 2.0,
+        cy: (height as f64 - 1.0) / 2.0,
+        height_m: 1.5,
+        pitch_deg: 4.0,
+        yaw_deg: 0.0,
+        roll_deg: 0.0,
+        k1: 0.0,
+        k2: 0.0,
+        p1: 0.0,
+        p2: 0.0,
+        k3: 0.0,
+        baseline_m: Some(DEFAULT_BASELINE_M),
+    })
+}
+
 impl Scene {
     /// Builds `config` for `camera` with `seed` (texture, noise and every random choice).
     ///

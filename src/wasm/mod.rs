@@ -1,16 +1,18 @@
 //! The JavaScript binding: the only module with wasm-bindgen types.
 //!
-//! Each class wraps a core type (`Camera`, `TestRoad`, `Tracker`); every fallible call returns
+//! Each class wraps a core type (`Camera`, `Scene`, `TestRoad`, `Tracker`); every fallible call returns
 //! `Result<_, JsError>`, so JavaScript gets a thrown `Error` with the core's message and the
 //! object stays usable.
 
 mod camera;
 mod error;
+mod scene;
 mod test_road;
 mod tracker;
 
 pub use camera::JsCamera;
 pub use error::to_js;
+pub use scene::{scenarios, JsScene};
 pub use test_road::JsTestRoad;
 pub use tracker::{tracker_ids, JsTracker};
 

@@ -53,11 +53,14 @@ test('demo draws the synthetic road with markings where the ground truth says', 
   assert.ok(left.points.length >= 10, 'boundary polylines are sampled densely');
 
   // The solid left marking is bright along (nearly) all of its projected polyline, the dashed
-  // right one along a good part of it, and the lane centre between them is dark asphalt.
+  // right one along part of it, and the lane centre between them is dark asphalt.
   const near = (pts) => pts.filter(([, y]) => y > 200);
   const hit = (pts) => near(pts).filter(([x, y]) => peak(img, x, y, 3) > 150).length / near(pts).length;
   assert.ok(hit(left.points) > 0.9, `solid marking found on ${hit(left.points)} of the left polyline`);
-  assert.ok(hit(right.points) > 0.2, `dashed marking found on ${hit(right.points)} of the right polyline`);
+  // The right marking is dashed (3 m of every 12 m): which part of it is painted depends on
+  // the frame, but some dash is always near the car and it is never solid.
+  const dashed = hit(right.points);
+  assert.ok(dashed > 0.05 && dashed < 0.6, `dashed marking found on ${dashed} of the right polyline`);
   for (let k = 0; k < near(left.points).length; k += 3) {
     const [xl, y] = near(left.points)[k];
     const xr = right.points.reduce((a, p) => (Math.abs(p[1] - y) < Math.abs(a[1] - y) ? p : a))[0];
@@ -79,6 +82,36 @@ test('demo draws the synthetic road with markings where the ground truth says', 
 
   mkdirSync('test-results', { recursive: true });
   await page.screenshot({ path: 'test-results/demo.png' });
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('demo switches to a simulator scenario and draws it under its ground truth', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/`);
+  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  const names = await page.$$eval('#source option', (os) => os.map((o) => o.value));
+  assert.ok(names.includes('highway-curve') && names.includes('urban') && names.length >= 13, names.join());
+
+  await page.click('#play');
+  await page.uncheck('#show-truth');
+  await page.selectOption('#source', 'highway-curve');
+  await page.waitForFunction(() => /highway-curve/.test(document.getElementById('status').textContent));
+  const before = await page.evaluate(() => window.lanepfDemo.frames);
+  await page.click('#step');
+  await page.waitForFunction((n) => window.lanepfDemo.frames > n, before);
+  const truth = await page.evaluate(() => window.lanepfDemo.lastTruth);
+  const img = await readCanvas(page);
+  // Three lanes with the car in the middle: four boundaries, and the outer (solid) left edge
+  // of the road is bright along its near part.
+  assert.deepEqual(truth.boundaries.map((b) => b.role).sort(),
+    ['ego-left', 'ego-right', 'left-adjacent', 'right-adjacent']);
+  const edge = truth.boundaries.find((b) => b.role === 'left-adjacent').points.filter(([, y]) => y > 260);
+  assert.ok(edge.length >= 5, 'the road edge is visible near the car');
+  const bright = edge.filter(([x, y]) => peak(img, x, y, 2) > 150).length / edge.length;
+  assert.ok(bright > 0.9, `solid road edge found on ${bright} of its polyline`);
+  // Sky at the top is blue, not grey or black.
+  const top = 4 * (10 * img.width + 320);
+  assert.ok(img.data[top + 2] > img.data[top] + 30, 'blue sky');
   assert.deepEqual(errors, []);
   await page.close();
 });

@@ -2,8 +2,7 @@
 //! at 640x480 and 1280x720 (or the given size): median and 95th-percentile ms per frame, and
 //! the mean split per stage.
 
-use super::frames::default_camera;
-use lanepf::synth::{scenario, Eye, Scene};
+use lanepf::synth::{default_camera, scenario, Eye, Scene};
 use lanepf::trackers::{self, StageTimes, TrackerConfig, TRACKER_IDS};
 use lanepf::{Error, Result};
 use std::time::Instant;

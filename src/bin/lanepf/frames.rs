@@ -1,6 +1,5 @@
 //! Listing and reading a folder of frames, and the default synthetic camera.
 
-use lanepf::camera::{Camera, CameraFile};
 use lanepf::{Error, Result};
 use std::path::{Path, PathBuf};
 
@@ -32,29 +31,4 @@ pub fn list(dir: &Path) -> Result<Vec<PathBuf>> {
 pub fn name(path: &Path) -> String {
     path.file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
-}
-
-/// The synthetic camera used when none is given: 60 degrees horizontal field of view,
-/// principal point at the centre, 1.5 m above the road, pitched 4 degrees down, with a stereo
-/// baseline of 0.3 m.
-pub fn default_camera(width: usize, height: usize) -> Result<Camera> {
-    let f = width as f64 / 2.0 / lanepf::math::tan(lanepf::math::deg_to_rad(30.0));
-    Camera::from_file(&CameraFile {
-        width,
-        height,
-        fx: f,
-        fy: f,
-        cx: (width as f64 - 1.0) / 2.0,
-        cy: (height as f64 - 1.0) / 2.0,
-        height_m: 1.5,
-        pitch_deg: 4.0,
-        yaw_deg: 0.0,
-        roll_deg: 0.0,
-        k1: 0.0,
-        k2: 0.0,
-        p1: 0.0,
-        p2: 0.0,
-        k3: 0.0,
-        baseline_m: Some(0.3),
-    })
 }

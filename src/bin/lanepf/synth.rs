@@ -1,10 +1,9 @@
 //! `lanepf synth`: render a scenario into DIR/frames (and DIR/right, DIR/disparity with
 //! --stereo), with DIR/camera.json and DIR/gt.jsonl.
 
-use super::frames::default_camera;
 use lanepf::camera::Camera;
 use lanepf::image::{write_disparity_png, write_rgba_png};
-use lanepf::synth::{scenario, Eye, Scene, SCENARIOS};
+use lanepf::synth::{default_camera, scenario, Eye, Scene, SCENARIOS};
 use lanepf::{Error, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
