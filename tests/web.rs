@@ -164,6 +164,11 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
         .render(30, lanepf::synth::Eye::Left, &mut rgba, None)
         .unwrap();
     assert_eq!(left, rgba);
+    // Bit-identical to the native build: the native unit test asserts the same fingerprint.
+    assert_eq!(
+        lanepf::synth::frame_fingerprint(&left),
+        lanepf::synth::SCENE_FINGERPRINT
+    );
     let truth = scene.truth(30).unwrap();
     let boundaries = js_sys::Reflect::get(&truth, &"boundaries".into()).unwrap();
     assert!(js_sys::Array::from(&boundaries).length() >= 2);

@@ -23,6 +23,8 @@ pub use render::MAX_RANGE_M;
 pub use road::{LaneGap, Road, RoadConfig, Sample, Segment, WidthChange};
 pub use scenarios::{scenario, SCENARIOS};
 pub use scene::{Appearance, RoadPaint, SceneConfig, Shadow, Vehicle, VerticalProfile};
-pub use simulator::{default_camera, Eye, Scene, DEFAULT_BASELINE_M};
+pub use simulator::{
+    default_camera, frame_fingerprint, Eye, Scene, DEFAULT_BASELINE_M, SCENE_FINGERPRINT,
+};
 pub use test_road::{TestRoad, TestRoadConfig};
 pub use truth::TRUTH_RANGE_M;

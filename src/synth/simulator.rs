@@ -255,6 +255,17 @@ impl Scene {
     }
 }
 
+/// FNV-1a hash of a rendered frame, for checking that the same seed gives the same pixels on
+/// every target (the wasm test suite asserts the same value as the native test).
+pub fn frame_fingerprint(rgba: &[u8]) -> u64 {
+    rgba.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// [`frame_fingerprint`] of frame 30 of `s-curve`, seed 3, default camera at 160x120.
+pub const SCENE_FINGERPRINT: u64 = 0x93fe_709d_ac26_4c37;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -266,6 +277,24 @@ mod tests {
                 "height_m": 1.5, "pitch_deg": 4.0, "baseline_m": 0.4}"#,
         )
         .unwrap()
+    }
+
+    #[test]
+    fn rendering_matches_the_golden_fingerprint() {
+        let mut scene = Scene::new(
+            crate::synth::scenario("s-curve").unwrap(),
+            default_camera(160, 120).unwrap(),
+            3,
+        )
+        .unwrap();
+        let mut rgba = vec![0; 160 * 120 * 4];
+        scene.render(30, Eye::Left, &mut rgba, None).unwrap();
+        assert_eq!(
+            frame_fingerprint(&rgba),
+            SCENE_FINGERPRINT,
+            "{:#x}",
+            frame_fingerprint(&rgba)
+        );
     }
 
     #[test]
