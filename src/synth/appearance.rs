@@ -15,6 +15,17 @@ pub fn hash_unit(seed: u64, a: i64, b: i64) -> f64 {
     (h >> 11) as f64 / (1u64 << 53) as f64
 }
 
+/// A cheap lattice hash in [0, 1) for texture (one multiply-xorshift round on 64 bits: good
+/// enough for noise that only has to look random, about 3x cheaper than [`hash_unit`]).
+#[inline]
+fn lattice(seed: u64, i: i64, j: i64) -> f64 {
+    let mut h = seed
+        ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (j as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    h = (h ^ (h >> 29)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    (h >> 40) as f64 / (1u64 << 24) as f64
+}
+
 /// Smooth value noise in [0, 1): hash values on the integer lattice, interpolated with a
 /// smoothstep, so shapes are blobs instead of squares.
 pub fn value_noise(seed: u64, x: f64, y: f64) -> f64 {
@@ -22,10 +33,10 @@ pub fn value_noise(seed: u64, x: f64, y: f64) -> f64 {
     let (fx, fy) = (x - x0, y - y0);
     let (sx, sy) = (fx * fx * (3.0 - 2.0 * fx), fy * fy * (3.0 - 2.0 * fy));
     let (i, j) = (x0 as i64, y0 as i64);
-    let a = hash_unit(seed, i, j);
-    let b = hash_unit(seed, i + 1, j);
-    let c = hash_unit(seed, i, j + 1);
-    let d = hash_unit(seed, i + 1, j + 1);
+    let a = lattice(seed, i, j);
+    let b = lattice(seed, i + 1, j);
+    let c = lattice(seed, i, j + 1);
+    let d = lattice(seed, i + 1, j + 1);
     let top = a + (b - a) * sx;
     let bottom = c + (d - c) * sx;
     top + (bottom - top) * sy
@@ -88,17 +99,19 @@ impl<'a> Effects<'a> {
         out
     }
 
-    /// Sensor noise for pixel index `i`: approximately Gaussian (sum of four uniforms, variance
-    /// matched) with the configured standard deviation.
+    /// Sensor noise for pixel index `i`: approximately Gaussian (the sum of four 16-bit
+    /// uniforms cut from one hash, variance matched) with the configured standard deviation.
     pub fn noise(&self, i: usize, salt: u64) -> f32 {
         let sd = self.appearance.noise;
         if sd <= 0.0 {
             return 0.0;
         }
         let base = self.seed ^ salt ^ ((self.frame as u64) << 32);
-        let sum: f64 = (0..4).map(|k| hash_unit(base, i as i64, k)).sum();
-        // Sum of 4 U(0,1): mean 2, variance 1/3.
-        ((sum - 2.0) * (3.0f64).sqrt() * sd) as f32
+        let h = (hash_unit(base, i as i64, 0) * (1u64 << 53) as f64) as u64;
+        let sum: u64 = (0..4).map(|k| (h >> (13 * k)) & 0x1FFF).sum();
+        // Four U(0, 1) (13-bit): mean 2, variance 1/3.
+        let u = sum as f64 / 8192.0;
+        ((u - 2.0) * 1.732_050_807_568_877_2 * sd) as f32
     }
 }
 

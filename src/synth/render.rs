@@ -51,6 +51,9 @@ struct BoxNow {
     sin: f64,
     half: [f64; 3],
     rgb: [f32; 3],
+    /// Bounds of the box's image in normalised coordinates [x_min, x_max, y_min, y_max]
+    /// (rays outside cannot hit it; infinite when the box reaches behind the camera).
+    bounds: [f64; 4],
 }
 
 /// What a camera ray hit.
@@ -128,7 +131,7 @@ impl FrameGeometry {
                 curvature: a.curvature,
             });
         }
-        let boxes = config
+        let boxes: Vec<BoxNow> = config
             .vehicles
             .iter()
             .map(|v| {
@@ -143,9 +146,19 @@ impl FrameGeometry {
                     sin: math::sin(rel),
                     half: [v.size_m[0] / 2.0, v.size_m[1] / 2.0, v.size_m[2] / 2.0],
                     rgb: [v.rgb[0] as f32, v.rgb[1] as f32, v.rgb[2] as f32],
+                    bounds: [
+                        f64::NEG_INFINITY,
+                        f64::INFINITY,
+                        f64::NEG_INFINITY,
+                        f64::INFINITY,
+                    ],
                 }
             })
             .collect();
+        let mut boxes: Vec<BoxNow> = boxes;
+        for b in &mut boxes {
+            b.bounds = image_bounds(b, &rt, origin);
+        }
         Ok(Self {
             rt,
             origin,
@@ -184,6 +197,10 @@ impl FrameGeometry {
             _ => f64::INFINITY,
         };
         for (index, b) in self.boxes.iter().enumerate() {
+            let [x0, x1, y0, y1] = b.bounds;
+            if xn < x0 || xn > x1 || yn < y0 || yn > y1 {
+                continue;
+            }
             if let Some((t, local, normal)) = box_hit(b, o, r) {
                 if t < nearest {
                     nearest = t;
@@ -248,6 +265,48 @@ impl FrameGeometry {
         }
         light
     }
+}
+
+/// The normalised image bounds of a box seen from `origin` with rotation `rt` (rows: camera
+/// axes in the vehicle frame); unbounded when a corner is not in front of the camera.
+fn image_bounds(b: &BoxNow, rt: &[[f64; 3]; 3], origin: [f64; 3]) -> [f64; 4] {
+    let mut out = [
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for corner in 0..8 {
+        let sign = |bit: usize| if corner >> bit & 1 == 1 { 1.0 } else { -1.0 };
+        let (lx, ly, lz) = (
+            sign(0) * b.half[0],
+            sign(1) * b.half[1],
+            sign(2) * b.half[2],
+        );
+        let p = [
+            b.centre[0] + lx * b.cos - ly * b.sin - origin[0],
+            b.centre[1] + lx * b.sin + ly * b.cos - origin[1],
+            b.centre[2] + lz - origin[2],
+        ];
+        let cam = |row: &[f64; 3]| row[0] * p[0] + row[1] * p[1] + row[2] * p[2];
+        let (x, y, z) = (cam(&rt[0]), cam(&rt[1]), cam(&rt[2]));
+        if z <= 1e-6 {
+            return [
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+            ];
+        }
+        out = [
+            out[0].min(x / z),
+            out[1].max(x / z),
+            out[2].min(y / z),
+            out[3].max(y / z),
+        ];
+    }
+    // A small margin for rounding.
+    [out[0] - 1e-6, out[1] + 1e-6, out[2] - 1e-6, out[3] + 1e-6]
 }
 
 /// Smallest positive t with C + t r on the surface z = c_v x^2 / 2.
