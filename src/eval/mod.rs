@@ -2,8 +2,10 @@
 //!
 //! One file per metric or ground-truth reader, each opening with its definition.
 
+pub mod caltech;
 pub mod tusimple;
 
+mod assign;
 mod polyline;
 
 use crate::error::{Error, Result};
@@ -15,4 +17,9 @@ pub(crate) fn read_text(path: &Path) -> Result<String> {
         path: path.display().to_string(),
         reason: e.to_string(),
     })
+}
+
+/// A rate as a percentage, or "n/a".
+pub(crate) fn percent(rate: Option<f64>) -> String {
+    rate.map_or_else(|| "n/a".to_string(), |r| format!("{:.1} %", 100.0 * r))
 }
