@@ -3,6 +3,7 @@
 //! One file per metric or ground-truth reader, each opening with its definition.
 
 pub mod caltech;
+pub mod culane;
 pub mod tusimple;
 
 mod assign;
