@@ -4,6 +4,8 @@
 
 pub mod caltech;
 pub mod culane;
+pub mod params;
+pub mod synthetic;
 pub mod tusimple;
 
 mod assign;
