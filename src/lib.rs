@@ -20,6 +20,7 @@
 
 pub mod camera;
 pub mod error;
+pub mod eval;
 pub mod filter;
 pub mod image;
 pub mod lane;
