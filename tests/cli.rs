@@ -140,3 +140,85 @@ fn errors_are_one_clear_line_and_a_failure_status() {
     assert_eq!(err.lines().count(), 1, "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn eval_scores_ground_truth_as_perfect_and_a_shifted_copy_lower() {
+    let out = temp("eval");
+    let o = out.to_str().unwrap();
+    let (code, _, err) = lanepf(&[
+        "synth",
+        "--scenario",
+        "highway-curve",
+        "--frames",
+        "4",
+        "--width",
+        "160",
+        "--height",
+        "120",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let gt = out.join("gt.jsonl");
+    let (code, stdout, err) = lanepf(&[
+        "eval",
+        "--pred",
+        gt.to_str().unwrap(),
+        "--gt",
+        gt.to_str().unwrap(),
+        "--format",
+        "synthetic",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(report["frames"], 4);
+    let synthetic = &report["metrics"]["synthetic"];
+    assert_eq!(synthetic["boundaries"]["accuracy"], 1.0);
+    assert_eq!(synthetic["params"]["lateral_offset_m"]["rmse"], 0.0);
+    // A copy 30 px to the right is no longer correct.
+    let shifted: String = std::fs::read_to_string(&gt)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let mut e: lanepf::lane::LaneEstimate = serde_json::from_str(l).unwrap();
+            for b in &mut e.boundaries {
+                for p in &mut b.points {
+                    p[0] += 30.0;
+                }
+            }
+            e.lateral_offset_m += 0.5;
+            serde_json::to_string(&e).unwrap() + "\n"
+        })
+        .collect();
+    let pred = out.join("shifted.jsonl");
+    std::fs::write(&pred, shifted).unwrap();
+    let (code, stdout, err) = lanepf(&[
+        "eval",
+        "--pred",
+        pred.to_str().unwrap(),
+        "--gt",
+        gt.to_str().unwrap(),
+        "--format",
+        "synthetic",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let synthetic = &report["metrics"]["synthetic"];
+    assert_eq!(
+        synthetic["boundaries"]["accuracy"], 0.0,
+        "30 px off is past the 20 px rule"
+    );
+    let rmse = synthetic["params"]["lateral_offset_m"]["rmse"]
+        .as_f64()
+        .unwrap();
+    assert!((rmse - 0.5).abs() < 1e-9, "{rmse}");
+    let (code, _, err) = lanepf(&["eval", "--pred", o, "--gt", o, "--format", "kitti"]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("synthetic, caltech, tusimple or culane"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&out).unwrap();
+}

@@ -196,3 +196,12 @@ fn scenes_reject_unknown_names_and_bad_options() {
     ));
     assert!(e.contains("`fx`"), "{e}");
 }
+
+#[wasm_bindgen_test]
+fn particle_filter_is_bit_identical_to_the_native_build() {
+    // The native unit test asserts the same golden value.
+    assert_eq!(
+        lanepf::filter::determinism_fingerprint(),
+        lanepf::filter::DETERMINISM_FINGERPRINT
+    );
+}

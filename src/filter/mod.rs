@@ -1,1 +1,31 @@
-//! The generic particle-filter core.
+//! The generic particle-filter core, shared by all four trackers.
+//!
+//! A filter is a [`ParticleFilter`] over a tracker's state type, driven by the tracker's
+//! [`MotionModel`] (drift + diffusion), [`MeasurementModel`] (log-likelihood of a state given
+//! the frame's cues) and [`InitialDistribution`]. One frame: resample (by a [`Resampler`] and
+//! a [`ResamplePolicy`]), inject initialisation particles, predict, weigh in the log domain
+//! (log-sum-exp normalisation, ESS). Variants: [`PartitionedModel`] for partitioned sampling
+//! (Liu), several filters in cascade (Lee), [`Regime`] particles with a [`MarkovChain`]
+//! (Adachi), and the estimators [`weighted_mean`], [`map_index`] and [`Mbsas`] (Danescu eq. 15).
+//! The [`Rng`] is seeded and owned by the filter, so runs repeat bit for bit on every target
+//! ([`determinism_fingerprint`]).
+
+mod estimate;
+mod fingerprint;
+mod model;
+mod multimodel;
+mod particle_filter;
+mod partitioned;
+mod resample;
+mod rng;
+mod weights;
+
+pub use estimate::{map_index, weighted_mean, Mbsas};
+pub use fingerprint::{determinism_fingerprint, DETERMINISM_FINGERPRINT};
+pub use model::{InitialDistribution, MeasurementModel, MotionModel};
+pub use multimodel::{model_probabilities, MarkovChain, ModelMotion, Regime, SwitchingMotion};
+pub use particle_filter::{FilterConfig, Injection, ParticleFilter, MAX_PARTICLES};
+pub use partitioned::PartitionedModel;
+pub use resample::{ResamplePolicy, Resampler};
+pub use rng::Rng;
+pub use weights::{effective_sample_size, log_sum_exp, normalise, Normalised};

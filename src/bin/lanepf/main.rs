@@ -12,6 +12,7 @@
 //! exit with 2 (clap's convention).
 
 mod bench;
+mod eval;
 mod frames;
 mod synth;
 mod track;
@@ -33,6 +34,8 @@ enum Command {
     Synth(synth::Args),
     /// Run a tracker on a folder of frames and write one JSON line per frame.
     Track(track::Args),
+    /// Score tracker output against ground truth (synthetic, Caltech, TuSimple, CULane).
+    Eval(eval::Args),
     /// Time trackers on a standard synthetic sequence.
     Bench(bench::Args),
 }
@@ -42,6 +45,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Synth(args) => synth::run(args),
         Command::Track(args) => track::run(args),
+        Command::Eval(args) => eval::run(args),
         Command::Bench(args) => bench::run(args),
     };
     match result {
