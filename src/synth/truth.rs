@@ -17,9 +17,10 @@
 //!   camera's height change, `danescu.xcw` = o (lane centre to the right of the camera),
 //!   `danescu.alpha` = pitch, `danescu.gamma` = roll, `danescu.psi` = -heading,
 //!   `danescu.wl_mark` / `danescu.wr_mark` = W_L / W_R.
-//! - Adachi et al. (eq. 3): `adachi.q` = lateral position of the ego-lane centre (y left),
-//!   `adachi.w` = W, `adachi.r` = lane configuration: 0 ego lane only, 1 with a left
-//!   neighbour, 2 with a right neighbour, 3 with both.
+//! - Adachi et al. (eq. 3, 5): on their rho axis (across the road, positive to the right, so
+//!   that rho_3 = q - 3w/2 is the left neighbour's boundary), `adachi.q` = o (the ego-lane
+//!   centre relative to the car), `adachi.w` = W, `adachi.r` = the paper's model number: 1 ego
+//!   lane only, 2 with a left neighbour, 3 with a right neighbour, 4 with both.
 //! - Motion (Danescu's drift input): `t`, `speed_mps`, `yaw_rate`, `ego_lane`, and
 //!   `lane_change` = 1 while the camera's lane differs from the previous frame's.
 //!
@@ -154,11 +155,11 @@ impl Scene {
             ("danescu.psi", -heading),
             ("danescu.wl_mark", wl_mark),
             ("danescu.wr_mark", wr_mark),
-            ("adachi.q", -o),
+            ("adachi.q", o),
             ("adachi.w", width),
             (
                 "adachi.r",
-                f64::from(u8::from(left_neighbour) + 2 * u8::from(right_neighbour)),
+                f64::from(1 + u8::from(left_neighbour) + 2 * u8::from(right_neighbour)),
             ),
         ]
         .into_iter()
@@ -428,7 +429,11 @@ mod tests {
             .collect();
         assert_eq!(events.len(), 2, "{events:?}");
         let t = scene.truth(0);
-        assert_eq!(t.state["adachi.r"], 3.0);
+        assert_eq!(
+            t.state["adachi.r"], 4.0,
+            "lanes on both sides: Adachi's model 4"
+        );
+        assert_eq!(t.state["adachi.q"], t.lateral_offset_m);
         assert_eq!(t.boundaries.len(), 4);
         for b in &t.boundaries {
             b.check_polyline().unwrap();
