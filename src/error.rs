@@ -64,7 +64,7 @@ pub enum Error {
     Geometry(String),
 }
 
-/// `Result` with lanepf's [`Error`].
+/// `Result` with lanepf's [`enum@Error`].
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {

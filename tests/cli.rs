@@ -135,9 +135,10 @@ fn errors_are_one_clear_line_and_a_failure_status() {
     assert!(err.contains("unknown tracker `nope`; available:"), "{err}");
     assert!(!err.contains("panicked"));
 
-    let (code, _, err) = lanepf(&["bench"]);
+    let (code, _, err) = lanepf(&["bench", "--tracker", "nope", "--frames", "1"]);
     assert_eq!(code, 1);
     assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("adachi-mmpf"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -221,4 +222,80 @@ fn eval_scores_ground_truth_as_perfect_and_a_shifted_copy_lower() {
         "{err}"
     );
     std::fs::remove_dir_all(&out).unwrap();
+}
+
+#[test]
+fn track_runs_a_tracker_over_synthetic_frames_and_eval_scores_it() {
+    let out = temp("track-adachi");
+    let o = out.to_str().unwrap();
+    let (code, _, err) = lanepf(&[
+        "synth",
+        "--scenario",
+        "highway-straight",
+        "--frames",
+        "20",
+        "--width",
+        "320",
+        "--height",
+        "240",
+        "--out",
+        o,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let pred = out.join("pred.jsonl");
+    let (code, _, err) = lanepf(&[
+        "track",
+        "--tracker",
+        "adachi-mmpf",
+        "--camera",
+        out.join("camera.json").to_str().unwrap(),
+        "--frames",
+        out.join("frames").to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<lanepf::lane::LaneEstimate> = std::fs::read_to_string(&pred)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 20);
+    assert_eq!(lines[3].frame, "000003.png");
+    assert!(lines.iter().all(|l| l.valid && l.ms > 0.0));
+    let (code, stdout, err) = lanepf(&[
+        "eval",
+        "--pred",
+        pred.to_str().unwrap(),
+        "--gt",
+        out.join("gt.jsonl").to_str().unwrap(),
+        "--format",
+        "synthetic",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let accuracy = report["metrics"]["synthetic"]["boundaries"]["accuracy"]
+        .as_f64()
+        .unwrap();
+    assert!(accuracy > 0.9, "boundary accuracy {accuracy}");
+    // A frame of the wrong size is one clear error.
+    let small = temp("track-small");
+    std::fs::create_dir_all(&small).unwrap();
+    lanepf::image::write_rgba_png(&small.join("a.png"), &[0; 64], 4, 4).unwrap();
+    let (code, _, err) = lanepf(&[
+        "track",
+        "--tracker",
+        "adachi-mmpf",
+        "--camera",
+        out.join("camera.json").to_str().unwrap(),
+        "--frames",
+        small.to_str().unwrap(),
+        "--out",
+        small.join("p.jsonl").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("is 4x4 but the camera is 320x240"), "{err}");
+    std::fs::remove_dir_all(&out).unwrap();
+    std::fs::remove_dir_all(&small).unwrap();
 }

@@ -205,3 +205,34 @@ fn particle_filter_is_bit_identical_to_the_native_build() {
         lanepf::filter::DETERMINISM_FINGERPRINT
     );
 }
+
+#[wasm_bindgen_test]
+fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
+    // Same run as the native unit test `same_result_as_the_browser_build`, through the JS
+    // classes: highway-curve seed 1 at 320x240, 400 particles, seed 2, five frames.
+    let mut scene = JsScene::new(
+        "highway-curve",
+        obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
+    )
+    .unwrap();
+    let camera = scene.camera().unwrap();
+    let config = obj(r#"{"particles": 400, "seed": 2}"#);
+    js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
+    let mut tracker = JsTracker::new("adachi-mmpf", config).unwrap();
+    assert_eq!(tracker.id(), "adachi-mmpf");
+    let mut last = JsValue::UNDEFINED;
+    for f in 0..5 {
+        let rgba = scene.render(f).unwrap().to_vec();
+        last = tracker.step(&rgba, 320, 240).unwrap();
+    }
+    let q = js_sys::Reflect::get(&last, &"lateral_offset_m".into())
+        .unwrap()
+        .as_f64()
+        .unwrap();
+    assert_eq!(q.to_bits(), 0x3fb8_d07f_c081_deef, "{q}");
+    // A wrong buffer throws, and the tracker carries on.
+    let m = message(tracker.step(&[0; 12], 320, 240));
+    assert!(m.contains("320x240"), "{m}");
+    let rgba = scene.render(5).unwrap().to_vec();
+    assert!(tracker.step(&rgba, 320, 240).is_ok());
+}

@@ -6,6 +6,8 @@
 //! is implemented; asking for any other id is an [`Error::UnknownTracker`] that lists the
 //! available ones.
 
+pub mod adachi;
+
 use crate::camera::{Camera, CameraFile};
 use crate::error::{Error, Result};
 use crate::lane::LaneEstimate;
@@ -45,7 +47,7 @@ pub struct StageTimes {
 }
 
 /// The ids of the trackers implemented so far.
-pub const TRACKER_IDS: &[&str] = &[];
+pub const TRACKER_IDS: &[&str] = &[adachi::ID];
 
 /// Largest accepted particle count.
 pub const MAX_PARTICLES: usize = 200_000;
@@ -107,6 +109,9 @@ impl TrackerConfig {
 /// [`TrackerConfig::validate`] gives them.
 pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
     let _camera = config.validate()?;
+    if id == adachi::ID {
+        return Ok(Box::new(adachi::AdachiTracker::new(config)?));
+    }
     Err(Error::UnknownTracker {
         id: id.to_string(),
         available: if TRACKER_IDS.is_empty() {

@@ -1,0 +1,148 @@
+//! Settings of the Adachi tracker (all optional in the tracker config; defaults documented).
+
+use crate::error::{require_finite, require_positive, Error, Result};
+use serde::{Deserialize, Serialize};
+
+/// Which side of a marking votes (Sec. 3.2 uses the left edge of each white line).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Polarity {
+    /// Dark to light going right: the left edge of a bright marking (the paper's choice).
+    LeftEdge,
+    /// Light to dark going right: the right edge.
+    RightEdge,
+    /// Both edges.
+    Both,
+}
+
+/// Settings of `adachi-mmpf`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AdachiConfig {
+    /// Nearest road distance of the voting region (the box of Fig. 3a), metres.
+    pub near_m: f64,
+    /// Farthest road distance of the voting region, metres.
+    pub far_m: f64,
+    /// Half-range of the rho axis, metres (bins cover [-rho_range, rho_range)).
+    pub rho_range_m: f64,
+    /// Histogram bin size, metres.
+    pub bin_m: f64,
+    /// Edge polarity.
+    pub polarity: Polarity,
+    /// Horizontal Sobel response an edge point needs (grey levels x 4).
+    pub edge_threshold: f64,
+    /// Marking width assumed by the template H_bar, metres.
+    pub marking_width_m: f64,
+    /// Spread of edge positions around the template's edge, metres (added to the bin width in
+    /// quadrature).
+    pub edge_sigma_m: f64,
+    /// Filter iterations on the first frame (and after a reset) before the first estimate:
+    /// the paper does not say how the filter starts; a uniform start needs a few predict /
+    /// weigh / resample rounds on the same votes to find the lane.
+    pub start_iterations: usize,
+    /// Weight beta of the noise histogram N_j (eq. 4).
+    pub beta: f64,
+    /// Random-walk standard deviation sigma_q of the lane position per frame, metres (eq. 8).
+    pub sigma_q_m: f64,
+    /// Random-walk standard deviation sigma_w of the lane width per frame, metres (eq. 7).
+    pub sigma_w_m: f64,
+    /// Lane widths accepted, metres ([min, max]); particles outside are clamped.
+    pub width_range_m: [f64; 2],
+    /// Model transition matrix pi (rows: from model 1..4), Table 1 by default.
+    pub transitions: Vec<Vec<f64>>,
+}
+
+impl Default for AdachiConfig {
+    fn default() -> Self {
+        Self {
+            near_m: 6.0,
+            far_m: 22.0,
+            rho_range_m: 8.0,
+            bin_m: 0.05,
+            polarity: Polarity::LeftEdge,
+            edge_threshold: 80.0,
+            marking_width_m: 0.15,
+            edge_sigma_m: 0.1,
+            start_iterations: 20,
+            beta: 1.0,
+            sigma_q_m: 0.08,
+            sigma_w_m: 0.04,
+            width_range_m: [2.5, 4.8],
+            transitions: vec![
+                vec![6.0 / 8.0, 1.0 / 8.0, 1.0 / 8.0, 0.0],
+                vec![1.0 / 12.0, 9.0 / 12.0, 1.0 / 12.0, 1.0 / 12.0],
+                vec![1.0 / 12.0, 1.0 / 12.0, 9.0 / 12.0, 1.0 / 12.0],
+                vec![0.0, 1.0 / 8.0, 1.0 / 8.0, 6.0 / 8.0],
+            ],
+        }
+    }
+}
+
+impl AdachiConfig {
+    /// Reads the tracker-specific options.
+    ///
+    /// # Errors
+    /// [`Error::Config`] for an unknown option or a wrong type.
+    pub fn from_options(
+        options: &std::collections::BTreeMap<String, serde_json::Value>,
+    ) -> Result<Self> {
+        let map: serde_json::Map<String, serde_json::Value> = options
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        let config: Self = serde_json::from_value(serde_json::Value::Object(map))
+            .map_err(|e| Error::Config(format!("adachi-mmpf options: {e}")))?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// Checks every value.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] naming the first bad value.
+    pub fn validate(&self) -> Result<()> {
+        require_positive("near_m", self.near_m)?;
+        require_positive("far_m", self.far_m)?;
+        if self.far_m <= self.near_m {
+            return Err(Error::parameter(
+                "far_m",
+                self.far_m,
+                "must be beyond near_m",
+            ));
+        }
+        require_positive("rho_range_m", self.rho_range_m)?;
+        require_positive("bin_m", self.bin_m)?;
+        if self.rho_range_m / self.bin_m > 20_000.0 {
+            return Err(Error::parameter(
+                "bin_m",
+                self.bin_m,
+                "gives more than 40 000 bins",
+            ));
+        }
+        require_finite("edge_threshold", self.edge_threshold)?;
+        require_positive("marking_width_m", self.marking_width_m)?;
+        require_positive("edge_sigma_m", self.edge_sigma_m)?;
+        require_positive("beta", self.beta)?;
+        require_positive("sigma_q_m", self.sigma_q_m)?;
+        require_positive("sigma_w_m", self.sigma_w_m)?;
+        if self.start_iterations > 1000 {
+            return Err(Error::parameter(
+                "start_iterations",
+                self.start_iterations,
+                "must be at most 1000",
+            ));
+        }
+        let [lo, hi] = self.width_range_m;
+        require_positive("width_range_m", lo)?;
+        require_finite("width_range_m", hi)?;
+        if hi <= lo {
+            return Err(Error::parameter("width_range_m", hi, "max must exceed min"));
+        }
+        if self.transitions.len() != 4 {
+            return Err(Error::Config(
+                "transitions must be a 4x4 matrix (models 1-4)".into(),
+            ));
+        }
+        Ok(())
+    }
+}

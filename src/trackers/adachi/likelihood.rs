@@ -1,0 +1,124 @@
+//! The likelihood of Adachi et al. (eqs. 3-6).
+//!
+//! Boundaries (eq. 3): rho_l = q + [-1, 1, -3, 3]_l w / 2; model r switches them on with c_r
+//! (eq. 5): model 1 [1,1,0,0], 2 [1,1,1,0], 3 [1,1,0,1], 4 [1,1,1,1]. The edge distribution
+//! (eq. 4) is
+//!
+//! ```text
+//! p(rho_j | r, q, w) = alpha ( sum_l c_{r,l} Hbar_j(rho_l) + beta N_j )
+//! ```
+//!
+//! and the likelihood of the votes H_j (eq. 6) is prod_j p_j^{H_j}, computed as
+//! sum_j H_j ln p_j over the bins that received votes.
+//!
+//! The paper leaves H_bar open ("a histogram where one lane boundary is at rho"); we use the
+//! discretised edge-position density of one marking centred at rho: the voting edge lies at
+//! rho - m/2 for left edges (rho + m/2 for right edges, both halves for both), spread by a
+//! Gaussian of sd s = sqrt(edge_sigma^2 + bin^2 / 12), so Hbar_j = bin * N(rho_j; rho -+ m/2, s)
+//! (sums to 1 over the axis when the edge is inside it). alpha makes p sum to 1 over the bins:
+//! alpha = 1 / (sum_l c_{r,l} mass_l + beta), with mass_l the part of the template inside the
+//! axis (an error-function integral), since N sums to 1.
+
+use super::config::Polarity;
+use super::votes::Votes;
+use crate::math;
+
+/// Boundary offsets of eq. 3, in units of w / 2.
+pub const OFFSETS: [f64; 4] = [-1.0, 1.0, -3.0, 3.0];
+/// c_r of eq. 5 for models r = 1..4 (index 0..3).
+pub const COEFFICIENTS: [[bool; 4]; 4] = [
+    [true, true, false, false],
+    [true, true, true, false],
+    [true, true, false, true],
+    [true, true, true, true],
+];
+
+/// The likelihood with its template parameters.
+#[derive(Debug, Clone)]
+pub struct Likelihood {
+    /// Edge offsets from the boundary for the polarity, metres, with their weights.
+    edges: Vec<(f64, f64)>,
+    sd: f64,
+    beta: f64,
+    /// Indices of the bins with votes, filled per frame.
+    voted: Vec<usize>,
+}
+
+impl Likelihood {
+    /// A likelihood for marking width `m`, edge spread `edge_sigma`, noise weight `beta`.
+    pub fn new(polarity: Polarity, m: f64, edge_sigma: f64, bin: f64, beta: f64) -> Self {
+        let edges = match polarity {
+            Polarity::LeftEdge => vec![(-m / 2.0, 1.0)],
+            Polarity::RightEdge => vec![(m / 2.0, 1.0)],
+            Polarity::Both => vec![(-m / 2.0, 0.5), (m / 2.0, 0.5)],
+        };
+        Self {
+            edges,
+            sd: (edge_sigma * edge_sigma + bin * bin / 12.0).sqrt(),
+            beta,
+            voted: Vec::new(),
+        }
+    }
+
+    /// Notes which bins have votes (call once per frame before [`Likelihood::log_likelihood`]).
+    pub fn prepare(&mut self, votes: &Votes) {
+        self.voted.clear();
+        self.voted
+            .extend((0..votes.bins()).filter(|&j| votes.histogram[j] > 0.0));
+    }
+
+    /// The template Hbar_j(rho) at bin centre `rho_j`.
+    fn template(&self, rho_j: f64, rho: f64, bin: f64) -> f64 {
+        let norm = bin / (self.sd * (2.0 * std::f64::consts::PI).sqrt());
+        self.edges
+            .iter()
+            .map(|&(off, weight)| {
+                let e = (rho_j - rho - off) / self.sd;
+                if e.abs() > 6.0 {
+                    0.0
+                } else {
+                    weight * norm * math::exp(-0.5 * e * e)
+                }
+            })
+            .sum()
+    }
+
+    /// Mass of the template of a boundary at `rho` inside [lo, hi).
+    fn mass(&self, rho: f64, lo: f64, hi: f64) -> f64 {
+        let cdf = |x: f64| 0.5 * (1.0 + libm::erf(x / (self.sd * std::f64::consts::SQRT_2)));
+        self.edges
+            .iter()
+            .map(|&(off, weight)| weight * (cdf(hi - rho - off) - cdf(lo - rho - off)))
+            .sum()
+    }
+
+    /// ln p(z | r, q, w) (eq. 6) for model index `model` (0..3 for r = 1..4).
+    pub fn log_likelihood(&self, votes: &Votes, model: usize, q: f64, w: f64) -> f64 {
+        let coefficients = COEFFICIENTS[model.min(3)];
+        let bin = votes.bin_m();
+        let lo = votes.rho_min();
+        let hi = lo + bin * votes.bins() as f64;
+        let mut mass = self.beta;
+        let mut rhos = [f64::NAN; 4];
+        for l in 0..4 {
+            if coefficients[l] {
+                rhos[l] = q + OFFSETS[l] * w / 2.0;
+                mass += self.mass(rhos[l], lo, hi);
+            }
+        }
+        let ln_alpha = -math::ln(mass);
+        let mut total = 0.0;
+        let mut votes_n = 0.0;
+        for &j in &self.voted {
+            let rho_j = votes.rho(j);
+            let mut p = self.beta * votes.noise[j];
+            for rho in rhos.iter().filter(|r| !r.is_nan()) {
+                p += self.template(rho_j, *rho, bin);
+            }
+            let h = votes.histogram[j];
+            total += h * math::ln(p.max(1e-300));
+            votes_n += h;
+        }
+        total + votes_n * ln_alpha
+    }
+}

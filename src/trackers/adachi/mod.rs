@@ -1,0 +1,509 @@
+//! `adachi-mmpf`: the multiple-model particle filter of Adachi, Inayoshi & Kurita on a
+//! one-dimensional edge-vote space.
+//!
+//! One frame: vote the region's edge points onto the rho axis ([`votes`]); resample; each
+//! particle (r, q, w) switches its model r by the Table 1 Markov chain and random-walks q, w
+//! with the wrap of eq. 9 ([`motion`]); weigh by eqs. 4-6 ([`likelihood`]); estimate. The
+//! estimate is the most probable model (P(r) = the weight of its particles), and q, w as the
+//! weighted mean of that model's particles, with q unwrapped around the best particle's so
+//! that particles on both sides of the +-w/2 seam average correctly. Lane changes follow eq. 9
+//! applied to the estimate: the estimated q is followed without wrapping (each frame takes the
+//! copy q + k w nearest the previous one), and when it leaves [-w/2, w/2) of the current lane
+//! by more than a 0.1 m hysteresis margin, the lane index moves and an event is reported: q
+//! past +w/2 is a change to the left, past -w/2 a change to the right. (Per-particle wraps are
+//! spread over several frames, so counting them gives no clean event.)
+//! Boundaries are the straight lines rho_l parallel to the car (the paper's model assumes
+//! straight lanes along the driving direction), drawn from `near_m` to 3 `far_m`.
+
+pub mod config;
+pub mod grid;
+pub mod likelihood;
+pub mod motion;
+pub mod votes;
+
+use super::{StageTimes, Tracker, TrackerConfig};
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::filter::{
+    model_probabilities, FilterConfig, Injection, MarkovChain, MeasurementModel, ParticleFilter,
+    Regime, ResamplePolicy, Resampler, SwitchingMotion,
+};
+use crate::image::check_rgba;
+use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
+use config::AdachiConfig;
+use likelihood::{Likelihood, COEFFICIENTS, OFFSETS};
+use motion::{Initial, Lane, Motion};
+use votes::Votes;
+
+/// The tracker id.
+pub const ID: &str = "adachi-mmpf";
+
+struct Measure<'a>(&'a Likelihood);
+
+impl MeasurementModel<Regime<Lane>> for Measure<'_> {
+    type Cues = Votes;
+    fn log_likelihood(&self, p: &Regime<Lane>, votes: &Votes) -> f64 {
+        self.0.log_likelihood(votes, p.model, p.state.q, p.state.w)
+    }
+}
+
+/// The Adachi tracker.
+#[derive(Debug)]
+pub struct AdachiTracker {
+    camera: Camera,
+    config: AdachiConfig,
+    chain: MarkovChain,
+    votes: Votes,
+    likelihood: Likelihood,
+    filter: ParticleFilter<Regime<Lane>>,
+    initial: Initial,
+    probabilities: [f64; 4],
+    times: StageTimes,
+    first: bool,
+    /// The estimate's q followed without wrapping, and the lane index it implies.
+    q_track: Option<f64>,
+    lane_index: i64,
+}
+
+/// Hysteresis of the lane-change rule, metres.
+const CHANGE_MARGIN_M: f64 = 0.1;
+
+/// The estimate of one frame in the paper's terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdachiEstimate {
+    /// Lane position q, metres (rho axis, positive right).
+    pub q: f64,
+    /// Lane width w, metres.
+    pub w: f64,
+    /// Most probable model, 1..4.
+    pub r: usize,
+    /// Posterior probability of each model.
+    pub probabilities: [f64; 4],
+    /// Lane change this frame: -1 left, +1 right, 0 none.
+    pub change: i8,
+    /// Number of edge votes.
+    pub votes: usize,
+}
+
+impl AdachiTracker {
+    /// Builds the tracker.
+    ///
+    /// # Errors
+    /// Camera, particle-count and option errors, named.
+    pub fn new(config: &TrackerConfig) -> Result<Self> {
+        let camera = config.validate()?;
+        let adachi = AdachiConfig::from_options(&config.options)?;
+        let chain = MarkovChain::new(&adachi.transitions)?;
+        let votes = Votes::new(&camera, &adachi)?;
+        if votes.is_empty() {
+            return Err(Error::Config(format!(
+                "the voting region ({} to {} m ahead) is not visible in this camera's image",
+                adachi.near_m, adachi.far_m
+            )));
+        }
+        let likelihood = Likelihood::new(
+            adachi.polarity,
+            adachi.marking_width_m,
+            adachi.edge_sigma_m,
+            adachi.bin_m,
+            adachi.beta,
+        );
+        let initial = Initial {
+            width_range: adachi.width_range_m,
+        };
+        let filter_config = FilterConfig {
+            resampler: Resampler::Systematic,
+            policy: ResamplePolicy::Always,
+            injection: Injection::None,
+        };
+        let filter = ParticleFilter::new(config.particles, filter_config, config.seed, &initial)?;
+        Ok(Self {
+            camera,
+            config: adachi,
+            chain,
+            votes,
+            likelihood,
+            filter,
+            initial,
+            probabilities: [0.25; 4],
+            times: StageTimes::default(),
+            first: true,
+            q_track: None,
+            lane_index: 0,
+        })
+    }
+
+    /// The vote histogram H_j of the last frame and the rho of its first bin and bin size.
+    pub fn histogram(&self) -> (&[f64], f64, f64) {
+        (
+            &self.votes.histogram,
+            self.votes.rho_min(),
+            self.votes.bin_m(),
+        )
+    }
+
+    /// The per-frame maximum-likelihood baseline on the last frame's votes: (model 1..4, q,
+    /// w, log-likelihood), w searched in 2 cm steps.
+    pub fn grid_estimate(&self) -> (usize, f64, f64, f64) {
+        grid::grid_search(
+            &self.votes,
+            &self.likelihood,
+            self.config.width_range_m,
+            0.02,
+        )
+    }
+
+    /// The particles: (model 1..4, q, w) with their weights.
+    pub fn particles(&self) -> impl Iterator<Item = (usize, f64, f64, f64)> + '_ {
+        self.filter
+            .states()
+            .iter()
+            .zip(self.filter.weights())
+            .map(|(p, &wt)| (p.model + 1, p.state.q, p.state.w, wt))
+    }
+
+    /// One frame, returning the estimate in the paper's terms.
+    ///
+    /// # Errors
+    /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
+    pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<AdachiEstimate> {
+        if (width, height) != (self.camera.width(), self.camera.height()) {
+            return Err(Error::Dimensions(format!(
+                "the tracker was built for {}x{} frames but got {width}x{height}",
+                self.camera.width(),
+                self.camera.height()
+            )));
+        }
+        check_rgba(rgba, width, height)?;
+        let t0 = now();
+        let n = self.votes.vote(rgba);
+        self.likelihood.prepare(&self.votes);
+        let t1 = now();
+        if !self.first {
+            self.filter.resample();
+        }
+        let t2 = now();
+        let motion = SwitchingMotion {
+            chain: &self.chain,
+            motion: Motion {
+                sigma_q: self.config.sigma_q_m,
+                sigma_w: self.config.sigma_w_m,
+                width_range: self.config.width_range_m,
+            },
+        };
+        if !self.first {
+            self.filter.predict(&motion);
+        }
+        let t3 = now();
+        self.filter.weigh(&Measure(&self.likelihood), &self.votes);
+        if self.first {
+            // Start-up: more rounds on the same votes (see `start_iterations`).
+            for _ in 0..self.config.start_iterations {
+                self.filter.resample();
+                self.filter.predict(&motion);
+                self.filter.weigh(&Measure(&self.likelihood), &self.votes);
+            }
+            self.first = false;
+        }
+        let t4 = now();
+        let estimate = self.estimate(n);
+        let t5 = now();
+        self.times = StageTimes {
+            preprocess: t1 - t0,
+            resample: t2 - t1,
+            predict: t3 - t2,
+            weigh: t4 - t3,
+            estimate: t5 - t4,
+        };
+        Ok(estimate)
+    }
+
+    fn estimate(&mut self, votes: usize) -> AdachiEstimate {
+        let states = self.filter.states();
+        let weights = self.filter.weights();
+        model_probabilities(states, weights, &mut self.probabilities);
+        let best_model = (0..4)
+            .max_by(|&a, &b| self.probabilities[a].total_cmp(&self.probabilities[b]))
+            .unwrap_or(0);
+        let best = crate::filter::map_index(weights);
+        let q_ref = states[best].state.q;
+        let (mut q, mut w, mut total) = (0.0, 0.0, 0.0);
+        for (p, &wt) in states.iter().zip(weights) {
+            if p.model != best_model {
+                continue;
+            }
+            // Unwrap q to the copy nearest the best particle's.
+            let k = ((q_ref - p.state.q) / p.state.w).round();
+            q += wt * (p.state.q + k * p.state.w);
+            w += wt * p.state.w;
+            total += wt;
+        }
+        let (q, w) = if total > 0.0 {
+            (q / total, w / total)
+        } else {
+            (q_ref, states[best].state.w)
+        };
+        let (q, _) = motion::wrap(q, w);
+        // Eq. 9 on the estimate, with hysteresis.
+        let track = match self.q_track {
+            None => q,
+            Some(prev) => q + ((prev - q) / w).round() * w,
+        };
+        self.q_track = Some(track);
+        let local = track - self.lane_index as f64 * w;
+        let change = if local >= w / 2.0 + CHANGE_MARGIN_M {
+            self.lane_index += 1;
+            -1
+        } else if local < -w / 2.0 - CHANGE_MARGIN_M {
+            self.lane_index -= 1;
+            1
+        } else {
+            0
+        };
+        AdachiEstimate {
+            q,
+            w,
+            r: best_model + 1,
+            probabilities: self.probabilities,
+            change,
+            votes,
+        }
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &AdachiEstimate) -> LaneEstimate {
+        let roles = [
+            Role::EgoLeft,
+            Role::EgoRight,
+            Role::LeftAdjacent,
+            Role::RightAdjacent,
+        ];
+        let mut boundaries = Vec::new();
+        for l in 0..4 {
+            if !COEFFICIENTS[e.r - 1][l] {
+                continue;
+            }
+            let y = -(e.q + OFFSETS[l] * e.w / 2.0);
+            let (points, road_points) = sample_road_curve(
+                |_| y,
+                |x, y| self.camera.road_to_pixel(x, y),
+                self.config.near_m.min(3.0),
+                self.config.far_m * 3.0,
+                self.camera.width(),
+                self.camera.height(),
+            );
+            boundaries.push(Boundary {
+                role: roles[l],
+                points,
+                road_points,
+            });
+        }
+        let state = [
+            ("adachi.q", e.q),
+            ("adachi.w", e.w),
+            ("adachi.r", e.r as f64),
+            ("adachi.p1", e.probabilities[0]),
+            ("adachi.p2", e.probabilities[1]),
+            ("adachi.p3", e.probabilities[2]),
+            ("adachi.p4", e.probabilities[3]),
+            ("adachi.change", e.change as f64),
+            ("adachi.votes", e.votes as f64),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        LaneEstimate {
+            frame: String::new(),
+            valid: e.votes > 0,
+            ms: 0.0,
+            boundaries,
+            lateral_offset_m: e.q,
+            heading_rad: 0.0,
+            curvature_per_m: 0.0,
+            lane_width_m: e.w,
+            state,
+        }
+    }
+}
+
+impl Tracker for AdachiTracker {
+    fn id(&self) -> &'static str {
+        ID
+    }
+
+    fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate> {
+        let e = self.track(rgba, width, height)?;
+        Ok(self.to_lane_estimate(&e))
+    }
+
+    fn reset(&mut self) {
+        self.filter.reset(&self.initial);
+        self.first = true;
+        self.q_track = None;
+        self.lane_index = 0;
+    }
+
+    fn stage_times(&self) -> StageTimes {
+        self.times
+    }
+}
+
+/// Milliseconds from a monotonic clock (0 where none is available, e.g. plain wasm).
+fn now() -> f64 {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use std::sync::OnceLock;
+        static START: OnceLock<std::time::Instant> = OnceLock::new();
+        START
+            .get_or_init(std::time::Instant::now)
+            .elapsed()
+            .as_secs_f64()
+            * 1e3
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synth::{default_camera, scenario, Eye, Scene};
+
+    fn config(extra: &str) -> TrackerConfig {
+        let cam = serde_json::to_string(&default_camera(320, 240).unwrap().to_file()).unwrap();
+        TrackerConfig::from_json_str(&format!(
+            r#"{{"camera": {cam}, "particles": 400, "seed": 2 {extra}}}"#
+        ))
+        .unwrap()
+    }
+
+    /// Runs the tracker over `frames` frames of a scenario; returns (truth, estimate) pairs.
+    fn run(name: &str, frames: u32) -> Vec<(LaneEstimate, AdachiEstimate)> {
+        let mut scene = Scene::new(
+            scenario(name).unwrap(),
+            default_camera(320, 240).unwrap(),
+            1,
+        )
+        .unwrap();
+        let mut tracker = AdachiTracker::new(&config("")).unwrap();
+        let mut rgba = vec![0; 320 * 240 * 4];
+        (0..frames)
+            .map(|f| {
+                scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+                (scene.truth(f), tracker.track(&rgba, 320, 240).unwrap())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn likelihood_peaks_at_the_true_lane() {
+        let mut c = scenario("highway-straight").unwrap();
+        c.ego.sway_amplitude_m = 0.0;
+        let mut scene = Scene::new(c, default_camera(320, 240).unwrap(), 1).unwrap();
+        let mut rgba = vec![0; 320 * 240 * 4];
+        scene.render(0, Eye::Left, &mut rgba, None).unwrap();
+        let mut tracker = AdachiTracker::new(&config("")).unwrap();
+        tracker.track(&rgba, 320, 240).unwrap();
+        let (r, q, w, _) = tracker.grid_estimate();
+        // Three lanes, the car centred in the middle one: model 4, q = 0, w = 3.6.
+        assert_eq!(r, 4);
+        assert!(q.abs() < 0.1 && (w - 3.6).abs() < 0.06, "q {q} w {w}");
+        // Removing a boundary the data has costs likelihood.
+        let full = tracker
+            .likelihood
+            .log_likelihood(&tracker.votes, 3, 0.0, 3.6);
+        let fewer = tracker
+            .likelihood
+            .log_likelihood(&tracker.votes, 0, 0.0, 3.6);
+        let shifted = tracker
+            .likelihood
+            .log_likelihood(&tracker.votes, 3, 0.5, 3.6);
+        assert!(full > fewer && full > shifted);
+    }
+
+    #[test]
+    fn tracks_a_straight_highway() {
+        let out = run("highway-straight", 60);
+        let n = out.len() as f64;
+        let rmse_q = (out
+            .iter()
+            .map(|(t, e)| (e.q - t.state["adachi.q"]).powi(2))
+            .sum::<f64>()
+            / n)
+            .sqrt();
+        let rmse_w = (out
+            .iter()
+            .map(|(t, e)| (e.w - t.lane_width_m).powi(2))
+            .sum::<f64>()
+            / n)
+            .sqrt();
+        let model = out
+            .iter()
+            .filter(|(t, e)| e.r as f64 == t.state["adachi.r"])
+            .count() as f64
+            / n;
+        assert!(
+            rmse_q < 0.15 && rmse_w < 0.05 && model > 0.95,
+            "q {rmse_q} w {rmse_w} model {model}"
+        );
+    }
+
+    #[test]
+    fn lane_changes_are_reported_once_in_the_right_direction() {
+        let out = run("lane-change", 330);
+        let truth: Vec<usize> = out
+            .iter()
+            .enumerate()
+            .filter(|(_, (t, _))| t.state["lane_change"] == 1.0)
+            .map(|(i, _)| i)
+            .collect();
+        let events: Vec<(usize, i8)> = out
+            .iter()
+            .enumerate()
+            .filter(|(_, (_, e))| e.change != 0)
+            .map(|(i, (_, e))| (i, e.change))
+            .collect();
+        assert_eq!(truth.len(), 2);
+        assert_eq!(events.len(), 2, "{events:?} vs {truth:?}");
+        // First to the right (lane 1 -> 2), then back to the left, each within 0.5 s.
+        assert_eq!((events[0].1, events[1].1), (1, -1));
+        for (e, t) in events.iter().zip(&truth) {
+            assert!(e.0.abs_diff(*t) <= 15, "{events:?} vs {truth:?}");
+        }
+    }
+
+    /// q after 5 frames of `highway-curve` (seed 1, 320x240, 400 particles, seed 2), as
+    /// bits; `tests/web.rs` asserts the same value in headless Chromium.
+    const CROSS_TARGET_Q_BITS: u64 = 0x3fb8_d07f_c081_deef;
+
+    #[test]
+    fn same_result_as_the_browser_build() {
+        let out = run("highway-curve", 5);
+        let q = out[4].1.q;
+        assert_eq!(q.to_bits(), CROSS_TARGET_Q_BITS, "{:#x} ({q})", q.to_bits());
+    }
+
+    #[test]
+    fn bad_input_is_an_error_and_the_tracker_goes_on() {
+        assert!(AdachiTracker::new(&config(r#", "bin_m": -1"#))
+            .unwrap_err()
+            .to_string()
+            .contains("bin_m"));
+        assert!(AdachiTracker::new(&config(r#", "colour": 1"#))
+            .unwrap_err()
+            .to_string()
+            .contains("unknown field"));
+        let mut t = AdachiTracker::new(&config("")).unwrap();
+        assert!(t.track(&[0; 16], 2, 2).is_err());
+        assert!(t.track(&[0; 100], 320, 240).is_err());
+        let frame = vec![90; 320 * 240 * 4];
+        let e = t.track(&frame, 320, 240).unwrap();
+        assert_eq!(e.votes, 0);
+        assert!(
+            !t.to_lane_estimate(&e).valid,
+            "no votes, no confident estimate"
+        );
+    }
+}

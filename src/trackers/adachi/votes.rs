@@ -1,0 +1,197 @@
+//! The measurement space of Adachi et al. (Sec. 3.2, Fig. 3): edge points of a road region,
+//! each mapped onto the rho axis (across the road, positive to the right, rho = -y in ISO 8855)
+//! through the camera's back-projection, voted into a histogram H_j of bins of `bin_m` metres;
+//! and N_j, the same vote of every pixel of the region (the noise distribution).
+//!
+//! An edge point is a local maximum along its row of the horizontal Sobel response of the
+//! chosen polarity, above a threshold, so each marking edge votes once per image row. The
+//! pixel-to-bin table is built once; a frame converts and scans only the region's rows.
+
+use super::config::{AdachiConfig, Polarity};
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::image::luma;
+
+/// The voting executor.
+#[derive(Debug, Clone)]
+pub struct Votes {
+    width: usize,
+    rows: std::ops::Range<usize>,
+    /// Bin of each pixel of the region rows (u32::MAX outside the region).
+    bins: Vec<u32>,
+    gray: Vec<f32>,
+    response: Vec<f32>,
+    /// N_j normalised to sum 1.
+    pub noise: Vec<f64>,
+    /// H_j of the last frame.
+    pub histogram: Vec<f64>,
+    bin_m: f64,
+    rho_min: f64,
+    polarity: Polarity,
+    threshold: f32,
+}
+
+impl Votes {
+    /// Builds the table for `camera` and the region of `config`.
+    ///
+    /// # Errors
+    /// None for a validated camera and configuration (kept fallible for future checks).
+    pub fn new(camera: &Camera, config: &AdachiConfig) -> Result<Self> {
+        let (w, h) = (camera.width(), camera.height());
+        let bins_n = (2.0 * config.rho_range_m / config.bin_m).round() as usize;
+        let rho_min = -config.rho_range_m;
+        let mut table = vec![u32::MAX; w * h];
+        let (mut first, mut last) = (h, 0);
+        for v in 0..h {
+            for u in 0..w {
+                let Ok([x, y]) = camera.pixel_to_road(u as f64, v as f64) else {
+                    continue;
+                };
+                if x < config.near_m || x > config.far_m {
+                    continue;
+                }
+                let bin = ((-y - rho_min) / config.bin_m).floor();
+                if bin >= 0.0 && (bin as usize) < bins_n {
+                    table[v * w + u] = bin as u32;
+                    first = first.min(v);
+                    last = last.max(v);
+                }
+            }
+        }
+        let rows = if first <= last { first..last + 1 } else { 0..0 };
+        let bins = table[rows.start * w..rows.end * w].to_vec();
+        let mut noise = vec![0.0; bins_n];
+        for &b in &bins {
+            if b != u32::MAX {
+                noise[b as usize] += 1.0;
+            }
+        }
+        let total: f64 = noise.iter().sum();
+        if total > 0.0 {
+            noise.iter_mut().for_each(|n| *n /= total);
+        }
+        Ok(Self {
+            width: w,
+            rows: rows.clone(),
+            bins,
+            gray: vec![0.0; (rows.len() + 2) * w],
+            response: vec![0.0; w],
+            noise,
+            histogram: vec![0.0; bins_n],
+            bin_m: config.bin_m,
+            rho_min,
+            polarity: config.polarity,
+            threshold: config.edge_threshold as f32,
+        })
+    }
+
+    /// Number of bins M.
+    pub fn bins(&self) -> usize {
+        self.histogram.len()
+    }
+    /// Centre of bin j on the rho axis, metres.
+    pub fn rho(&self, j: usize) -> f64 {
+        self.rho_min + (j as f64 + 0.5) * self.bin_m
+    }
+    /// The bin size, metres.
+    pub fn bin_m(&self) -> f64 {
+        self.bin_m
+    }
+    /// The lower end of the rho axis, metres.
+    pub fn rho_min(&self) -> f64 {
+        self.rho_min
+    }
+    /// Whether the region covers any pixel.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// Votes the edge points of an RGBA frame (of the camera's size) into H_j; returns the
+    /// number of votes n.
+    pub fn vote(&mut self, rgba: &[u8]) -> usize {
+        self.histogram.fill(0.0);
+        let w = self.width;
+        if self.rows.is_empty() || w < 3 {
+            return 0;
+        }
+        let height = rgba.len() / (4 * w);
+        // Grey rows rows.start - 1 ..= rows.end (clamped).
+        let top = self.rows.start.saturating_sub(1);
+        let bottom = (self.rows.end + 1).min(height);
+        for (k, v) in (top..bottom).enumerate() {
+            for u in 0..w {
+                let p = &rgba[(v * w + u) * 4..(v * w + u) * 4 + 3];
+                self.gray[k * w + u] = luma(p[0], p[1], p[2]) as f32;
+            }
+        }
+        let mut n = 0;
+        for v in self.rows.clone() {
+            let k = v - top;
+            let up = k.saturating_sub(1);
+            let down = (k + 1).min(bottom - top - 1);
+            let g = |row: usize, u: usize| self.gray[row * w + u];
+            for u in 1..w - 1 {
+                let gx = (g(up, u + 1) + 2.0 * g(k, u + 1) + g(down, u + 1))
+                    - (g(up, u - 1) + 2.0 * g(k, u - 1) + g(down, u - 1));
+                self.response[u] = match self.polarity {
+                    Polarity::LeftEdge => gx,
+                    Polarity::RightEdge => -gx,
+                    Polarity::Both => gx.abs(),
+                };
+            }
+            self.response[0] = 0.0;
+            self.response[w - 1] = 0.0;
+            let row_bins = &self.bins[(v - self.rows.start) * w..(v - self.rows.start + 1) * w];
+            for (u, &b) in row_bins.iter().enumerate().take(w - 1).skip(1) {
+                let r = self.response[u];
+                let peak =
+                    r > self.threshold && r >= self.response[u - 1] && r > self.response[u + 1];
+                if peak && b != u32::MAX {
+                    self.histogram[b as usize] += 1.0;
+                    n += 1;
+                }
+            }
+        }
+        n
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synth::default_camera;
+
+    #[test]
+    fn a_painted_stripe_votes_into_the_bin_of_its_left_edge() {
+        let cam = default_camera(320, 240).unwrap();
+        let config = AdachiConfig::default();
+        let mut votes = Votes::new(&cam, &config).unwrap();
+        assert_eq!(votes.bins(), 320);
+        assert!((votes.noise.iter().sum::<f64>() - 1.0).abs() < 1e-9);
+        // Paint the road between rho = 1.50 and 1.65 m (y = -1.5 .. -1.65) white, grey elsewhere.
+        let mut rgba = vec![90u8; 320 * 240 * 4];
+        for v in 0..240 {
+            for u in 0..320 {
+                if let Ok([_, y]) = cam.pixel_to_road(u as f64, v as f64) {
+                    if (-1.65..=-1.5).contains(&y) {
+                        rgba[(v * 320 + u) * 4..(v * 320 + u) * 4 + 3]
+                            .copy_from_slice(&[230, 230, 230]);
+                    }
+                }
+            }
+        }
+        let n = votes.vote(&rgba);
+        assert!(n > 20, "{n} votes");
+        let peak = (0..votes.bins())
+            .max_by(|&a, &b| votes.histogram[a].total_cmp(&votes.histogram[b]))
+            .unwrap();
+        assert!(
+            (votes.rho(peak) - 1.5).abs() <= 0.1,
+            "peak at {}",
+            votes.rho(peak)
+        );
+        // Left edges only: nothing near the right edge at 1.65 + a bin.
+        let j = ((1.75 - votes.rho_min()) / votes.bin_m()) as usize;
+        assert_eq!(votes.histogram[j], 0.0);
+    }
+}
