@@ -13,6 +13,8 @@ export class Controls {
     this.paused = false;
     this.onStep = () => {};
     this.onSource = () => {};
+    this.onTracker = () => {};
+    this.tracker.addEventListener('change', () => this.onTracker(this.tracker.value));
     this.source.addEventListener('change', () => this.onSource(this.source.value));
     this.play.addEventListener('click', () => this.setPaused(!this.paused));
     this.step.addEventListener('click', () => this.onStep());
@@ -33,6 +35,7 @@ export class Controls {
       this.tracker.disabled = true;
       return;
     }
+    this.tracker.add(new Option('no tracker (ground truth only)', ''));
     for (const id of ids) this.tracker.add(new Option(id, id));
     this.tracker.disabled = false;
   }

@@ -16,10 +16,20 @@ function draw(frame) {
   if (controls.showTruth.checked && frame.truth) {
     drawBoundaries(ctx, frame.truth.boundaries, { dashed: true, width: 2 });
   }
+  if (frame.estimate) drawBoundaries(ctx, frame.estimate.boundaries, { width: 4 });
+  demo.lastEstimate = frame.estimate;
   demo.frames += 1;
   demo.lastTruth = frame.truth;
   demo.lastFrame = { index: frame.index, width: frame.width, height: frame.height };
-  controls.timing.textContent = `frame ${frame.index} · render ${frame.ms.toFixed(1)} ms`;
+  let text = `frame ${frame.index} · render ${frame.ms.toFixed(1)} ms`;
+  if (frame.estimate) {
+    text += ` · track ${frame.trackMs.toFixed(1)} ms`;
+    if (frame.truth) {
+      const err = Math.abs(frame.estimate.lateral_offset_m - frame.truth.lateral_offset_m);
+      text += ` · offset error ${(100 * err).toFixed(0)} cm`;
+    }
+  }
+  controls.timing.textContent = text;
 }
 
 async function main() {
@@ -28,15 +38,19 @@ async function main() {
   controls.setTrackers(trackers);
   controls.setScenarios(scenarios);
   let source = null;
+  // The tracker is rebuilt for each source (it needs the source's camera).
+  const openTracker = (id) => client.request('openTracker', { trackerId: id, camera: source.camera });
   const open = async (value) => {
     const scene = scenarios.find((s) => s.name === value);
     const next = scene ? new SceneSource(client, scene.name, scene.description) : new TestRoadSource(client);
     await next.open();
     source = next;
     controls.say(source.label);
+    await openTracker(controls.tracker.value);
   };
   await open(controls.source.value);
   controls.onSource = (value) => open(value).catch((err) => controls.say(err.message, true));
+  controls.onTracker = (id) => openTracker(id).catch((err) => controls.say(err.message, true));
   document.body.dataset.state = 'running';
 
   let busy = false;

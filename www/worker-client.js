@@ -22,6 +22,9 @@ export class WorkerClient {
 
   /** Sends `{ type, ...payload }`; resolves with the worker's result. */
   request(type, payload = {}, transfer = []) {
+    if ('id' in payload || 'type' in payload) {
+      return Promise.reject(new Error(`request '${type}': payload keys 'id' and 'type' are reserved`));
+    }
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject });

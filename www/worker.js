@@ -1,11 +1,12 @@
 // The Web Worker that owns the WebAssembly module: it renders synthetic frames (the test road
-// or a named simulator scenario) and (as the
-// trackers land) runs them, so the page's main thread only draws.
-// Protocol: { id, type, ...payload } -> { id, ok: true, result } | { id, ok: false, error }.
-import init, { version, trackerIds, scenarios, Scene, TestRoad } from '../pkg/web/lanepf.js';
+// or a named simulator scenario) and runs the chosen tracker on them, so the page's main
+// thread only draws.
+// Protocol: { id, type, ...payload } (payload keys must not be `id` or `type`) -> { id, ok: true, result } | { id, ok: false, error }.
+import init, { version, trackerIds, scenarios, Scene, TestRoad, Tracker } from '../pkg/web/lanepf.js';
 
 const ready = init();
 let road = null;
+let tracker = null;
 
 const handlers = {
   async hello() {
@@ -23,13 +24,30 @@ const handlers = {
     road = new Scene(name, options ?? {});
     return { width: road.width, height: road.height, frames: road.frames, camera: road.camera() };
   },
+  async openTracker({ trackerId, camera, options }) {
+    tracker?.free();
+    tracker = null;
+    if (!trackerId) return { trackerId: null };
+    tracker = new Tracker(trackerId, { ...(options ?? {}), camera });
+    return { trackerId: tracker.id };
+  },
   async renderFrame({ index }) {
     if (!road) throw new Error('no source is open: call openTestRoad or openScene first');
     const t0 = performance.now();
     const rgba = road.render(index);
     const ms = performance.now() - t0;
     const truth = road.truth(index);
-    return { result: { rgba, width: road.width, height: road.height, truth, ms }, transfer: [rgba.buffer] };
+    let estimate = null;
+    let trackMs = 0;
+    if (tracker) {
+      const t1 = performance.now();
+      estimate = tracker.step(rgba, road.width, road.height);
+      trackMs = performance.now() - t1;
+    }
+    return {
+      result: { rgba, width: road.width, height: road.height, truth, ms, estimate, trackMs },
+      transfer: [rgba.buffer],
+    };
   },
 };
 

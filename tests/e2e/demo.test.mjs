@@ -115,3 +115,38 @@ test('demo switches to a simulator scenario and draws it under its ground truth'
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('demo runs the adachi-mmpf tracker in the worker and draws its lanes on the truth', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/`);
+  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  await page.click('#play');
+  await page.selectOption('#source', 'highway-straight');
+  await page.waitForFunction(() => /highway-straight/.test(document.getElementById('status').textContent));
+  await page.selectOption('#tracker', 'adachi-mmpf');
+  await page.click('#play');
+  await page.waitForFunction(() => window.lanepfDemo.lastEstimate && window.lanepfDemo.frames > 10,
+    null, { timeout: 30000 });
+  await page.click('#play');
+  const { truth, estimate } = await page.evaluate(() => ({
+    truth: window.lanepfDemo.lastTruth, estimate: window.lanepfDemo.lastEstimate,
+  }));
+  assert.equal(estimate.valid, true);
+  // The estimated ego-left boundary lies on the true one: mean |dx| over shared rows < 20 px.
+  const est = estimate.boundaries.find((b) => b.role === 'ego-left').points;
+  const tru = truth.boundaries.find((b) => b.role === 'ego-left').points;
+  const xAt = (pts, y) => {
+    for (let i = 1; i < pts.length; i++) {
+      const [[x0, y0], [x1, y1]] = [pts[i - 1], pts[i]];
+      if ((y0 - y) * (y1 - y) <= 0 && y0 !== y1) return x0 + (x1 - x0) * (y - y0) / (y1 - y0);
+    }
+    return null;
+  };
+  const diffs = est.map(([, y]) => [xAt(est, y), xAt(tru, y)]).filter(([a, b]) => a !== null && b !== null)
+    .map(([a, b]) => Math.abs(a - b));
+  assert.ok(diffs.length > 10, `${diffs.length} shared rows`);
+  const mean = diffs.reduce((a, b) => a + b, 0) / diffs.length;
+  assert.ok(mean < 20, `ego-left estimate ${mean.toFixed(1)} px from the truth`);
+  assert.match(await page.textContent('#timing'), /track \d+\.\d ms · offset error \d+ cm/);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
