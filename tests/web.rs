@@ -230,6 +230,15 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
         .as_f64()
         .unwrap();
     assert_eq!(q.to_bits(), 0x3fb8_d07f_c081_deef, "{q}");
+    // The cloud: 400 particles of (r, q, w, weight), weights summing to 1.
+    assert_eq!(tracker.particle_stride(), 4);
+    let cloud = tracker.particles().to_vec();
+    assert_eq!(cloud.len(), 400 * 4);
+    let total: f32 = cloud.chunks(4).map(|p| p[3]).sum();
+    assert!((total - 1.0).abs() < 1e-3, "{total}");
+    assert!(cloud
+        .chunks(4)
+        .all(|p| (1.0..=4.0).contains(&p[0]) && p[1].abs() <= p[2] / 2.0 + 1e-4));
     // A wrong buffer throws, and the tracker carries on.
     let m = message(tracker.step(&[0; 12], 320, 240));
     assert!(m.contains("320x240"), "{m}");

@@ -25,6 +25,15 @@ pub trait Tracker {
     fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate>;
     /// Forgets the past: the next frame starts from the initial distribution.
     fn reset(&mut self);
+    /// The particle cloud after the last step, flattened for drawing: `particle_stride()`
+    /// numbers per particle, the layout documented by each tracker; empty by default.
+    fn particles(&self) -> Vec<f32> {
+        Vec::new()
+    }
+    /// Numbers per particle in [`Tracker::particles`].
+    fn particle_stride(&self) -> usize {
+        0
+    }
     /// Milliseconds spent in each stage of the last [`Tracker::step`] (for `lanepf bench`).
     fn stage_times(&self) -> StageTimes {
         StageTimes::default()

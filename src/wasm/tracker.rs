@@ -42,6 +42,18 @@ impl JsTracker {
         super::to_js_value(&estimate)
     }
 
+    /// The particle cloud after the last step as a `Float32Array` of `particleStride` numbers
+    /// per particle (adachi-mmpf: model r 1..4, q in metres, w in metres, weight).
+    pub fn particles(&self) -> js_sys::Float32Array {
+        js_sys::Float32Array::from(&self.inner.particles()[..])
+    }
+
+    /// Numbers per particle in `particles()`.
+    #[wasm_bindgen(getter, js_name = particleStride)]
+    pub fn particle_stride(&self) -> usize {
+        self.inner.particle_stride()
+    }
+
     /// Forgets the past.
     pub fn reset(&mut self) {
         self.inner.reset();

@@ -154,7 +154,7 @@ impl AdachiTracker {
     }
 
     /// The particles: (model 1..4, q, w) with their weights.
-    pub fn particles(&self) -> impl Iterator<Item = (usize, f64, f64, f64)> + '_ {
+    pub fn particle_states(&self) -> impl Iterator<Item = (usize, f64, f64, f64)> + '_ {
         self.filter
             .states()
             .iter()
@@ -345,6 +345,17 @@ impl Tracker for AdachiTracker {
 
     fn stage_times(&self) -> StageTimes {
         self.times
+    }
+
+    /// Four numbers per particle: model r (1..4), q (m), w (m), normalised weight.
+    fn particles(&self) -> Vec<f32> {
+        self.particle_states()
+            .flat_map(|(r, q, w, wt)| [r as f32, q as f32, w as f32, wt as f32])
+            .collect()
+    }
+
+    fn particle_stride(&self) -> usize {
+        4
     }
 }
 
