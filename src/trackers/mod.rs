@@ -7,6 +7,7 @@
 //! available ones.
 
 pub mod adachi;
+pub mod lee;
 
 use crate::camera::{Camera, CameraFile};
 use crate::error::{Error, Result};
@@ -56,7 +57,7 @@ pub struct StageTimes {
 }
 
 /// The ids of the trackers implemented so far.
-pub const TRACKER_IDS: &[&str] = &[adachi::ID];
+pub const TRACKER_IDS: &[&str] = &[adachi::ID, lee::ID];
 
 /// Largest accepted particle count.
 pub const MAX_PARTICLES: usize = 200_000;
@@ -121,6 +122,9 @@ pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
     if id == adachi::ID {
         return Ok(Box::new(adachi::AdachiTracker::new(config)?));
     }
+    if id == lee::ID {
+        return Ok(Box::new(lee::LeeTracker::new(config)?));
+    }
     Err(Error::UnknownTracker {
         id: id.to_string(),
         available: if TRACKER_IDS.is_empty() {
@@ -129,6 +133,24 @@ pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
             TRACKER_IDS.join(", ")
         },
     })
+}
+
+/// Milliseconds from a monotonic clock (0 where none is available, e.g. plain wasm).
+pub(crate) fn now() -> f64 {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        use std::sync::OnceLock;
+        static START: OnceLock<std::time::Instant> = OnceLock::new();
+        START
+            .get_or_init(std::time::Instant::now)
+            .elapsed()
+            .as_secs_f64()
+            * 1e3
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        0.0
+    }
 }
 
 #[cfg(test)]

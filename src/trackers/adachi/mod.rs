@@ -21,7 +21,7 @@ pub mod likelihood;
 pub mod motion;
 pub mod votes;
 
-use super::{StageTimes, Tracker, TrackerConfig};
+use super::{now, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
@@ -356,24 +356,6 @@ impl Tracker for AdachiTracker {
 
     fn particle_stride(&self) -> usize {
         4
-    }
-}
-
-/// Milliseconds from a monotonic clock (0 where none is available, e.g. plain wasm).
-fn now() -> f64 {
-    #[cfg(not(target_arch = "wasm32"))]
-    {
-        use std::sync::OnceLock;
-        static START: OnceLock<std::time::Instant> = OnceLock::new();
-        START
-            .get_or_init(std::time::Instant::now)
-            .elapsed()
-            .as_secs_f64()
-            * 1e3
-    }
-    #[cfg(target_arch = "wasm32")]
-    {
-        0.0
     }
 }
 

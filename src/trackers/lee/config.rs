@@ -1,0 +1,288 @@
+//! Settings of the Lee tracker (all optional in the tracker config; defaults documented).
+
+use crate::error::{require_finite, require_positive, Error, Result};
+use crate::vision::{CannyConfig, DldConfig};
+use serde::{Deserialize, Serialize};
+
+/// Which filter runs: the paper's cascade or one of the single-stage baselines it compares
+/// against (same cues, same particle count).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Variant {
+    /// The cascade particle filter: stage 1 [psi, y0, w, w'], stage 2 [c, delta] (Algorithm 1).
+    Cascade,
+    /// PF1: one filter over the first-order model [psi, y0, w, w'] (no curve).
+    FirstOrder,
+    /// PF2/PF3: one filter over all six states, weighed by both measurement models.
+    FullModel,
+}
+
+/// Settings of `lee-cpf`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LeeConfig {
+    /// Filter structure.
+    pub variant: Variant,
+    /// Particles of stage 2 (stage 1 and the single-stage filters use `particles`); 0: the
+    /// same as stage 1.
+    pub stage2_particles: usize,
+    /// Nearest road distance measured, metres (raised to the first visible distance).
+    pub near_m: f64,
+    /// End of the near range (DLD, stage 1) and start of the far range (Canny, stage 2), m.
+    pub split_m: f64,
+    /// End of the far range, metres.
+    pub far_m: f64,
+    /// Spacing of the evaluation points x = 1..M of eqs. 31-32 in the near range, metres.
+    pub near_step_m: f64,
+    /// Spacing of the far-range evaluation points, metres.
+    pub far_step_m: f64,
+    /// Lateral half-range of the likelihood map, metres.
+    pub lateral_range_m: f64,
+    /// Cell size of the likelihood map (square cells), metres.
+    pub cell_m: f64,
+    /// DLD detector (eqs. 21-24): averaging window N (pixels) and threshold gamma.
+    pub dld: DldConfig,
+    /// Largest pattern length of a marking candidate (eq. 26), metres.
+    pub max_marking_width_m: f64,
+    /// Spread sigma_D that turns a distance d (m) into the likelihood exp(-d^2 / 2 sigma_D^2)
+    /// of the map D (eq. 31).
+    pub map_sigma_m: f64,
+    /// Canny detector of the far range.
+    pub canny: CannyConfig,
+    /// Marking width assumed when matching far points to Canny edges, metres.
+    pub marking_width_m: f64,
+    /// Weight alpha of the boundary points (eq. 32).
+    pub alpha: f64,
+    /// Weight beta of the points inside the lane (eq. 32; negative: a marking there counts
+    /// against the particle).
+    pub beta: f64,
+    /// Distance tau of the inside points from the boundaries (eqs. 29-30), metres.
+    pub tau_m: f64,
+    /// Standard deviation sigma of the Gaussian on q (eq. 33), in units of q (whose ideal
+    /// value mu = 2 alpha).
+    pub sigma_q: f64,
+    /// Standard deviation of the stage-2 Gaussian on the fraction of far points on an edge.
+    pub sigma_far: f64,
+    /// Spiral length s_o of the clothoid (eq. 12), metres.
+    pub spiral_length_m: f64,
+    /// Diagonal of the process noise Q per frame (eq. 20): psi (rad), y0 (m), w (m), w' (m/m),
+    /// c (m), delta (1/m).
+    pub process_sd: [f64; 6],
+    /// Resample a stage when its effective sample size falls below this fraction of N
+    /// (N_thr of Algorithm 1).
+    pub ess_threshold: f64,
+    /// Limits of the initial distribution and of the states: |psi| (rad).
+    pub max_heading_rad: f64,
+    /// Accepted lane widths [min, max], metres.
+    pub width_range_m: [f64; 2],
+    /// Largest |w'|.
+    pub max_width_rate: f64,
+    /// Largest c, metres (c ranges over [-spiral_length_m, max_transition_m]).
+    pub max_transition_m: f64,
+    /// Largest |delta|, 1/m.
+    pub max_curvature: f64,
+    /// Filter iterations on the first frame (and after a reset): the paper does not say how
+    /// the filter starts; a uniform start needs a few rounds on the same frame to find the lane.
+    pub start_iterations: usize,
+    /// Kalman smoothing of the CPF output (Fig. 4).
+    pub kalman: bool,
+    /// Kalman process noise per frame, same order as `process_sd`.
+    pub kalman_process_sd: [f64; 6],
+    /// Kalman measurement noise (spread of the raw CPF estimate), same order.
+    pub kalman_measurement_sd: [f64; 6],
+    /// A frame is valid when, on each boundary, at least this fraction of the estimate's near
+    /// points lie within sigma_D of a marking candidate (D >= exp(-1/2)).
+    pub valid_fraction: f64,
+}
+
+impl Default for LeeConfig {
+    fn default() -> Self {
+        Self {
+            variant: Variant::Cascade,
+            stage2_particles: 0,
+            near_m: 5.0,
+            split_m: 20.0,
+            far_m: 50.0,
+            near_step_m: 1.0,
+            far_step_m: 2.0,
+            lateral_range_m: 8.0,
+            cell_m: 0.1,
+            dld: DldConfig {
+                window: 3,
+                gamma: 20.0,
+            },
+            max_marking_width_m: 0.45,
+            map_sigma_m: 0.2,
+            canny: CannyConfig {
+                sigma: 1.0,
+                low: 40.0,
+                high: 100.0,
+            },
+            marking_width_m: 0.15,
+            alpha: 1.0,
+            beta: -0.5,
+            tau_m: 0.6,
+            sigma_q: 0.25,
+            sigma_far: 0.25,
+            spiral_length_m: 60.0,
+            process_sd: [0.004, 0.04, 0.02, 0.0005, 1.5, 0.0002],
+            ess_threshold: 0.5,
+            max_heading_rad: 0.1,
+            width_range_m: [2.5, 4.5],
+            max_width_rate: 0.02,
+            max_transition_m: 60.0,
+            max_curvature: 0.02,
+            start_iterations: 20,
+            kalman: true,
+            kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
+            kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],
+            valid_fraction: 0.15,
+        }
+    }
+}
+
+impl LeeConfig {
+    /// Reads the tracker-specific options.
+    ///
+    /// # Errors
+    /// [`Error::Config`] for an unknown option or a wrong type; [`Error::Parameter`] for a bad
+    /// value.
+    pub fn from_options(
+        options: &std::collections::BTreeMap<String, serde_json::Value>,
+    ) -> Result<Self> {
+        let map: serde_json::Map<String, serde_json::Value> = options
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        let config: Self = serde_json::from_value(serde_json::Value::Object(map))
+            .map_err(|e| Error::Config(format!("lee-cpf options: {e}")))?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// Checks every value.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] naming the first bad value.
+    pub fn validate(&self) -> Result<()> {
+        require_positive("near_m", self.near_m)?;
+        require_positive("split_m", self.split_m)?;
+        require_positive("far_m", self.far_m)?;
+        if !(self.near_m < self.split_m && self.split_m < self.far_m) {
+            return Err(Error::parameter(
+                "split_m",
+                self.split_m,
+                "must lie between near_m and far_m",
+            ));
+        }
+        if self.far_m > 500.0 {
+            return Err(Error::parameter(
+                "far_m",
+                self.far_m,
+                "must be at most 500 m",
+            ));
+        }
+        require_positive("near_step_m", self.near_step_m)?;
+        require_positive("far_step_m", self.far_step_m)?;
+        require_positive("lateral_range_m", self.lateral_range_m)?;
+        require_positive("cell_m", self.cell_m)?;
+        let cells = (2.0 * self.lateral_range_m / self.cell_m)
+            * ((self.split_m - self.near_m) / self.cell_m);
+        if cells > 4.0e6 {
+            return Err(Error::parameter(
+                "cell_m",
+                self.cell_m,
+                "gives a likelihood map of more than 4 million cells",
+            ));
+        }
+        for (name, points) in [
+            (
+                "near_step_m",
+                (self.split_m - self.near_m) / self.near_step_m,
+            ),
+            ("far_step_m", (self.far_m - self.split_m) / self.far_step_m),
+        ] {
+            if points > 10_000.0 {
+                return Err(Error::parameter(
+                    name,
+                    points,
+                    "gives more than 10 000 evaluation points",
+                ));
+            }
+        }
+        require_positive("max_marking_width_m", self.max_marking_width_m)?;
+        require_positive("map_sigma_m", self.map_sigma_m)?;
+        require_positive("marking_width_m", self.marking_width_m)?;
+        require_positive("alpha", self.alpha)?;
+        require_finite("beta", self.beta)?;
+        require_positive("tau_m", self.tau_m)?;
+        require_positive("sigma_q", self.sigma_q)?;
+        require_positive("sigma_far", self.sigma_far)?;
+        require_positive("spiral_length_m", self.spiral_length_m)?;
+        for (name, values) in [
+            ("process_sd", &self.process_sd),
+            ("kalman_process_sd", &self.kalman_process_sd),
+            ("kalman_measurement_sd", &self.kalman_measurement_sd),
+        ] {
+            for &v in values {
+                require_positive(name, v)?;
+            }
+        }
+        require_finite("ess_threshold", self.ess_threshold)?;
+        if !(0.0..=1.0).contains(&self.ess_threshold) {
+            return Err(Error::parameter(
+                "ess_threshold",
+                self.ess_threshold,
+                "must be a fraction in [0, 1]",
+            ));
+        }
+        require_positive("max_heading_rad", self.max_heading_rad)?;
+        if self.max_heading_rad >= 1.2 {
+            return Err(Error::parameter(
+                "max_heading_rad",
+                self.max_heading_rad,
+                "must be below 1.2 rad",
+            ));
+        }
+        let [lo, hi] = self.width_range_m;
+        require_positive("width_range_m", lo)?;
+        require_finite("width_range_m", hi)?;
+        if hi <= lo {
+            return Err(Error::parameter("width_range_m", hi, "max must exceed min"));
+        }
+        require_positive("max_width_rate", self.max_width_rate)?;
+        require_positive("max_transition_m", self.max_transition_m)?;
+        require_positive("max_curvature", self.max_curvature)?;
+        // The Fresnel series is exact while the spiral turns by at most 1.5 rad.
+        if self.max_curvature * self.spiral_length_m / 2.0 > 1.5 {
+            return Err(Error::parameter(
+                "max_curvature",
+                self.max_curvature,
+                "times spiral_length_m / 2 (the spiral's turn) must be at most 1.5 rad",
+            ));
+        }
+        if self.start_iterations > 1000 {
+            return Err(Error::parameter(
+                "start_iterations",
+                self.start_iterations,
+                "must be at most 1000",
+            ));
+        }
+        require_finite("valid_fraction", self.valid_fraction)?;
+        if !(0.0..=1.0).contains(&self.valid_fraction) {
+            return Err(Error::parameter(
+                "valid_fraction",
+                self.valid_fraction,
+                "must be a fraction in [0, 1]",
+            ));
+        }
+        if self.stage2_particles > super::super::MAX_PARTICLES {
+            return Err(Error::parameter(
+                "stage2_particles",
+                self.stage2_particles,
+                &format!("must be at most {}", super::super::MAX_PARTICLES),
+            ));
+        }
+        Ok(())
+    }
+}

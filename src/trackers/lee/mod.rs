@@ -1,0 +1,630 @@
+//! `lee-cpf`: the cascade particle filter of Lee, Jang & Sunwoo 2015, with its clothoid lane
+//! model and Kalman smoothing.
+//!
+//! One frame (Fig. 4):
+//! 1. features: grey levels of the near and far bands of rows; in the near band, DLD marking
+//!    candidates (eqs. 21-26, [`candidates`]) marked on a road grid and turned into the
+//!    likelihood map D by a distance transform ([`likelihood_map`]); in the far band, Canny
+//!    edges ([`far_edges`]);
+//! 2. stage 1 (Algorithm 1, s = 1): the particles [psi, y0, w, w'] (eq. 18) move by the free
+//!    motion model (eq. 20, [`motion`]) and are weighed by the approximated measurement model
+//!    on D (eqs. 27-33, [`measurement`]); the estimate is their weighted mean; resampling
+//!    when N_eff < N_thr;
+//! 3. stage 2 (s = 2): the particles [c, delta] (eq. 19) move the same way and are weighed by
+//!    the residual model on the far edges, each completed with the stage-1 estimate into the
+//!    full clothoid lane ([`clothoid`]); weighted mean; resampling when N_eff < N_thr;
+//! 4. the six estimated states pass the Kalman smoother ([`kalman`]) and become boundaries.
+//!
+//! The baselines of the paper share the cues and the particle count: `first-order` (PF1, stage
+//! 1 alone, straight lanes) and `full-model` (one filter over all six states weighed by both
+//! models). A frame is valid when, on each of the two boundaries, at least `valid_fraction`
+//! of the estimate's near points lie within sigma_D of a marking candidate (0.15 by default; a
+//! dashed line of 3 m dashes every 12 m gives about 0.25); the paper counts "valid frames"
+//! without defining them, and this is our definition.
+
+pub mod candidates;
+pub mod clothoid;
+pub mod config;
+pub mod far_edges;
+pub mod kalman;
+pub mod likelihood_map;
+pub mod measurement;
+pub mod motion;
+
+use super::{now, StageTimes, Tracker, TrackerConfig};
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::filter::{
+    map_index, FilterConfig, Injection, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
+};
+use crate::image::{check_rgba, luma, Image};
+use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
+use candidates::Candidates;
+use clothoid::{Curve, LaneState};
+use config::{LeeConfig, Variant};
+use far_edges::FarEdges;
+use kalman::Smoother;
+use likelihood_map::LikelihoodMap;
+use measurement::{Measurement, MeasurementSettings};
+use motion::{Initial, Limits, Motion, Part};
+
+/// The tracker id.
+pub const ID: &str = "lee-cpf";
+
+/// Stage 1's model: eq. 33 on the near map (with the curve only in the full-model baseline).
+struct NearModel<'a> {
+    measurement: &'a Measurement,
+    map: &'a LikelihoodMap,
+    spiral: f64,
+    with_curve: bool,
+}
+
+impl MeasurementModel<LaneState> for NearModel<'_> {
+    type Cues = ();
+    fn log_likelihood(&self, s: &LaneState, _: &()) -> f64 {
+        let curve = self
+            .with_curve
+            .then(|| Curve::new(s.c, s.delta, self.spiral));
+        self.measurement
+            .near_log_likelihood(s, curve.as_ref(), self.map)
+    }
+}
+
+/// Stage 2's model: the far edges, for the lane made of `first` (the stage-1 estimate, or the
+/// particle's own first-order states when `None`) and the particle's (c, delta); plus the near
+/// model in the full-model baseline.
+struct FarModel<'a> {
+    measurement: &'a Measurement,
+    camera: &'a Camera,
+    edges: &'a FarEdges,
+    spiral: f64,
+    first: Option<LaneState>,
+    near: Option<&'a LikelihoodMap>,
+}
+
+impl MeasurementModel<LaneState> for FarModel<'_> {
+    type Cues = ();
+    fn log_likelihood(&self, s: &LaneState, _: &()) -> f64 {
+        let lane = match self.first {
+            Some(f) => LaneState {
+                c: s.c,
+                delta: s.delta,
+                ..f
+            },
+            None => *s,
+        };
+        let curve = Curve::new(lane.c, lane.delta, self.spiral);
+        let far = self
+            .measurement
+            .far_log_likelihood(&lane, &curve, self.camera, self.edges);
+        let near = self.near.map_or(0.0, |map| {
+            self.measurement
+                .near_log_likelihood(&lane, Some(&curve), map)
+        });
+        far + near
+    }
+}
+
+/// The estimate of one frame in the paper's terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LeeEstimate {
+    /// The six states after the Kalman smoother (equal to `raw` when it is off).
+    pub state: LaneState,
+    /// The particle filter's own estimate.
+    pub raw: LaneState,
+    /// Whether the frame is valid (see the module docs).
+    pub valid: bool,
+    /// Fraction of the near points of the left and right boundary supported by candidates.
+    pub support: [f64; 2],
+    /// Lane change this frame (from the jump of y0): +1 to the left, -1 to the right, 0 none.
+    pub change: i8,
+    /// Marking candidates found.
+    pub candidates: usize,
+    /// Effective sample sizes of stage 1 and stage 2 after weighing.
+    pub ess: [f64; 2],
+}
+
+/// The Lee tracker.
+#[derive(Debug)]
+pub struct LeeTracker {
+    camera: Camera,
+    config: LeeConfig,
+    gray: Image<u8>,
+    gray_rows: std::ops::Range<usize>,
+    near_m: f64,
+    map: LikelihoodMap,
+    candidates: Candidates,
+    far: FarEdges,
+    measurement: Measurement,
+    /// Stage 1 (or the single filter of a baseline).
+    stage1: ParticleFilter<LaneState>,
+    /// Stage 2 of the cascade.
+    stage2: Option<ParticleFilter<LaneState>>,
+    initial: Initial,
+    limits: Limits,
+    smoother: Smoother,
+    times: StageTimes,
+    first: bool,
+    previous_y0: Option<f64>,
+}
+
+/// Image rows whose road point (at the left, centre or right column) lies in [from, to).
+fn band_rows(camera: &Camera, from: f64, to: f64) -> std::ops::Range<usize> {
+    let (w, h) = (camera.width(), camera.height());
+    let (mut first, mut last) = (h, 0);
+    for v in 0..h {
+        for u in [0.0, (w as f64 - 1.0) / 2.0, w as f64 - 1.0] {
+            if let Ok([x, _]) = camera.pixel_to_road(u, v as f64) {
+                if x >= from && x < to {
+                    first = first.min(v);
+                    last = last.max(v);
+                }
+            }
+        }
+    }
+    if first > last {
+        0..0
+    } else {
+        first..last + 1
+    }
+}
+
+impl LeeTracker {
+    /// Builds the tracker.
+    ///
+    /// # Errors
+    /// Camera, particle-count and option errors, named; [`Error::Config`] when the near range
+    /// is not visible in the camera's image.
+    pub fn new(config: &TrackerConfig) -> Result<Self> {
+        let camera = config.validate()?;
+        let lee = LeeConfig::from_options(&config.options)?;
+        // The nearest visible road distance (bottom centre of the image).
+        let (w, h) = (camera.width(), camera.height());
+        let bottom = camera
+            .pixel_to_road((w as f64 - 1.0) / 2.0, h as f64 - 1.0)
+            .map(|p| p[0])
+            .unwrap_or(f64::INFINITY);
+        let near_m = lee.near_m.max(bottom);
+        let near_rows = band_rows(&camera, near_m, lee.split_m);
+        if near_m >= lee.split_m || near_rows.len() < 2 {
+            return Err(Error::Config(format!(
+                "the near range ({} to {} m ahead) is not visible in this camera's image",
+                lee.near_m, lee.split_m
+            )));
+        }
+        let far_rows = band_rows(&camera, lee.split_m, lee.far_m);
+        let gray_rows = far_rows.start.min(near_rows.start)..near_rows.end.max(far_rows.end);
+        let map = LikelihoodMap::new(
+            near_m,
+            lee.split_m,
+            lee.lateral_range_m,
+            lee.cell_m,
+            lee.map_sigma_m,
+        )?;
+        let candidates = Candidates::new(lee.dld, near_rows, lee.max_marking_width_m)?;
+        let far = FarEdges::new(lee.canny, far_rows)?;
+        let measurement = Measurement::new(
+            &camera,
+            MeasurementSettings {
+                near: [near_m, lee.split_m, lee.near_step_m],
+                far: [lee.split_m, lee.far_m, lee.far_step_m],
+                marking_width: lee.marking_width_m,
+                alpha: lee.alpha,
+                beta: lee.beta,
+                tau: lee.tau_m,
+                sigma_q: lee.sigma_q,
+                sigma_far: lee.sigma_far,
+            },
+        );
+        let limits = Limits {
+            heading: lee.max_heading_rad,
+            width: lee.width_range_m,
+            width_rate: lee.max_width_rate,
+            transition: [-lee.spiral_length_m, lee.max_transition_m],
+            curvature: lee.max_curvature,
+        };
+        let initial = Initial { limits };
+        let filter_config = FilterConfig {
+            resampler: Resampler::Systematic,
+            policy: ResamplePolicy::EssBelow(lee.ess_threshold),
+            injection: Injection::None,
+        };
+        let stage1 = ParticleFilter::new(config.particles, filter_config, config.seed, &initial)?;
+        let stage2 = if lee.variant == Variant::Cascade {
+            let n2 = if lee.stage2_particles == 0 {
+                config.particles
+            } else {
+                lee.stage2_particles
+            };
+            // A different stream for stage 2, derived from the seed.
+            Some(ParticleFilter::new(
+                n2,
+                filter_config,
+                config.seed ^ 0x9e37_79b9_7f4a_7c15,
+                &initial,
+            )?)
+        } else {
+            None
+        };
+        let smoother = Smoother::new(lee.kalman_process_sd, lee.kalman_measurement_sd);
+        Ok(Self {
+            gray: Image::new(w, h)?,
+            gray_rows,
+            near_m,
+            map,
+            candidates,
+            far,
+            measurement,
+            stage1,
+            stage2,
+            initial,
+            limits,
+            smoother,
+            times: StageTimes::default(),
+            first: true,
+            previous_y0: None,
+            camera,
+            config: lee,
+        })
+    }
+
+    /// The settings in use.
+    pub fn config(&self) -> &LeeConfig {
+        &self.config
+    }
+
+    /// The likelihood map D of the last frame: values (rows along x from the near distance,
+    /// columns from +lateral_range to -lateral_range), its width and height.
+    pub fn likelihood_map(&self) -> (&[f32], usize, usize) {
+        (
+            &self.map.likelihood,
+            self.map.marks.width(),
+            self.map.marks.height(),
+        )
+    }
+
+    /// The particles of both stages: (stage 1 or 2, or 0 for a single-stage baseline, the full
+    /// lane the particle stands for, weight). Stage-1 particles carry the last stage-2
+    /// estimate's (c, delta); stage-2 particles the stage-1 estimate's first-order states.
+    pub fn particle_states(&self) -> Vec<(u8, LaneState, f64)> {
+        let single = self.stage2.is_none();
+        let mut out: Vec<(u8, LaneState, f64)> = self
+            .stage1
+            .states()
+            .iter()
+            .zip(self.stage1.weights())
+            .map(|(s, &w)| (if single { 0 } else { 1 }, *s, w))
+            .collect();
+        if let Some(f) = &self.stage2 {
+            out.extend(f.states().iter().zip(f.weights()).map(|(s, &w)| (2, *s, w)));
+        }
+        out
+    }
+
+    fn motion(&self, part: Part) -> Motion {
+        Motion {
+            part,
+            sd: self.config.process_sd,
+            limits: self.limits,
+        }
+    }
+
+    /// Grey levels of the rows the cues read.
+    fn convert(&mut self, rgba: &[u8]) {
+        let w = self.gray.width();
+        for v in self.gray_rows.clone() {
+            let src = &rgba[v * w * 4..(v + 1) * w * 4];
+            for (g, p) in self.gray.row_mut(v).iter_mut().zip(src.chunks_exact(4)) {
+                *g = luma(p[0], p[1], p[2]);
+            }
+        }
+    }
+
+    /// One frame, returning the estimate in the paper's terms.
+    ///
+    /// # Errors
+    /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
+    pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LeeEstimate> {
+        if (width, height) != (self.camera.width(), self.camera.height()) {
+            return Err(Error::Dimensions(format!(
+                "the tracker was built for {}x{} frames but got {width}x{height}",
+                self.camera.width(),
+                self.camera.height()
+            )));
+        }
+        check_rgba(rgba, width, height)?;
+        let mut times = StageTimes::default();
+        let t = now();
+        self.convert(rgba);
+        self.candidates
+            .detect(&self.gray, &self.camera, &mut self.map)?;
+        self.far.detect(&self.gray)?;
+        times.preprocess = now() - t;
+        let spiral = self.config.spiral_length_m;
+        let rounds = if self.first {
+            1 + self.config.start_iterations
+        } else {
+            1
+        };
+        let first_frame = self.first;
+        self.first = false;
+
+        // Stage 1 (or the single filter).
+        let (part, near_curve, far_too) = match self.config.variant {
+            Variant::Cascade | Variant::FirstOrder => (Part::FirstOrder, false, false),
+            Variant::FullModel => (Part::Full, true, true),
+        };
+        let motion = self.motion(part);
+        for round in 0..rounds {
+            let t = now();
+            if !(first_frame && round == 0) {
+                self.stage1.predict(&motion);
+            }
+            let t1 = now();
+            if far_too {
+                let model = FarModel {
+                    measurement: &self.measurement,
+                    camera: &self.camera,
+                    edges: &self.far,
+                    spiral,
+                    first: None,
+                    near: Some(&self.map),
+                };
+                self.stage1.weigh(&model, &());
+            } else {
+                let model = NearModel {
+                    measurement: &self.measurement,
+                    map: &self.map,
+                    spiral,
+                    with_curve: near_curve,
+                };
+                self.stage1.weigh(&model, &());
+            }
+            let t2 = now();
+            times.predict += t1 - t;
+            times.weigh += t2 - t1;
+            if round + 1 < rounds {
+                self.stage1.resample();
+                times.resample += now() - t2;
+            }
+        }
+        let t = now();
+        let mut estimate = estimate_first_order(self.stage1.states(), self.stage1.weights());
+        let ess1 = self.stage1.ess();
+        if self.config.variant == Variant::FullModel {
+            let (c, delta) = mean_curve(self.stage1.states(), self.stage1.weights());
+            estimate.c = c;
+            estimate.delta = delta;
+        }
+        times.estimate += now() - t;
+        let t = now();
+        self.stage1.resample();
+        times.resample += now() - t;
+
+        // Stage 2 of the cascade, given stage 1's estimate.
+        let mut ess2 = 0.0;
+        if let Some(stage2) = self.stage2.as_mut() {
+            let motion = Motion {
+                part: Part::Curve,
+                sd: self.config.process_sd,
+                limits: self.limits,
+            };
+            for round in 0..rounds {
+                let t = now();
+                if !(first_frame && round == 0) {
+                    stage2.predict(&motion);
+                }
+                let t1 = now();
+                let model = FarModel {
+                    measurement: &self.measurement,
+                    camera: &self.camera,
+                    edges: &self.far,
+                    spiral,
+                    first: Some(estimate),
+                    near: None,
+                };
+                stage2.weigh(&model, &());
+                let t2 = now();
+                times.predict += t1 - t;
+                times.weigh += t2 - t1;
+                if round + 1 < rounds {
+                    stage2.resample();
+                    times.resample += now() - t2;
+                }
+            }
+            let t = now();
+            let (c, delta) = mean_curve(stage2.states(), stage2.weights());
+            estimate.c = c;
+            estimate.delta = delta;
+            ess2 = stage2.ess();
+            // Stage-2 particles stand for full lanes with stage 1's first-order states.
+            for s in stage2.states_mut() {
+                *s = LaneState {
+                    c: s.c,
+                    delta: s.delta,
+                    ..estimate
+                };
+            }
+            times.estimate += now() - t;
+            let t = now();
+            stage2.resample();
+            times.resample += now() - t;
+        }
+        // Stage-1 particles stand for full lanes with the curve estimate.
+        if self.config.variant == Variant::Cascade {
+            for s in self.stage1.states_mut() {
+                s.c = estimate.c;
+                s.delta = estimate.delta;
+            }
+        }
+
+        let t = now();
+        let raw = estimate;
+        let state = if self.config.kalman {
+            let x = self
+                .smoother
+                .update([raw.psi, raw.y0, raw.w, raw.w1, raw.c, raw.delta]);
+            LaneState {
+                psi: x[0],
+                y0: x[1],
+                w: x[2],
+                w1: x[3],
+                c: x[4],
+                delta: x[5],
+            }
+        } else {
+            raw
+        };
+        let change = match self.previous_y0 {
+            Some(p) if raw.y0 - p > raw.w / 2.0 => 1,
+            Some(p) if p - raw.y0 > raw.w / 2.0 => -1,
+            _ => 0,
+        };
+        self.previous_y0 = Some(raw.y0);
+        let support = self.measurement.near_support(&raw, None, &self.map);
+        times.estimate += now() - t;
+        self.times = times;
+        Ok(LeeEstimate {
+            state,
+            raw,
+            valid: support[0].min(support[1]) >= self.config.valid_fraction,
+            support,
+            change,
+            candidates: self.candidates.count,
+            ess: [ess1, ess2],
+        })
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &LeeEstimate) -> LaneEstimate {
+        let s = e.state;
+        let curve = Curve::new(s.c, s.delta, self.config.spiral_length_m);
+        let mut boundaries = Vec::new();
+        for (role, sign) in [(Role::EgoLeft, 1.0), (Role::EgoRight, -1.0)] {
+            let (points, road_points) = sample_road_curve(
+                |x| s.centre(x, Some(&curve)) + sign * s.half_width(x),
+                |x, y| self.camera.road_to_pixel(x, y),
+                self.near_m.min(3.0),
+                self.config.far_m,
+                self.camera.width(),
+                self.camera.height(),
+            );
+            boundaries.push(Boundary {
+                role,
+                points,
+                road_points,
+            });
+        }
+        let r = e.raw;
+        let state = [
+            ("lee.psi", s.psi),
+            ("lee.y0", s.y0),
+            ("lee.w", s.w),
+            ("lee.w1", s.w1),
+            ("lee.c", s.c),
+            ("lee.delta", s.delta),
+            ("lee.raw.psi", r.psi),
+            ("lee.raw.y0", r.y0),
+            ("lee.raw.w", r.w),
+            ("lee.raw.w1", r.w1),
+            ("lee.raw.c", r.c),
+            ("lee.raw.delta", r.delta),
+            ("lee.support_left", e.support[0]),
+            ("lee.support_right", e.support[1]),
+            ("lee.change", e.change as f64),
+            ("lee.candidates", e.candidates as f64),
+            ("lee.ess1", e.ess[0]),
+            ("lee.ess2", e.ess[1]),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        LaneEstimate {
+            frame: String::new(),
+            valid: e.valid,
+            ms: 0.0,
+            boundaries,
+            lateral_offset_m: -s.y0,
+            heading_rad: s.psi,
+            curvature_per_m: curve.curvature_at_car(),
+            lane_width_m: s.w,
+            state,
+        }
+    }
+}
+
+/// Weighted mean of psi, w, w' and of y0 unwrapped around the best particle's (particles on
+/// both sides of the +-w/2 seam stand for the same lane), wrapped back into [-w/2, w/2).
+fn estimate_first_order(states: &[LaneState], weights: &[f64]) -> LaneState {
+    let best = states[map_index(weights)];
+    let mut m = LaneState::default();
+    for (s, &wt) in states.iter().zip(weights) {
+        let k = ((best.y0 - s.y0) / s.w).round();
+        m.psi += wt * s.psi;
+        m.y0 += wt * (s.y0 + k * s.w);
+        m.w += wt * s.w;
+        m.w1 += wt * s.w1;
+    }
+    m.y0 = motion::wrap(m.y0, m.w).0;
+    m
+}
+
+/// Weighted mean of (c, delta).
+fn mean_curve(states: &[LaneState], weights: &[f64]) -> (f64, f64) {
+    states
+        .iter()
+        .zip(weights)
+        .fold((0.0, 0.0), |(c, d), (s, &w)| (c + w * s.c, d + w * s.delta))
+}
+
+impl Tracker for LeeTracker {
+    fn id(&self) -> &'static str {
+        ID
+    }
+
+    fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate> {
+        let e = self.track(rgba, width, height)?;
+        Ok(self.to_lane_estimate(&e))
+    }
+
+    fn reset(&mut self) {
+        self.stage1.reset(&self.initial);
+        if let Some(f) = self.stage2.as_mut() {
+            f.reset(&self.initial);
+        }
+        self.smoother.reset();
+        self.first = true;
+        self.previous_y0 = None;
+    }
+
+    fn stage_times(&self) -> StageTimes {
+        self.times
+    }
+
+    /// Eight numbers per particle: stage (1, 2, or 0 for a single-stage baseline), psi (rad),
+    /// y0 (m), w (m), w', c (m), delta (1/m), normalised weight (within its stage).
+    fn particles(&self) -> Vec<f32> {
+        self.particle_states()
+            .into_iter()
+            .flat_map(|(stage, s, w)| {
+                [
+                    stage as f32,
+                    s.psi as f32,
+                    s.y0 as f32,
+                    s.w as f32,
+                    s.w1 as f32,
+                    s.c as f32,
+                    s.delta as f32,
+                    w as f32,
+                ]
+            })
+            .collect()
+    }
+
+    fn particle_stride(&self) -> usize {
+        8
+    }
+}
+
+#[cfg(test)]
+mod tests;
