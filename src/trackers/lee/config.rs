@@ -125,7 +125,7 @@ impl Default for LeeConfig {
             sigma_q: 0.25,
             sigma_far: 0.25,
             spiral_length_m: 60.0,
-            process_sd: [0.004, 0.04, 0.02, 0.0005, 1.5, 0.0002],
+            process_sd: [0.004, 0.06, 0.01, 0.002, 1.5, 0.0002],
             ess_threshold: 0.5,
             max_heading_rad: 0.1,
             width_range_m: [2.5, 4.5],

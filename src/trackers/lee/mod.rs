@@ -15,6 +15,14 @@
 //!    full clothoid lane ([`clothoid`]); weighted mean; resampling when N_eff < N_thr;
 //! 4. the six estimated states pass the Kalman smoother ([`kalman`]) and become boundaries.
 //!
+//! Lane changes (our addition; the paper shows the lateral offset jumping by a lane width at
+//! each change, Fig. 10, without saying how): when the stage-1 estimate of y0 leaves
+//! [-w/2, w/2) the car has crossed a boundary, and every particle moves by one lane width so
+//! that the filter goes on with the lane the car is now in. Re-centring the whole cloud, rather
+//! than wrapping particles one by one, keeps the cloud in one piece: per-particle wrapping
+//! split it at the seam, and the half that kept the old lane (whose outer boundary was a solid
+//! line, which eq. 32 favours over two dashed ones) held on by tilting psi and widening w.
+//!
 //! The baselines of the paper share the cues and the particle count: `first-order` (PF1, stage
 //! 1 alone, straight lanes) and `full-model` (one filter over all six states weighed by both
 //! models). A frame is valid when, on each of the two boundaries, at least `valid_fraction`
@@ -35,7 +43,7 @@ use super::{now, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
-    map_index, FilterConfig, Injection, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
+    FilterConfig, Injection, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
 };
 use crate::image::{check_rgba, luma, Image};
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
@@ -116,7 +124,7 @@ pub struct LeeEstimate {
     pub valid: bool,
     /// Fraction of the near points of the left and right boundary supported by candidates.
     pub support: [f64; 2],
-    /// Lane change this frame (from the jump of y0): +1 to the left, -1 to the right, 0 none.
+    /// Lane change this frame: +1 to the left, -1 to the right, 0 none.
     pub change: i8,
     /// Marking candidates found.
     pub candidates: usize,
@@ -145,7 +153,6 @@ pub struct LeeTracker {
     smoother: Smoother,
     times: StageTimes,
     first: bool,
-    previous_y0: Option<f64>,
 }
 
 /// Image rows whose road point (at the left, centre or right column) lies in [from, to).
@@ -262,7 +269,6 @@ impl LeeTracker {
             smoother,
             times: StageTimes::default(),
             first: true,
-            previous_y0: None,
             camera,
             config: lee,
         })
@@ -391,6 +397,16 @@ impl LeeTracker {
         let t = now();
         let mut estimate = estimate_first_order(self.stage1.states(), self.stage1.weights());
         let ess1 = self.stage1.ess();
+        // Lane change: the estimated lane centre is more than half a lane from the car, so the
+        // car is in the neighbouring lane; the whole cloud moves one lane width.
+        let (y0, change) = motion::wrap(estimate.y0, estimate.w);
+        if change != 0 {
+            let shift = y0 - estimate.y0;
+            estimate.y0 = y0;
+            for s in self.stage1.states_mut() {
+                s.y0 += shift;
+            }
+        }
         if self.config.variant == Variant::FullModel {
             let (c, delta) = mean_curve(self.stage1.states(), self.stage1.weights());
             estimate.c = c;
@@ -475,12 +491,6 @@ impl LeeTracker {
         } else {
             raw
         };
-        let change = match self.previous_y0 {
-            Some(p) if raw.y0 - p > raw.w / 2.0 => 1,
-            Some(p) if p - raw.y0 > raw.w / 2.0 => -1,
-            _ => 0,
-        };
-        self.previous_y0 = Some(raw.y0);
         let support = self.measurement.near_support(&raw, None, &self.map);
         times.estimate += now() - t;
         self.times = times;
@@ -553,19 +563,15 @@ impl LeeTracker {
     }
 }
 
-/// Weighted mean of psi, w, w' and of y0 unwrapped around the best particle's (particles on
-/// both sides of the +-w/2 seam stand for the same lane), wrapped back into [-w/2, w/2).
+/// Weighted mean of psi, y0, w and w'.
 fn estimate_first_order(states: &[LaneState], weights: &[f64]) -> LaneState {
-    let best = states[map_index(weights)];
     let mut m = LaneState::default();
     for (s, &wt) in states.iter().zip(weights) {
-        let k = ((best.y0 - s.y0) / s.w).round();
         m.psi += wt * s.psi;
-        m.y0 += wt * (s.y0 + k * s.w);
+        m.y0 += wt * s.y0;
         m.w += wt * s.w;
         m.w1 += wt * s.w1;
     }
-    m.y0 = motion::wrap(m.y0, m.w).0;
     m
 }
 
@@ -594,7 +600,6 @@ impl Tracker for LeeTracker {
         }
         self.smoother.reset();
         self.first = true;
-        self.previous_y0 = None;
     }
 
     fn stage_times(&self) -> StageTimes {

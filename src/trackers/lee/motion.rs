@@ -3,10 +3,8 @@
 //! x_{t+1} = A x_t + w_t with A = I ("because of the unpredictable characteristics of the
 //! lane") and w_t ~ N(0, Q), Q diagonal. Stage 1 moves [psi, y0, w, w'] (eq. 18), stage 2
 //! [c, delta] (eq. 19), the single-stage full-model baseline all six. States are clamped to
-//! their limits. Our addition: y0 is kept in [-w/2, w/2) by moving it one lane width (the
-//! wrap Adachi et al. use, eq. 9 of theirs): when the car crosses a boundary the filter
-//! re-centres on the lane the car is now in, which is the jump of the lateral offset by one
-//! lane width that Lee et al. Fig. 10 shows at each lane change.
+//! their limits. Lane changes are handled by the tracker, which re-centres the whole cloud when
+//! the estimate leaves the lane ([`wrap`]).
 
 use super::clothoid::LaneState;
 use crate::filter::{InitialDistribution, MotionModel, Rng};
@@ -26,8 +24,8 @@ pub struct Limits {
     pub curvature: f64,
 }
 
-/// Keeps y0 in [-w/2, w/2): returns the wrapped y0 and the lane change (+1: the car moved
-/// into the lane on its left, -1: right, 0: none).
+/// y0 moved by whole lane widths into [-w/2, w/2), and the lane change that means (+1: the
+/// car moved into the lane on its left, -1: right, 0: none).
 pub fn wrap(y0: f64, w: f64) -> (f64, i8) {
     // A lane centre more than half a lane right of the car (y0 < -w/2): the car is in the
     // lane to the left now, and the other way round.
@@ -47,7 +45,7 @@ fn diffuse_first_order(s: &mut LaneState, sd: &[f64; 6], l: &Limits, rng: &mut R
     s.psi = (s.psi + rng.gaussian(0.0, sd[0])).clamp(-l.heading, l.heading);
     s.w = (s.w + rng.gaussian(0.0, sd[2])).clamp(l.width[0], l.width[1]);
     s.w1 = (s.w1 + rng.gaussian(0.0, sd[3])).clamp(-l.width_rate, l.width_rate);
-    s.y0 = wrap(s.y0 + rng.gaussian(0.0, sd[1]), s.w).0;
+    s.y0 += rng.gaussian(0.0, sd[1]);
 }
 
 fn diffuse_curve(s: &mut LaneState, sd: &[f64; 6], l: &Limits, rng: &mut Rng) {
@@ -163,7 +161,6 @@ mod tests {
         for _ in 0..100 {
             wide.propagate(&mut s, &mut rng);
             assert!(s.psi.abs() <= 0.2 && (2.5..=4.8).contains(&s.w));
-            assert!(s.y0 >= -s.w / 2.0 && s.y0 < s.w / 2.0);
             assert!((-60.0..=60.0).contains(&s.c) && s.delta.abs() <= 0.02);
         }
     }
