@@ -245,3 +245,49 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     let rgba = scene.render(5).unwrap().to_vec();
     assert!(tracker.step(&rgba, 320, 240).is_ok());
 }
+
+#[wasm_bindgen_test]
+fn lee_tracker_runs_in_the_browser_with_the_native_result() {
+    // Same run as the native unit test `trackers::lee::tests::same_result_as_the_browser_build`:
+    // highway-curve seed 1 at 320x240, 400 particles, seed 2, five frames.
+    let mut scene = JsScene::new(
+        "highway-curve",
+        obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
+    )
+    .unwrap();
+    let camera = scene.camera().unwrap();
+    let config = obj(r#"{"particles": 400, "seed": 2}"#);
+    js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
+    let mut tracker = JsTracker::new("lee-cpf", config).unwrap();
+    let mut last = JsValue::UNDEFINED;
+    for f in 0..5 {
+        let rgba = scene.render(f).unwrap().to_vec();
+        last = tracker.step(&rgba, 320, 240).unwrap();
+    }
+    let o = js_sys::Reflect::get(&last, &"lateral_offset_m".into())
+        .unwrap()
+        .as_f64()
+        .unwrap();
+    assert_eq!(o.to_bits(), 0x3fae_aa24_e2b7_6baf, "{o}");
+    // Both stages' clouds: 400 + 400 particles of 8 numbers, each stage's weights summing to 1.
+    assert_eq!(tracker.particle_stride(), 8);
+    let cloud = tracker.particles().to_vec();
+    assert_eq!(cloud.len(), 800 * 8);
+    for stage in [1.0, 2.0] {
+        let total: f32 = cloud
+            .chunks(8)
+            .filter(|p| p[0] == stage)
+            .map(|p| p[7])
+            .sum();
+        assert!((total - 1.0).abs() < 1e-3, "stage {stage}: {total}");
+    }
+    // Bad options and a wrong buffer throw, and the tracker carries on.
+    let bad = obj(r#"{"sigma_q": -1}"#);
+    js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
+    let m = message(JsTracker::new("lee-cpf", bad));
+    assert!(m.contains("sigma_q"), "{m}");
+    let m = message(tracker.step(&[0; 12], 320, 240));
+    assert!(m.contains("320x240"), "{m}");
+    let rgba = scene.render(5).unwrap().to_vec();
+    assert!(tracker.step(&rgba, 320, 240).is_ok());
+}

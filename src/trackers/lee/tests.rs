@@ -255,3 +255,19 @@ fn bad_input_is_an_error_and_the_tracker_goes_on() {
     assert!(!e.valid, "no markings, no valid frame");
     assert!(e.state.w.is_finite() && e.state.y0.is_finite());
 }
+
+/// Lateral offset after 5 frames of `highway-curve` (seed 1, 320x240, 400 particles, seed 2),
+/// as bits; `tests/web.rs` asserts the same value in headless Chromium.
+const CROSS_TARGET_OFFSET_BITS: u64 = 0x3fae_aa24_e2b7_6baf;
+
+#[test]
+fn same_result_as_the_browser_build() {
+    let out = run("highway-curve", 5, "");
+    let o = -out[4].1.state.y0;
+    assert_eq!(
+        o.to_bits(),
+        CROSS_TARGET_OFFSET_BITS,
+        "{:#x} ({o})",
+        o.to_bits()
+    );
+}
