@@ -66,7 +66,12 @@ pub struct LeeConfig {
     /// Spiral length s_o of the clothoid (eq. 12), metres.
     pub spiral_length_m: f64,
     /// Diagonal of the process noise Q per frame (eq. 20): psi (rad), y0 (m), w (m), w' (m/m),
-    /// c (m), delta (1/m).
+    /// c (m), delta (1/m). Calibrated, as the paper calibrates Q on ground-truth markings, on
+    /// the simulator's truth (`examples/lee_calibrate_q.rs`): the largest frame-to-frame change
+    /// at 30 fps of psi, y0 (a lane change) and w; for w', whose largest change is a step at
+    /// the start of a width change, 0.0005 (the cloud follows the step in about 20 frames; a
+    /// looser w' trades off against w, which the near range alone cannot separate); c moves by
+    /// up to the distance driven per frame, about 1 m.
     pub process_sd: [f64; 6],
     /// Resample a stage when its effective sample size falls below this fraction of N
     /// (N_thr of Algorithm 1).
@@ -125,7 +130,7 @@ impl Default for LeeConfig {
             sigma_q: 0.25,
             sigma_far: 0.25,
             spiral_length_m: 60.0,
-            process_sd: [0.004, 0.06, 0.01, 0.002, 1.5, 0.0002],
+            process_sd: [0.004, 0.06, 0.01, 0.0005, 1.5, 0.0002],
             ess_threshold: 0.5,
             max_heading_rad: 0.1,
             width_range_m: [2.5, 4.5],

@@ -86,7 +86,9 @@ impl MotionModel<LaneState> for Motion {
     }
 }
 
-/// Uniform over the limits (y0 over the whole lane).
+/// Uniform over the limits (y0 over the whole lane), except w', drawn within a tenth of its
+/// limit: the near range alone cannot tell a wider lane from a narrowing one (w + w' x is
+/// what it sees), so the start assumes a constant width and lets the filter find w' over time.
 #[derive(Debug, Clone, Copy)]
 pub struct Initial {
     /// The limits.
@@ -102,7 +104,7 @@ impl InitialDistribution<LaneState> for Initial {
             psi: u(-l.heading, l.heading),
             y0: u(-w / 2.0, w / 2.0),
             w,
-            w1: u(-l.width_rate, l.width_rate),
+            w1: u(-l.width_rate / 10.0, l.width_rate / 10.0),
             c: u(l.transition[0], l.transition[1]),
             delta: u(-l.curvature, l.curvature),
         }
