@@ -258,17 +258,33 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
     let camera = scene.camera().unwrap();
     let config = obj(r#"{"particles": 400, "seed": 2}"#);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut tracker = JsTracker::new("lee-cpf", config).unwrap();
-    let mut last = JsValue::UNDEFINED;
+    let mut tracker = JsTracker::new("lee-cpf", config.clone()).unwrap();
+    // A second tracker runs the same frames in per-step (teaching) mode.
+    let mut stepped = JsTracker::new("lee-cpf", config).unwrap();
+    let steps = stepped.step_names().len();
+    assert_eq!(steps, 7);
+    let (mut last, mut last_stepped) = (JsValue::UNDEFINED, JsValue::UNDEFINED);
     for f in 0..5 {
         let rgba = scene.render(f).unwrap().to_vec();
         last = tracker.step(&rgba, 320, 240).unwrap();
+        stepped.begin_frame(&rgba, 320, 240).unwrap();
+        for k in 0..steps {
+            assert_eq!(stepped.next_step(), Some(k));
+            last_stepped = stepped.advance().unwrap();
+            assert_eq!(last_stepped.is_null(), k + 1 < steps);
+        }
     }
-    let o = js_sys::Reflect::get(&last, &"lateral_offset_m".into())
-        .unwrap()
-        .as_f64()
-        .unwrap();
+    let offset = |v: &JsValue| {
+        js_sys::Reflect::get(v, &"lateral_offset_m".into())
+            .unwrap()
+            .as_f64()
+            .unwrap()
+    };
+    let o = offset(&last);
     assert_eq!(o.to_bits(), 0x3faf_ad71_da16_c37b, "{o}");
+    assert_eq!(offset(&last_stepped).to_bits(), o.to_bits());
+    let m = message(stepped.advance());
+    assert!(m.contains("begin_frame"), "{m}");
     // Both stages' clouds: 400 + 400 particles of 8 numbers, each stage's weights summing to 1.
     assert_eq!(tracker.particle_stride(), 8);
     let cloud = tracker.particles().to_vec();

@@ -39,6 +39,40 @@ pub trait Tracker {
     fn stage_times(&self) -> StageTimes {
         StageTimes::default()
     }
+    /// The steps one frame is cut into in per-step (teaching) mode, in order; empty when the
+    /// tracker has no per-step mode.
+    fn step_names(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// Starts a frame in per-step mode: checks it and computes its image cues; the filter's
+    /// steps then run one [`Tracker::advance`] at a time. `begin_frame` followed by all the
+    /// steps gives exactly what [`Tracker::step`] gives.
+    ///
+    /// # Errors
+    /// As [`Tracker::step`] for a bad frame; [`Error::Config`] for a tracker without a
+    /// per-step mode.
+    fn begin_frame(&mut self, _rgba: &[u8], _width: usize, _height: usize) -> Result<()> {
+        Err(Error::Config(format!(
+            "{} has no per-step mode yet; use step()",
+            self.id()
+        )))
+    }
+    /// Runs the next step of the frame started by [`Tracker::begin_frame`]; returns the
+    /// estimate after the last step, `None` before it.
+    ///
+    /// # Errors
+    /// [`Error::Config`] when no frame is in progress.
+    fn advance(&mut self) -> Result<Option<LaneEstimate>> {
+        Err(Error::Config(format!(
+            "{} has no per-step mode yet; use step()",
+            self.id()
+        )))
+    }
+    /// Index into [`Tracker::step_names`] of the next step, or `None` when no frame is in
+    /// progress.
+    fn next_step(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// Time spent per stage of one frame, milliseconds.

@@ -43,7 +43,8 @@ impl JsTracker {
     }
 
     /// The particle cloud after the last step as a `Float32Array` of `particleStride` numbers
-    /// per particle (adachi-mmpf: model r 1..4, q in metres, w in metres, weight).
+    /// per particle (adachi-mmpf: model r 1..4, q in metres, w in metres, weight; lee-cpf:
+    /// stage 1 or 2 (0 for a single-stage variant), psi, y0, w, w', c, delta, weight).
     pub fn particles(&self) -> js_sys::Float32Array {
         js_sys::Float32Array::from(&self.inner.particles()[..])
     }
@@ -57,5 +58,38 @@ impl JsTracker {
     /// Forgets the past.
     pub fn reset(&mut self) {
         self.inner.reset();
+    }
+
+    /// The steps of one frame in per-step (teaching) mode, in order; empty for a tracker
+    /// without one.
+    #[wasm_bindgen(js_name = stepNames)]
+    pub fn step_names(&self) -> Vec<String> {
+        self.inner
+            .step_names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+    }
+
+    /// Starts a frame in per-step mode (computes its image cues); then call `advance()` once
+    /// per step. Throws for a bad frame or a tracker without a per-step mode.
+    #[wasm_bindgen(js_name = beginFrame)]
+    pub fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<(), JsError> {
+        self.inner.begin_frame(rgba, width, height).map_err(to_js)
+    }
+
+    /// Runs the next step; returns the estimate after the last step and `null` before it (read
+    /// `particles()` in between to watch the cloud move). Throws when no frame is in progress.
+    pub fn advance(&mut self) -> Result<JsValue, JsError> {
+        match self.inner.advance().map_err(to_js)? {
+            Some(estimate) => super::to_js_value(&estimate),
+            None => Ok(JsValue::NULL),
+        }
+    }
+
+    /// Index into `stepNames()` of the next step, or `undefined` when no frame is in progress.
+    #[wasm_bindgen(getter, js_name = nextStep)]
+    pub fn next_step(&self) -> Option<usize> {
+        self.inner.next_step()
     }
 }

@@ -59,23 +59,69 @@ use motion::{Initial, Limits, Motion, Part};
 /// The tracker id.
 pub const ID: &str = "lee-cpf";
 
-/// Stage 1's model: eq. 33 on the near map (with the curve only in the full-model baseline).
+/// Stage 1's model: eq. 33 on the near map, first-order lane (the full-model baseline uses
+/// [`FarModel`] with the near map instead).
 struct NearModel<'a> {
     measurement: &'a Measurement,
     map: &'a LikelihoodMap,
-    spiral: f64,
-    with_curve: bool,
 }
 
 impl MeasurementModel<LaneState> for NearModel<'_> {
     type Cues = ();
     fn log_likelihood(&self, s: &LaneState, _: &()) -> f64 {
-        let curve = self
-            .with_curve
-            .then(|| Curve::new(s.c, s.delta, self.spiral));
-        self.measurement
-            .near_log_likelihood(s, curve.as_ref(), self.map)
+        self.measurement.near_log_likelihood(s, None, self.map)
     }
+}
+
+/// One step of a frame (see [`LeeTracker::step_names`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Step {
+    Predict1,
+    Weigh1,
+    Finish1,
+    Predict2,
+    Weigh2,
+    Finish2,
+    Output,
+}
+
+const CASCADE_STEPS: [Step; 7] = [
+    Step::Predict1,
+    Step::Weigh1,
+    Step::Finish1,
+    Step::Predict2,
+    Step::Weigh2,
+    Step::Finish2,
+    Step::Output,
+];
+const CASCADE_STEP_NAMES: [&str; 7] = [
+    "stage 1 [psi, y0, w, w']: predict",
+    "stage 1: weigh (DLD distance map, eqs. 27-33)",
+    "stage 1: estimate, resample if N_eff < N_thr",
+    "stage 2 [c, delta]: predict",
+    "stage 2: weigh (far Canny edges)",
+    "stage 2: estimate, resample if N_eff < N_thr",
+    "Kalman smoothing and output",
+];
+const SINGLE_STEPS: [Step; 4] = [Step::Predict1, Step::Weigh1, Step::Finish1, Step::Output];
+const SINGLE_STEP_NAMES: [&str; 4] = [
+    "predict",
+    "weigh",
+    "estimate, resample if N_eff < N_thr",
+    "Kalman smoothing and output",
+];
+
+/// A frame in progress in per-step mode.
+#[derive(Debug, Clone)]
+struct Frame {
+    /// Index of the next step.
+    next: usize,
+    /// Whether this is the first frame (after construction or a reset).
+    first: bool,
+    estimate: LaneState,
+    ess: [f64; 2],
+    change: i8,
+    times: StageTimes,
 }
 
 /// Stage 2's model: the far edges, for the lane made of `first` (the stage-1 estimate, or the
@@ -153,6 +199,7 @@ pub struct LeeTracker {
     smoother: Smoother,
     times: StageTimes,
     first: bool,
+    frame: Option<Frame>,
 }
 
 /// Image rows whose road point (at the left, centre or right column) lies in [from, to).
@@ -269,6 +316,7 @@ impl LeeTracker {
             smoother,
             times: StageTimes::default(),
             first: true,
+            frame: None,
             camera,
             config: lee,
         })
@@ -326,11 +374,48 @@ impl LeeTracker {
         }
     }
 
-    /// One frame, returning the estimate in the paper's terms.
+    /// One frame, returning the estimate in the paper's terms: [`LeeTracker::begin`], then
+    /// every step of [`LeeTracker::step_names`] in order.
     ///
     /// # Errors
     /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
     pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LeeEstimate> {
+        self.begin(rgba, width, height)?;
+        loop {
+            if let Some(e) = self.advance_step() {
+                return Ok(e);
+            }
+        }
+    }
+
+    /// The steps of one frame after [`LeeTracker::begin`], for teaching.
+    pub fn step_names(&self) -> &'static [&'static str] {
+        if self.stage2.is_some() {
+            &CASCADE_STEP_NAMES
+        } else {
+            &SINGLE_STEP_NAMES
+        }
+    }
+
+    fn steps(&self) -> &'static [Step] {
+        if self.stage2.is_some() {
+            &CASCADE_STEPS
+        } else {
+            &SINGLE_STEPS
+        }
+    }
+
+    /// Index of the next step of the frame in progress (`None` when no frame is in progress).
+    pub fn next_step(&self) -> Option<usize> {
+        self.frame.as_ref().map(|f| f.next)
+    }
+
+    /// Starts a frame: checks it and computes the image cues (the DLD candidates and their map
+    /// D, the far Canny edges). A frame still in progress is abandoned where it stands.
+    ///
+    /// # Errors
+    /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
+    pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         if (width, height) != (self.camera.width(), self.camera.height()) {
             return Err(Error::Dimensions(format!(
                 "the tracker was built for {}x{} frames but got {width}x{height}",
@@ -339,170 +424,199 @@ impl LeeTracker {
             )));
         }
         check_rgba(rgba, width, height)?;
-        let mut times = StageTimes::default();
         let t = now();
         self.convert(rgba);
         self.candidates
             .detect(&self.gray, &self.camera, &mut self.map)?;
         self.far.detect(&self.gray)?;
-        times.preprocess = now() - t;
-        let spiral = self.config.spiral_length_m;
-        let rounds = if self.first {
-            1 + self.config.start_iterations
-        } else {
-            1
-        };
-        let first_frame = self.first;
+        let first = self.first;
         self.first = false;
+        self.frame = Some(Frame {
+            next: 0,
+            first,
+            estimate: LaneState::default(),
+            ess: [0.0; 2],
+            change: 0,
+            times: StageTimes {
+                preprocess: now() - t,
+                ..StageTimes::default()
+            },
+        });
+        Ok(())
+    }
 
-        // Stage 1 (or the single filter).
-        let (part, near_curve, far_too) = match self.config.variant {
-            Variant::Cascade | Variant::FirstOrder => (Part::FirstOrder, false, false),
-            Variant::FullModel => (Part::Full, true, true),
+    /// Runs the next step of the frame in progress; returns the estimate after the last one
+    /// (and `None` before, or when no frame is in progress).
+    pub fn advance_step(&mut self) -> Option<LeeEstimate> {
+        let mut frame = self.frame.take()?;
+        let step = self.steps()[frame.next];
+        frame.next += 1;
+        let t = now();
+        let spiral = self.config.spiral_length_m;
+        let starts = if frame.first {
+            self.config.start_iterations
+        } else {
+            0
         };
-        let motion = self.motion(part);
-        for round in 0..rounds {
-            let t = now();
-            if !(first_frame && round == 0) {
-                self.stage1.predict(&motion);
+        match step {
+            Step::Predict1 => {
+                if !frame.first {
+                    let part = if self.config.variant == Variant::FullModel {
+                        Part::Full
+                    } else {
+                        Part::FirstOrder
+                    };
+                    self.stage1.predict(&self.motion(part));
+                }
+                frame.times.predict += now() - t;
             }
-            let t1 = now();
-            if far_too {
-                let model = FarModel {
-                    measurement: &self.measurement,
-                    camera: &self.camera,
-                    edges: &self.far,
-                    spiral,
-                    first: None,
-                    near: Some(&self.map),
+            Step::Weigh1 => {
+                let part = if self.config.variant == Variant::FullModel {
+                    Part::Full
+                } else {
+                    Part::FirstOrder
                 };
-                self.stage1.weigh(&model, &());
-            } else {
-                let model = NearModel {
-                    measurement: &self.measurement,
-                    map: &self.map,
-                    spiral,
-                    with_curve: near_curve,
-                };
-                self.stage1.weigh(&model, &());
+                let motion = self.motion(part);
+                // The first frame: more rounds on the same cues (see `start_iterations`).
+                for round in 0..=starts {
+                    if round > 0 {
+                        self.stage1.resample();
+                        self.stage1.predict(&motion);
+                    }
+                    if self.config.variant == Variant::FullModel {
+                        let model = FarModel {
+                            measurement: &self.measurement,
+                            camera: &self.camera,
+                            edges: &self.far,
+                            spiral,
+                            first: None,
+                            near: Some(&self.map),
+                        };
+                        self.stage1.weigh(&model, &());
+                    } else {
+                        let model = NearModel {
+                            measurement: &self.measurement,
+                            map: &self.map,
+                        };
+                        self.stage1.weigh(&model, &());
+                    }
+                }
+                frame.times.weigh += now() - t;
             }
-            let t2 = now();
-            times.predict += t1 - t;
-            times.weigh += t2 - t1;
-            if round + 1 < rounds {
+            Step::Finish1 => {
+                let mut estimate =
+                    estimate_first_order(self.stage1.states(), self.stage1.weights());
+                frame.ess[0] = self.stage1.ess();
+                // Lane change: the estimated lane centre is more than half a lane from the
+                // car, so the car is in the neighbouring lane; the whole cloud moves one lane
+                // width.
+                let (y0, change) = motion::wrap(estimate.y0, estimate.w);
+                if change != 0 {
+                    let shift = y0 - estimate.y0;
+                    estimate.y0 = y0;
+                    for s in self.stage1.states_mut() {
+                        s.y0 += shift;
+                    }
+                }
+                frame.change = change;
+                if self.config.variant == Variant::FullModel {
+                    let (c, delta) = mean_curve(self.stage1.states(), self.stage1.weights());
+                    estimate.c = c;
+                    estimate.delta = delta;
+                }
+                frame.estimate = estimate;
+                let t1 = now();
+                frame.times.estimate += t1 - t;
                 self.stage1.resample();
-                times.resample += now() - t2;
+                frame.times.resample += now() - t1;
             }
-        }
-        let t = now();
-        let mut estimate = estimate_first_order(self.stage1.states(), self.stage1.weights());
-        let ess1 = self.stage1.ess();
-        // Lane change: the estimated lane centre is more than half a lane from the car, so the
-        // car is in the neighbouring lane; the whole cloud moves one lane width.
-        let (y0, change) = motion::wrap(estimate.y0, estimate.w);
-        if change != 0 {
-            let shift = y0 - estimate.y0;
-            estimate.y0 = y0;
-            for s in self.stage1.states_mut() {
-                s.y0 += shift;
-            }
-        }
-        if self.config.variant == Variant::FullModel {
-            let (c, delta) = mean_curve(self.stage1.states(), self.stage1.weights());
-            estimate.c = c;
-            estimate.delta = delta;
-        }
-        times.estimate += now() - t;
-        let t = now();
-        self.stage1.resample();
-        times.resample += now() - t;
-
-        // Stage 2 of the cascade, given stage 1's estimate.
-        let mut ess2 = 0.0;
-        if let Some(stage2) = self.stage2.as_mut() {
-            let motion = Motion {
-                part: Part::Curve,
-                sd: self.config.process_sd,
-                limits: self.limits,
-            };
-            for round in 0..rounds {
-                let t = now();
-                if !(first_frame && round == 0) {
+            Step::Predict2 => {
+                let motion = self.motion(Part::Curve);
+                if let (Some(stage2), false) = (self.stage2.as_mut(), frame.first) {
                     stage2.predict(&motion);
                 }
-                let t1 = now();
-                let model = FarModel {
-                    measurement: &self.measurement,
-                    camera: &self.camera,
-                    edges: &self.far,
-                    spiral,
-                    first: Some(estimate),
-                    near: None,
-                };
-                stage2.weigh(&model, &());
-                let t2 = now();
-                times.predict += t1 - t;
-                times.weigh += t2 - t1;
-                if round + 1 < rounds {
+                frame.times.predict += now() - t;
+            }
+            Step::Weigh2 => {
+                let motion = self.motion(Part::Curve);
+                if let Some(stage2) = self.stage2.as_mut() {
+                    let model = FarModel {
+                        measurement: &self.measurement,
+                        camera: &self.camera,
+                        edges: &self.far,
+                        spiral,
+                        first: Some(frame.estimate),
+                        near: None,
+                    };
+                    for round in 0..=starts {
+                        if round > 0 {
+                            stage2.resample();
+                            stage2.predict(&motion);
+                        }
+                        stage2.weigh(&model, &());
+                    }
+                }
+                frame.times.weigh += now() - t;
+            }
+            Step::Finish2 => {
+                if let Some(stage2) = self.stage2.as_mut() {
+                    let (c, delta) = mean_curve(stage2.states(), stage2.weights());
+                    frame.estimate.c = c;
+                    frame.estimate.delta = delta;
+                    frame.ess[1] = stage2.ess();
+                    // Stage-2 particles stand for full lanes with stage 1's first-order states,
+                    // stage-1 particles for full lanes with the curve estimate.
+                    let e = frame.estimate;
+                    for s in stage2.states_mut() {
+                        *s = LaneState {
+                            c: s.c,
+                            delta: s.delta,
+                            ..e
+                        };
+                    }
+                    for s in self.stage1.states_mut() {
+                        s.c = e.c;
+                        s.delta = e.delta;
+                    }
+                    let t1 = now();
+                    frame.times.estimate += t1 - t;
                     stage2.resample();
-                    times.resample += now() - t2;
+                    frame.times.resample += now() - t1;
                 }
             }
-            let t = now();
-            let (c, delta) = mean_curve(stage2.states(), stage2.weights());
-            estimate.c = c;
-            estimate.delta = delta;
-            ess2 = stage2.ess();
-            // Stage-2 particles stand for full lanes with stage 1's first-order states.
-            for s in stage2.states_mut() {
-                *s = LaneState {
-                    c: s.c,
-                    delta: s.delta,
-                    ..estimate
+            Step::Output => {
+                let raw = frame.estimate;
+                let state = if self.config.kalman {
+                    let x = self
+                        .smoother
+                        .update([raw.psi, raw.y0, raw.w, raw.w1, raw.c, raw.delta]);
+                    LaneState {
+                        psi: x[0],
+                        y0: x[1],
+                        w: x[2],
+                        w1: x[3],
+                        c: x[4],
+                        delta: x[5],
+                    }
+                } else {
+                    raw
                 };
+                let support = self.measurement.near_support(&raw, None, &self.map);
+                frame.times.estimate += now() - t;
+                self.times = frame.times;
+                return Some(LeeEstimate {
+                    state,
+                    raw,
+                    valid: support[0].min(support[1]) >= self.config.valid_fraction,
+                    support,
+                    change: frame.change,
+                    candidates: self.candidates.count,
+                    ess: frame.ess,
+                });
             }
-            times.estimate += now() - t;
-            let t = now();
-            stage2.resample();
-            times.resample += now() - t;
         }
-        // Stage-1 particles stand for full lanes with the curve estimate.
-        if self.config.variant == Variant::Cascade {
-            for s in self.stage1.states_mut() {
-                s.c = estimate.c;
-                s.delta = estimate.delta;
-            }
-        }
-
-        let t = now();
-        let raw = estimate;
-        let state = if self.config.kalman {
-            let x = self
-                .smoother
-                .update([raw.psi, raw.y0, raw.w, raw.w1, raw.c, raw.delta]);
-            LaneState {
-                psi: x[0],
-                y0: x[1],
-                w: x[2],
-                w1: x[3],
-                c: x[4],
-                delta: x[5],
-            }
-        } else {
-            raw
-        };
-        let support = self.measurement.near_support(&raw, None, &self.map);
-        times.estimate += now() - t;
-        self.times = times;
-        Ok(LeeEstimate {
-            state,
-            raw,
-            valid: support[0].min(support[1]) >= self.config.valid_fraction,
-            support,
-            change,
-            candidates: self.candidates.count,
-            ess: [ess1, ess2],
-        })
+        self.frame = Some(frame);
+        None
     }
 
     /// The estimate as the shared output type.
@@ -600,6 +714,7 @@ impl Tracker for LeeTracker {
         }
         self.smoother.reset();
         self.first = true;
+        self.frame = None;
     }
 
     fn stage_times(&self) -> StageTimes {
@@ -628,6 +743,27 @@ impl Tracker for LeeTracker {
 
     fn particle_stride(&self) -> usize {
         8
+    }
+
+    fn step_names(&self) -> &'static [&'static str] {
+        LeeTracker::step_names(self)
+    }
+
+    fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        self.begin(rgba, width, height)
+    }
+
+    fn advance(&mut self) -> Result<Option<LaneEstimate>> {
+        if self.frame.is_none() {
+            return Err(Error::Config(
+                "no frame in progress: call beginFrame (begin_frame in Rust) first".into(),
+            ));
+        }
+        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+    }
+
+    fn next_step(&self) -> Option<usize> {
+        LeeTracker::next_step(self)
     }
 }
 

@@ -271,3 +271,58 @@ fn same_result_as_the_browser_build() {
         o.to_bits()
     );
 }
+
+#[test]
+fn per_step_mode_moves_the_cloud_step_by_step_and_ends_with_the_estimate() {
+    let mut scene = Scene::new(
+        scenario("highway-curve").unwrap(),
+        default_camera(320, 240).unwrap(),
+        1,
+    )
+    .unwrap();
+    let mut rgba = vec![0; 320 * 240 * 4];
+    let mut stepped: Box<dyn Tracker> = Box::new(LeeTracker::new(&config("")).unwrap());
+    let mut whole = LeeTracker::new(&config("")).unwrap();
+    let names = stepped.step_names();
+    assert_eq!(names.len(), 7);
+    assert!(stepped.advance().is_err(), "no frame in progress");
+    for f in 0..3 {
+        scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+        let expected = whole.step(&rgba, 320, 240).unwrap();
+        stepped.begin_frame(&rgba, 320, 240).unwrap();
+        let mut result = None;
+        for k in 0..names.len() {
+            assert_eq!(stepped.next_step(), Some(k));
+            let before = stepped.particles();
+            result = stepped.advance().unwrap();
+            let after = stepped.particles();
+            // After the first frame, a predict step moves the states and a weigh step changes
+            // the weights (stride 8: [stage, psi, y0, w, w', c, delta, weight]).
+            if f > 0 && names[k].contains("predict") {
+                let stage = if k == 0 { 1.0 } else { 2.0 };
+                let moved = before
+                    .chunks(8)
+                    .zip(after.chunks(8))
+                    .filter(|(a, b)| a[0] == stage && a[1..7] != b[1..7])
+                    .count();
+                assert!(moved > 300, "step {k}: {moved} particles moved");
+            }
+            if names[k].contains("weigh") {
+                assert_ne!(before, after, "step {k} changed no weight");
+            }
+            assert_eq!(result.is_some(), k + 1 == names.len());
+        }
+        assert_eq!(stepped.next_step(), None);
+        assert_eq!(
+            result.unwrap(),
+            expected,
+            "frame {f}: per-step run equals step()"
+        );
+    }
+    // An abandoned frame: begin again and the tracker goes on.
+    stepped.begin_frame(&rgba, 320, 240).unwrap();
+    stepped.advance().unwrap();
+    assert!(stepped.begin_frame(&[0; 8], 2, 1).is_err());
+    stepped.begin_frame(&rgba, 320, 240).unwrap();
+    assert_eq!(stepped.next_step(), Some(0));
+}
