@@ -219,4 +219,33 @@ mod tests {
             .to_string()
             .starts_with("unknown tracker `kalman-magic`; available: "));
     }
+
+    #[test]
+    fn every_tracker_steps_one_step_at_a_time_to_the_same_result() {
+        use crate::synth::{default_camera, scenario, Eye, Scene};
+        let camera = default_camera(320, 240).unwrap();
+        let c = TrackerConfig::from_json_str(&format!(
+            r#"{{"camera": {}, "particles": 200}}"#,
+            serde_json::to_string(&camera.to_file()).unwrap()
+        ))
+        .unwrap();
+        let mut scene = Scene::new(scenario("highway-curve").unwrap(), camera, 1).unwrap();
+        let mut rgba = vec![0; 320 * 240 * 4];
+        for id in TRACKER_IDS {
+            let mut whole = create(id, &c).unwrap();
+            let mut stepped = create(id, &c).unwrap();
+            let n = stepped.step_names().len();
+            assert!(n >= 3, "{id}: {n} steps");
+            assert!(stepped.advance().is_err(), "{id}: no frame in progress");
+            for f in 0..3 {
+                scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+                let expected = whole.step(&rgba, 320, 240).unwrap();
+                stepped.begin_frame(&rgba, 320, 240).unwrap();
+                let results: Vec<_> = (0..n).map(|_| stepped.advance().unwrap()).collect();
+                assert!(results[..n - 1].iter().all(Option::is_none), "{id}");
+                assert_eq!(results[n - 1].as_ref(), Some(&expected), "{id} frame {f}");
+                assert_eq!(stepped.particles(), whole.particles(), "{id} frame {f}");
+            }
+        }
+    }
 }

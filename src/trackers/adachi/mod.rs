@@ -63,6 +63,24 @@ pub struct AdachiTracker {
     /// The estimate's q followed without wrapping, and the lane index it implies.
     q_track: Option<f64>,
     lane_index: i64,
+    frame: Option<Frame>,
+}
+
+/// The steps of one frame after [`AdachiTracker::begin`] (per-step mode).
+pub const STEP_NAMES: [&str; 4] = [
+    "resample",
+    "predict: switch model r (Table 1), random walk of q and w with the wrap (eqs. 7-9)",
+    "weigh: vote-histogram likelihood (eqs. 4-6)",
+    "estimate: most probable model, q and w",
+];
+
+/// A frame in progress in per-step mode.
+#[derive(Debug, Clone)]
+struct Frame {
+    next: usize,
+    first: bool,
+    votes: usize,
+    times: StageTimes,
 }
 
 /// Hysteresis of the lane-change rule, metres.
@@ -130,6 +148,7 @@ impl AdachiTracker {
             first: true,
             q_track: None,
             lane_index: 0,
+            frame: None,
         })
     }
 
@@ -162,11 +181,26 @@ impl AdachiTracker {
             .map(|(p, &wt)| (p.model + 1, p.state.q, p.state.w, wt))
     }
 
-    /// One frame, returning the estimate in the paper's terms.
+    /// One frame, returning the estimate in the paper's terms: [`AdachiTracker::begin`], then
+    /// every step of [`STEP_NAMES`] in order.
     ///
     /// # Errors
     /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
     pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<AdachiEstimate> {
+        self.begin(rgba, width, height)?;
+        loop {
+            if let Some(e) = self.advance_step() {
+                return Ok(e);
+            }
+        }
+    }
+
+    /// Starts a frame: checks it and votes its edge points (H_j, Sec. 3.2). A frame still in
+    /// progress is abandoned where it stands.
+    ///
+    /// # Errors
+    /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
+    pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         if (width, height) != (self.camera.width(), self.camera.height()) {
             return Err(Error::Dimensions(format!(
                 "the tracker was built for {}x{} frames but got {width}x{height}",
@@ -176,13 +210,35 @@ impl AdachiTracker {
         }
         check_rgba(rgba, width, height)?;
         let t0 = now();
-        let n = self.votes.vote(rgba);
+        let votes = self.votes.vote(rgba);
         self.likelihood.prepare(&self.votes);
-        let t1 = now();
-        if !self.first {
-            self.filter.resample();
-        }
-        let t2 = now();
+        let first = self.first;
+        self.first = false;
+        self.frame = Some(Frame {
+            next: 0,
+            first,
+            votes,
+            times: StageTimes {
+                preprocess: now() - t0,
+                ..StageTimes::default()
+            },
+        });
+        Ok(())
+    }
+
+    /// Index into [`STEP_NAMES`] of the next step of the frame in progress.
+    pub fn next_step(&self) -> Option<usize> {
+        self.frame.as_ref().map(|f| f.next)
+    }
+
+    /// Runs the next step of the frame in progress; returns the estimate after the last one
+    /// (and `None` before, or when no frame is in progress). On the first frame there is
+    /// nothing to resample or predict from, and the weigh step runs the start-up rounds.
+    pub fn advance_step(&mut self) -> Option<AdachiEstimate> {
+        let mut frame = self.frame.take()?;
+        let step = frame.next;
+        frame.next += 1;
+        let t = now();
         let motion = SwitchingMotion {
             chain: &self.chain,
             motion: Motion {
@@ -191,31 +247,40 @@ impl AdachiTracker {
                 width_range: self.config.width_range_m,
             },
         };
-        if !self.first {
-            self.filter.predict(&motion);
-        }
-        let t3 = now();
-        self.filter.weigh(&Measure(&self.likelihood), &self.votes);
-        if self.first {
-            // Start-up: more rounds on the same votes (see `start_iterations`).
-            for _ in 0..self.config.start_iterations {
-                self.filter.resample();
-                self.filter.predict(&motion);
-                self.filter.weigh(&Measure(&self.likelihood), &self.votes);
+        match step {
+            0 => {
+                if !frame.first {
+                    self.filter.resample();
+                }
+                frame.times.resample += now() - t;
             }
-            self.first = false;
+            1 => {
+                if !frame.first {
+                    self.filter.predict(&motion);
+                }
+                frame.times.predict += now() - t;
+            }
+            2 => {
+                self.filter.weigh(&Measure(&self.likelihood), &self.votes);
+                if frame.first {
+                    // Start-up: more rounds on the same votes (see `start_iterations`).
+                    for _ in 0..self.config.start_iterations {
+                        self.filter.resample();
+                        self.filter.predict(&motion);
+                        self.filter.weigh(&Measure(&self.likelihood), &self.votes);
+                    }
+                }
+                frame.times.weigh += now() - t;
+            }
+            _ => {
+                let estimate = self.estimate(frame.votes);
+                frame.times.estimate += now() - t;
+                self.times = frame.times;
+                return Some(estimate);
+            }
         }
-        let t4 = now();
-        let estimate = self.estimate(n);
-        let t5 = now();
-        self.times = StageTimes {
-            preprocess: t1 - t0,
-            resample: t2 - t1,
-            predict: t3 - t2,
-            weigh: t4 - t3,
-            estimate: t5 - t4,
-        };
-        Ok(estimate)
+        self.frame = Some(frame);
+        None
     }
 
     fn estimate(&mut self, votes: usize) -> AdachiEstimate {
@@ -341,6 +406,7 @@ impl Tracker for AdachiTracker {
         self.first = true;
         self.q_track = None;
         self.lane_index = 0;
+        self.frame = None;
     }
 
     fn stage_times(&self) -> StageTimes {
@@ -356,6 +422,27 @@ impl Tracker for AdachiTracker {
 
     fn particle_stride(&self) -> usize {
         4
+    }
+
+    fn step_names(&self) -> &'static [&'static str] {
+        &STEP_NAMES
+    }
+
+    fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        self.begin(rgba, width, height)
+    }
+
+    fn advance(&mut self) -> Result<Option<LaneEstimate>> {
+        if self.frame.is_none() {
+            return Err(Error::Config(
+                "no frame in progress: call beginFrame (begin_frame in Rust) first".into(),
+            ));
+        }
+        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+    }
+
+    fn next_step(&self) -> Option<usize> {
+        AdachiTracker::next_step(self)
     }
 }
 
