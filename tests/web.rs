@@ -239,6 +239,14 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     assert!(cloud
         .chunks(4)
         .all(|p| (1.0..=4.0).contains(&p[0]) && p[1].abs() <= p[2] / 2.0 + 1e-4));
+    // The vote histogram for the demo's view: 320 bins of 5 cm over +-8 m.
+    let layers: js_sys::Array = tracker.layers().unwrap().dyn_into().unwrap();
+    let first = layers.get(0);
+    let field = |k: &str| js_sys::Reflect::get(&first, &k.into()).unwrap();
+    assert_eq!(field("kind").as_string().unwrap(), "histogram");
+    let values: js_sys::Array = field("values").dyn_into().unwrap();
+    assert_eq!(values.length(), 320);
+    assert_eq!(field("start").as_f64(), Some(-8.0));
     // A wrong buffer throws, and the tracker carries on.
     let m = message(tracker.step(&[0; 12], 320, 240));
     assert!(m.contains("320x240"), "{m}");

@@ -39,6 +39,10 @@ pub trait Tracker {
     fn stage_times(&self) -> StageTimes {
         StageTimes::default()
     }
+    /// Pictures of the tracker's cues after the last frame (empty by default).
+    fn layers(&self) -> Vec<Layer> {
+        Vec::new()
+    }
     /// The steps one frame is cut into in per-step (teaching) mode, in order; empty when the
     /// tracker has no per-step mode.
     fn step_names(&self) -> &'static [&'static str] {
@@ -73,6 +77,45 @@ pub trait Tracker {
     fn next_step(&self) -> Option<usize> {
         None
     }
+}
+
+/// A picture of one of a tracker's cues after the last frame, in road coordinates, for the
+/// views that explain a tracker (Adachi's vote histogram, Lee's likelihood map, ...).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Layer {
+    /// Values over bins of one road axis: bin k covers [start + k step, start + (k + 1) step).
+    Histogram {
+        /// What the values are.
+        name: String,
+        /// The axis, e.g. `rho (m, positive right)`.
+        axis: String,
+        /// Start of bin 0, metres.
+        start: f64,
+        /// Bin size, metres.
+        step: f64,
+        /// One value per bin.
+        values: Vec<f32>,
+    },
+    /// Values on a road-plane grid of square cells: row r spans x in [x0 + r cell, x0 +
+    /// (r + 1) cell), column c spans y in (y0 - (c + 1) cell, y0 - c cell] (columns run from
+    /// left to right as seen from the car); `values[r * width + c]`.
+    Grid {
+        /// What the values are.
+        name: String,
+        /// Columns.
+        width: usize,
+        /// Rows.
+        height: usize,
+        /// Near edge of row 0, metres ahead.
+        x0: f64,
+        /// Left edge of column 0, metres (y left).
+        y0: f64,
+        /// Cell size, metres.
+        cell: f64,
+        /// One value per cell.
+        values: Vec<f32>,
+    },
 }
 
 /// Time spent per stage of one frame, milliseconds.
@@ -245,6 +288,99 @@ mod tests {
                 assert!(results[..n - 1].iter().all(Option::is_none), "{id}");
                 assert_eq!(results[n - 1].as_ref(), Some(&expected), "{id} frame {f}");
                 assert_eq!(stepped.particles(), whole.particles(), "{id} frame {f}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_tracker_shows_its_main_cue_on_the_true_boundaries() {
+        use crate::lane::Role;
+        use crate::synth::{default_camera, scenario, Eye, Scene};
+        let camera = default_camera(320, 240).unwrap();
+        let c = TrackerConfig::from_json_str(&format!(
+            r#"{{"camera": {}, "particles": 200}}"#,
+            serde_json::to_string(&camera.to_file()).unwrap()
+        ))
+        .unwrap();
+        let mut scene = Scene::new(scenario("highway-straight").unwrap(), camera, 1).unwrap();
+        let mut rgba = vec![0; 320 * 240 * 4];
+        scene.render(0, Eye::Left, &mut rgba, None).unwrap();
+        let truth = scene.truth(0);
+        // Lateral positions y of the true boundaries (`ego`: only the ego lane's) x metres
+        // ahead.
+        let true_y = |x: f64, ego: bool| -> Vec<f64> {
+            truth
+                .boundaries
+                .iter()
+                .filter(|b| !ego || matches!(b.role, Role::EgoLeft | Role::EgoRight))
+                .filter_map(|b| {
+                    b.road_points.windows(2).find_map(|p| {
+                        let ([x0, y0], [x1, y1]) = (p[0], p[1]);
+                        (x0 <= x && x <= x1 && x1 > x0)
+                            .then(|| y0 + (y1 - y0) * (x - x0) / (x1 - x0))
+                    })
+                })
+                .collect()
+        };
+        let near = |y: f64, x: f64| true_y(x, false).iter().any(|t| (t - y).abs() < 0.3);
+        for id in TRACKER_IDS {
+            let mut t = create(id, &c).unwrap();
+            t.step(&rgba, 320, 240).unwrap();
+            let layers = t.layers();
+            assert!(!layers.is_empty(), "{id}");
+            match &layers[0] {
+                Layer::Histogram {
+                    start,
+                    step,
+                    values,
+                    ..
+                } => {
+                    // The strongest bin (rho = -y) lies on a boundary.
+                    let k = (0..values.len())
+                        .max_by(|&a, &b| values[a].total_cmp(&values[b]))
+                        .unwrap();
+                    let rho = start + (k as f64 + 0.5) * step;
+                    assert!(near(-rho, 14.0), "{id}: peak at rho {rho}");
+                }
+                Layer::Grid {
+                    width,
+                    height,
+                    x0,
+                    y0,
+                    cell,
+                    values,
+                    ..
+                } => {
+                    assert_eq!(values.len(), width * height, "{id}");
+                    // Every true boundary (dashed ones somewhere along the range) reaches the
+                    // top of the map, and every cell at the top lies on a boundary.
+                    let (mut found, mut boundaries) = (vec![false; 4], 0);
+                    for r in 0..*height {
+                        let x = x0 + (r as f64 + 0.5) * cell;
+                        let ys = true_y(x, false);
+                        boundaries = boundaries.max(ys.len());
+                        let row = &values[r * width..(r + 1) * width];
+                        for (k, y) in ys.iter().enumerate().take(4) {
+                            let c = ((y0 - y) / cell) as usize;
+                            if c < *width
+                                && row[c.saturating_sub(2)..(c + 3).min(*width)]
+                                    .iter()
+                                    .any(|&v| v > 0.99)
+                            {
+                                found[k] = true;
+                            }
+                        }
+                        for (c, _) in row.iter().enumerate().filter(|(_, &v)| v > 0.99) {
+                            let y = y0 - (c as f64 + 0.5) * cell;
+                            assert!(near(y, x), "{id}: maximum at x {x} y {y}");
+                        }
+                    }
+                    assert!(boundaries >= 2, "{id}");
+                    assert!(
+                        found[..boundaries.min(4)].iter().all(|&f| f),
+                        "{id}: {found:?}"
+                    );
+                }
             }
         }
     }

@@ -49,6 +49,14 @@ impl JsTracker {
         js_sys::Float32Array::from(&self.inner.particles()[..])
     }
 
+    /// Pictures of the tracker's cues after the last frame: `[{ kind: 'histogram', name, axis,
+    /// start, step, values } | { kind: 'grid', name, width, height, x0, y0, cell, values }]`
+    /// (adachi-mmpf: the vote and noise histograms; lee-cpf: the likelihood map D and the DLD
+    /// candidates; grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres left).
+    pub fn layers(&self) -> Result<JsValue, JsError> {
+        super::to_js_value(&self.inner.layers())
+    }
+
     /// Numbers per particle in `particles()`.
     #[wasm_bindgen(getter, js_name = particleStride)]
     pub fn particle_stride(&self) -> usize {

@@ -21,7 +21,7 @@ pub mod likelihood;
 pub mod motion;
 pub mod votes;
 
-use super::{now, StageTimes, Tracker, TrackerConfig};
+use super::{now, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
@@ -426,6 +426,24 @@ impl Tracker for AdachiTracker {
 
     fn step_names(&self) -> &'static [&'static str] {
         &STEP_NAMES
+    }
+
+    /// The vote histogram H_j and the noise histogram N_j (Sec. 3.2, eq. 4).
+    fn layers(&self) -> Vec<Layer> {
+        let histogram = |name: &str, values: &[f64]| Layer::Histogram {
+            name: name.to_string(),
+            axis: "rho (m, positive right)".to_string(),
+            start: self.votes.rho_min(),
+            step: self.votes.bin_m(),
+            values: values.iter().map(|&v| v as f32).collect(),
+        };
+        vec![
+            histogram("edge votes H_j", &self.votes.histogram),
+            histogram(
+                "noise N_j (all region pixels, normalised)",
+                &self.votes.noise,
+            ),
+        ]
     }
 
     fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {

@@ -55,6 +55,11 @@ impl LikelihoodMap {
         })
     }
 
+    /// Near edge of row 0 (x, metres), left edge of column 0 (y, metres) and the cell size.
+    pub fn geometry(&self) -> (f64, f64, f64) {
+        (self.x0, self.y_max, self.cell)
+    }
+
     /// Clears the marks.
     pub fn clear(&mut self) {
         self.marks.fill(0);

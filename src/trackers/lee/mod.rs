@@ -39,7 +39,7 @@ pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
 
-use super::{now, StageTimes, Tracker, TrackerConfig};
+use super::{now, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
@@ -747,6 +747,33 @@ impl Tracker for LeeTracker {
 
     fn step_names(&self) -> &'static [&'static str] {
         LeeTracker::step_names(self)
+    }
+
+    /// The near-range likelihood map D (eq. 31) and the candidate marks it comes from.
+    fn layers(&self) -> Vec<Layer> {
+        let (x0, y0, cell) = self.map.geometry();
+        let (width, height) = (self.map.marks.width(), self.map.marks.height());
+        let grid = |name: &str, values: Vec<f32>| Layer::Grid {
+            name: name.to_string(),
+            width,
+            height,
+            x0,
+            y0,
+            cell,
+            values,
+        };
+        vec![
+            grid("likelihood map D (eq. 31)", self.map.likelihood.clone()),
+            grid(
+                "DLD marking candidates (eqs. 21-26)",
+                self.map
+                    .marks
+                    .data()
+                    .iter()
+                    .map(|&m| f32::from(m))
+                    .collect(),
+            ),
+        ]
     }
 
     fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
