@@ -5,23 +5,10 @@
 //! centre 30 m ahead, the valid-frame rate and the mean ms/frame.
 //! `cargo run --release --example lee_cpf_vs_pf -- [SEEDS] [FRAMES] [PARTICLES] [SCENARIO...]`
 
-use lanepf::lane::{LaneEstimate, Role};
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
 use lanepf::trackers::lee::clothoid::Curve;
 use lanepf::trackers::lee::LeeTracker;
 use lanepf::trackers::TrackerConfig;
-
-/// Lateral position of the truth's ego-lane centre at distance x (None when not visible).
-fn truth_centre(t: &LaneEstimate, x: f64) -> Option<f64> {
-    let at = |role: Role| {
-        let b = t.boundaries.iter().find(|b| b.role == role)?;
-        b.road_points.windows(2).find_map(|p| {
-            let ([x0, y0], [x1, y1]) = (p[0], p[1]);
-            (x0 <= x && x <= x1 && x1 > x0).then(|| y0 + (y1 - y0) * (x - x0) / (x1 - x0))
-        })
-    };
-    Some((at(Role::EgoLeft)? + at(Role::EgoRight)?) / 2.0)
-}
 
 #[derive(Default)]
 struct Sums {
@@ -97,7 +84,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     s.valid += f64::from(u8::from(e.valid));
                     s.ms += ms;
                     let curve = Curve::new(st.c, st.delta, tracker.config().spiral_length_m);
-                    if let Some(tc) = truth_centre(&truth, 30.0) {
+                    if let Some(tc) = truth.ego_centre_at(30.0) {
                         let d = st.centre(30.0, Some(&curve)) - tc;
                         let d = d - (d / st.w).round() * st.w;
                         s.far += d * d;

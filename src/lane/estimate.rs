@@ -77,6 +77,15 @@ pub struct LaneEstimate {
 }
 
 impl Boundary {
+    /// Lateral position y of the boundary `x` metres ahead, interpolated linearly between its
+    /// road points (`None` outside them).
+    pub fn y_at(&self, x: f64) -> Option<f64> {
+        self.road_points.windows(2).find_map(|p| {
+            let ([x0, y0], [x1, y1]) = (p[0], p[1]);
+            (x0 <= x && x <= x1 && x1 > x0).then(|| y0 + (y1 - y0) * (x - x0) / (x1 - x0))
+        })
+    }
+
     /// Checks the polyline rules of the contract: points ordered bottom-up (y non-increasing)
     /// and no gap larger than [`MAX_POINT_SPACING_PX`] in y. Returns a description of the first
     /// violation.
@@ -99,6 +108,15 @@ impl Boundary {
             }
         }
         Ok(())
+    }
+}
+
+impl LaneEstimate {
+    /// Lateral position of the ego-lane centre `x` metres ahead (the mean of the ego
+    /// boundaries), if both reach that far.
+    pub fn ego_centre_at(&self, x: f64) -> Option<f64> {
+        let at = |role: Role| self.boundaries.iter().find(|b| b.role == role)?.y_at(x);
+        Some((at(Role::EgoLeft)? + at(Role::EgoRight)?) / 2.0)
     }
 }
 

@@ -133,6 +133,28 @@ pub struct StageTimes {
     pub estimate: f64,
 }
 
+/// Reads a tracker's own options (all optional, unknown ones refused) from the free-form part
+/// of the [`TrackerConfig`].
+///
+/// # Errors
+/// [`Error::Config`] naming the tracker for an unknown option or a wrong type.
+pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
+    id: &str,
+    options: &BTreeMap<String, serde_json::Value>,
+) -> Result<T> {
+    let map: serde_json::Map<String, serde_json::Value> = options
+        .iter()
+        .map(|(k, v)| (k.clone(), v.clone()))
+        .collect();
+    serde_json::from_value(serde_json::Value::Object(map))
+        .map_err(|e| Error::Config(format!("{id} options: {e}")))
+}
+
+/// The error of [`Tracker::advance`] without a frame in progress.
+pub(crate) fn no_frame_in_progress() -> Error {
+    Error::Config("no frame in progress: call beginFrame (begin_frame in Rust) first".into())
+}
+
 /// The ids of the trackers implemented so far.
 pub const TRACKER_IDS: &[&str] = &[adachi::ID, lee::ID];
 
@@ -313,13 +335,7 @@ mod tests {
                 .boundaries
                 .iter()
                 .filter(|b| !ego || matches!(b.role, Role::EgoLeft | Role::EgoRight))
-                .filter_map(|b| {
-                    b.road_points.windows(2).find_map(|p| {
-                        let ([x0, y0], [x1, y1]) = (p[0], p[1]);
-                        (x0 <= x && x <= x1 && x1 > x0)
-                            .then(|| y0 + (y1 - y0) * (x - x0) / (x1 - x0))
-                    })
-                })
+                .filter_map(|b| b.y_at(x))
                 .collect()
         };
         let near = |y: f64, x: f64| true_y(x, false).iter().any(|t| (t - y).abs() < 0.3);

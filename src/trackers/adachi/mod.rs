@@ -452,9 +452,7 @@ impl Tracker for AdachiTracker {
 
     fn advance(&mut self) -> Result<Option<LaneEstimate>> {
         if self.frame.is_none() {
-            return Err(Error::Config(
-                "no frame in progress: call beginFrame (begin_frame in Rust) first".into(),
-            ));
+            return Err(super::no_frame_in_progress());
         }
         Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
     }

@@ -155,12 +155,7 @@ impl LeeConfig {
     pub fn from_options(
         options: &std::collections::BTreeMap<String, serde_json::Value>,
     ) -> Result<Self> {
-        let map: serde_json::Map<String, serde_json::Value> = options
-            .iter()
-            .map(|(k, v)| (k.clone(), v.clone()))
-            .collect();
-        let config: Self = serde_json::from_value(serde_json::Value::Object(map))
-            .map_err(|e| Error::Config(format!("lee-cpf options: {e}")))?;
+        let config: Self = crate::trackers::parse_options(super::ID, options)?;
         config.validate()?;
         Ok(config)
     }

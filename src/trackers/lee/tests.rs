@@ -1,7 +1,6 @@
 //! Tests of the Lee tracker on simulator scenes.
 
 use super::*;
-use crate::lane::Role;
 use crate::synth::{default_camera, scenario, Eye, Scene};
 
 pub(super) fn config(extra: &str) -> TrackerConfig {
@@ -109,25 +108,13 @@ fn tracks_a_straight_highway() {
     assert!(valid >= 58, "{valid} valid frames of 60");
 }
 
-/// Lateral position of the truth's ego-lane centre `x` metres ahead.
-fn truth_centre(t: &LaneEstimate, x: f64) -> Option<f64> {
-    let at = |role: Role| {
-        let b = t.boundaries.iter().find(|b| b.role == role)?;
-        b.road_points.windows(2).find_map(|p| {
-            let ([x0, y0], [x1, y1]) = (p[0], p[1]);
-            (x0 <= x && x <= x1 && x1 > x0).then(|| y0 + (y1 - y0) * (x - x0) / (x1 - x0))
-        })
-    };
-    Some((at(Role::EgoLeft)? + at(Role::EgoRight)?) / 2.0)
-}
-
 /// RMS error of the estimated lane centre `x` metres ahead (modulo a lane width).
 fn centre_rmse(out: &[(LaneEstimate, LeeEstimate)], skip: usize, x: f64) -> f64 {
     let (mut se, mut n) = (0.0, 0.0);
     for (t, e) in &out[skip..] {
         let s = e.state;
         let curve = Curve::new(s.c, s.delta, LeeConfig::default().spiral_length_m);
-        if let Some(tc) = truth_centre(t, x) {
+        if let Some(tc) = t.ego_centre_at(x) {
             let d = s.centre(x, Some(&curve)) - tc;
             se += (d - (d / s.w).round() * s.w).powi(2);
             n += 1.0;
