@@ -150,6 +150,22 @@ pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
         .map_err(|e| Error::Config(format!("{id} options: {e}")))
 }
 
+/// Checks that an RGBA frame has the camera's size.
+///
+/// # Errors
+/// [`Error::Dimensions`] for another size, [`Error::BufferSize`] for a buffer that is not
+/// width * height * 4 bytes.
+pub(crate) fn check_frame(camera: &Camera, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+    if (width, height) != (camera.width(), camera.height()) {
+        return Err(Error::Dimensions(format!(
+            "the tracker was built for {}x{} frames but got {width}x{height}",
+            camera.width(),
+            camera.height()
+        )));
+    }
+    crate::image::check_rgba(rgba, width, height)
+}
+
 /// The error of [`Tracker::advance`] without a frame in progress.
 pub(crate) fn no_frame_in_progress() -> Error {
     Error::Config("no frame in progress: call beginFrame (begin_frame in Rust) first".into())

@@ -28,7 +28,6 @@ use crate::filter::{
     model_probabilities, FilterConfig, Injection, MarkovChain, MeasurementModel, ParticleFilter,
     Regime, ResamplePolicy, Resampler, SwitchingMotion,
 };
-use crate::image::check_rgba;
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
 use config::AdachiConfig;
 use likelihood::{Likelihood, COEFFICIENTS, OFFSETS};
@@ -201,14 +200,7 @@ impl AdachiTracker {
     /// # Errors
     /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
     pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
-        if (width, height) != (self.camera.width(), self.camera.height()) {
-            return Err(Error::Dimensions(format!(
-                "the tracker was built for {}x{} frames but got {width}x{height}",
-                self.camera.width(),
-                self.camera.height()
-            )));
-        }
-        check_rgba(rgba, width, height)?;
+        super::check_frame(&self.camera, rgba, width, height)?;
         let t0 = now();
         let votes = self.votes.vote(rgba);
         self.likelihood.prepare(&self.votes);

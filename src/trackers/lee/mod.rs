@@ -45,7 +45,7 @@ use crate::error::{Error, Result};
 use crate::filter::{
     FilterConfig, Injection, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
 };
-use crate::image::{check_rgba, luma, Image};
+use crate::image::{luma, Image};
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
 use candidates::Candidates;
 use clothoid::{Curve, LaneState};
@@ -416,14 +416,7 @@ impl LeeTracker {
     /// # Errors
     /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
     pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
-        if (width, height) != (self.camera.width(), self.camera.height()) {
-            return Err(Error::Dimensions(format!(
-                "the tracker was built for {}x{} frames but got {width}x{height}",
-                self.camera.width(),
-                self.camera.height()
-            )));
-        }
-        check_rgba(rgba, width, height)?;
+        super::check_frame(&self.camera, rgba, width, height)?;
         let t = now();
         self.convert(rgba);
         self.candidates
