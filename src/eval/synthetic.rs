@@ -195,6 +195,19 @@ pub struct BoundaryAccuracy {
     pub per_role: Vec<RoleAccuracy>,
 }
 
+/// Lateral-offset error under which a tracker counts as recovered, metres.
+pub const RECOVERY_THRESHOLD_M: f64 = 0.3;
+
+/// Recovery after one disturbance of the ground truth (a run of `blackout` frames).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Recovery {
+    /// First frame after the disturbance.
+    pub end: usize,
+    /// Frames from `end` until the valid estimate's lateral-offset error is under
+    /// [`RECOVERY_THRESHOLD_M`] (`None`: not within the sequence).
+    pub frames: Option<usize>,
+}
+
 /// The `synthetic` report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SyntheticReport {
@@ -202,6 +215,23 @@ pub struct SyntheticReport {
     pub params: ParamErrors,
     /// Boundary-level image accuracy.
     pub boundaries: BoundaryAccuracy,
+    /// Recovery after each blackout of the ground truth.
+    pub recovery: Vec<Recovery>,
+}
+
+/// Recovery times after the blackouts marked in the ground truth (`state.blackout` = 1): for
+/// each first frame after a run of blackout frames, the frames until the lateral-offset error
+/// is back under [`RECOVERY_THRESHOLD_M`] ([`super::params::recovery_frames`]).
+pub fn recovery(gt: &[LaneEstimate], preds: &[Option<&LaneEstimate>]) -> Vec<Recovery> {
+    let dark = |i: usize| gt[i].state.get("blackout").is_some_and(|&b| b > 0.5);
+    let ends: Vec<usize> = (1..gt.len()).filter(|&i| dark(i - 1) && !dark(i)).collect();
+    let errors = super::params::error_series(gt, preds, |e| e.lateral_offset_m);
+    let frames = super::params::recovery_frames(&errors, RECOVERY_THRESHOLD_M, &ends)
+        .unwrap_or_else(|_| vec![None; ends.len()]);
+    ends.into_iter()
+        .zip(frames)
+        .map(|(end, frames)| Recovery { end, frames })
+        .collect()
 }
 
 /// The boundary-level accuracy; `preds[i]` belongs to `gt[i]`.
@@ -271,6 +301,7 @@ pub fn evaluate(gt: &[LaneEstimate], preds: &[Option<&LaneEstimate>]) -> Result<
     Ok(SyntheticReport {
         params: parameter_errors(gt, preds),
         boundaries: boundary_accuracy(gt, preds),
+        recovery: recovery(gt, preds),
     })
 }
 
@@ -302,7 +333,22 @@ impl fmt::Display for SyntheticReport {
             b.gt,
             dx(b.mean_abs_dx_px),
             b.extra_predicted
-        )
+        )?;
+        for r in &self.recovery {
+            match r.frames {
+                Some(n) => write!(
+                    f,
+                    "\n  recovery after the blackout ending at frame {}: {n} frames (|offset error| < {RECOVERY_THRESHOLD_M} m)",
+                    r.end
+                )?,
+                None => write!(
+                    f,
+                    "\n  recovery after the blackout ending at frame {}: not within the sequence",
+                    r.end
+                )?,
+            }
+        }
+        Ok(())
     }
 }
 
@@ -394,5 +440,53 @@ mod tests {
         assert_eq!((b.per_role[0].gt, b.per_role[0].compared), (2, 1));
         assert_eq!(r.params.detection_rate, Some(0.5));
         assert!(evaluate(&[], &[]).is_err());
+    }
+
+    #[test]
+    fn recovery_is_counted_from_the_end_of_each_blackout() {
+        let frame = |offset: f64, blackout: bool| LaneEstimate {
+            valid: true,
+            lateral_offset_m: offset,
+            state: [("blackout".to_string(), f64::from(u8::from(blackout)))].into(),
+            ..LaneEstimate::default()
+        };
+        // Blackouts on frames 2-3 and 7; truth offset 0 throughout.
+        let gt: Vec<LaneEstimate> = (0..10)
+            .map(|i| frame(0.0, matches!(i, 2 | 3 | 7)))
+            .collect();
+        // The estimate is off by 1 m from frame 2 to 5, back at frame 6, off again at 7-9.
+        let preds: Vec<LaneEstimate> = (0..10)
+            .map(|i| {
+                frame(
+                    if (2..6).contains(&i) || i >= 7 {
+                        1.0
+                    } else {
+                        0.1
+                    },
+                    false,
+                )
+            })
+            .collect();
+        let refs: Vec<Option<&LaneEstimate>> = preds.iter().map(Some).collect();
+        let r = evaluate(&gt, &refs).unwrap();
+        assert_eq!(
+            r.recovery,
+            vec![
+                Recovery {
+                    end: 4,
+                    frames: Some(2)
+                },
+                Recovery {
+                    end: 8,
+                    frames: None
+                }
+            ]
+        );
+        let text = r.to_string();
+        assert!(text.contains("ending at frame 4: 2 frames"), "{text}");
+        assert!(
+            text.contains("ending at frame 8: not within the sequence"),
+            "{text}"
+        );
     }
 }

@@ -22,7 +22,8 @@
 //!   centre relative to the car), `adachi.w` = W, `adachi.r` = the paper's model number: 1 ego
 //!   lane only, 2 with a left neighbour, 3 with a right neighbour, 4 with both.
 //! - Motion (Danescu's drift input): `t`, `speed_mps`, `yaw_rate`, `ego_lane`, and
-//!   `lane_change` = 1 while the camera's lane differs from the previous frame's.
+//!   `lane_change` = 1 while the camera's lane differs from the previous frame's, `blackout` = 1
+//!   on frames of a total blackout (the disturbances `lanepf eval` measures recovery from).
 //!
 //! Liu's top-view (rho, theta, d) depends on the tracker's top-view configuration and is
 //! added with that tracker.
@@ -138,6 +139,7 @@ impl Scene {
             ("yaw_rate", pose.yaw_rate),
             ("ego_lane", lane as f64),
             ("lane_change", f64::from(u8::from(previous_lane != lane))),
+            ("blackout", f64::from(u8::from(self.blacked_out(frame)))),
             ("lee.psi", heading),
             ("lee.y0", -o),
             ("lee.w", width),
