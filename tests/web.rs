@@ -315,3 +315,60 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
     let rgba = scene.render(5).unwrap().to_vec();
     assert!(tracker.step(&rgba, 320, 240).is_ok());
 }
+
+#[wasm_bindgen_test]
+fn liu_tracker_runs_in_the_browser_with_the_native_result() {
+    // Same run as the native unit test `trackers::liu::tests::same_result_as_the_browser_build`:
+    // highway-curve seed 1 at 320x240, 300 particles, seed 2, five frames.
+    let mut scene = JsScene::new(
+        "highway-curve",
+        obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
+    )
+    .unwrap();
+    let camera = scene.camera().unwrap();
+    let config = obj(r#"{"particles": 300, "seed": 2}"#);
+    js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
+    let mut tracker = JsTracker::new("liu-ppf", config.clone()).unwrap();
+    let mut stepped = JsTracker::new("liu-ppf", config.clone()).unwrap();
+    let steps = stepped.step_names().len();
+    assert_eq!(steps, 7);
+    let (mut last, mut last_stepped) = (JsValue::UNDEFINED, JsValue::UNDEFINED);
+    for f in 0..5 {
+        let rgba = scene.render(f).unwrap().to_vec();
+        last = tracker.step(&rgba, 320, 240).unwrap();
+        stepped.begin_frame(&rgba, 320, 240).unwrap();
+        for _ in 0..steps {
+            last_stepped = stepped.advance().unwrap();
+        }
+    }
+    let rho = |v: &JsValue| {
+        let state = js_sys::Reflect::get(v, &"state".into()).unwrap();
+        js_sys::Reflect::get(&state, &"liu.ego-left.rho".into())
+            .unwrap()
+            .as_f64()
+            .unwrap()
+    };
+    assert_eq!(
+        rho(&last).to_bits(),
+        0x4046_955d_e553_1cf4,
+        "{}",
+        rho(&last)
+    );
+    assert_eq!(rho(&last_stepped).to_bits(), rho(&last).to_bits());
+    // N + N' particles of 3 boundaries x (rho, theta, d) + weight, weights summing to 1.
+    assert_eq!(tracker.particle_stride(), 10);
+    let cloud = tracker.particles().to_vec();
+    assert_eq!(cloud.len(), 350 * 10);
+    let total: f32 = cloud.chunks(10).map(|p| p[9]).sum();
+    assert!((total - 1.0).abs() < 1e-3, "{total}");
+    // The no-kernel baseline exists, bad options throw, and the tracker carries on.
+    assert!(JsTracker::new("liu-ppf-nokernel", config).is_ok());
+    let bad = obj(r#"{"boundaries": 9}"#);
+    js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
+    let m = message(JsTracker::new("liu-ppf", bad));
+    assert!(m.contains("boundaries"), "{m}");
+    let m = message(tracker.step(&[0; 12], 320, 240));
+    assert!(m.contains("320x240"), "{m}");
+    let rgba = scene.render(5).unwrap().to_vec();
+    assert!(tracker.step(&rgba, 320, 240).is_ok());
+}

@@ -263,8 +263,9 @@ impl<S: Clone> ParticleFilter<S> {
         self.log_weights.fill(0.0);
     }
 
-    /// Resamples all N particles unconditionally (between partitioned stages).
-    pub(super) fn resample_between_stages(&mut self) {
+    /// Resamples all N particles unconditionally (between partitioned stages): afterwards the
+    /// weights are equal and no particle counts as injected.
+    pub fn resample_between_stages(&mut self) {
         let n = self.len();
         self.config
             .resampler

@@ -60,17 +60,31 @@ impl<S: Clone> ParticleFilter<S> {
     ) {
         self.resample();
         self.inject(init);
-        let stages = model.stages();
-        for stage in 0..stages {
+        for stage in 0..model.stages() {
             if stage > 0 {
                 self.resample_between_stages();
             }
-            let s = Stage { model, stage };
-            self.predict(&s);
-            // Each stage's weights replace the previous stage's (resampling has absorbed them).
-            self.clear_log_weights();
-            self.weigh(&s, cues);
+            self.partitioned_predict(model, stage);
+            self.partitioned_weigh(model, stage, cues);
         }
+    }
+
+    /// Moves sub-space `stage` of every particle (one step of [`ParticleFilter::partitioned_step`],
+    /// for trackers that run the stages one at a time).
+    pub fn partitioned_predict<M: PartitionedModel<S>>(&mut self, model: &M, stage: usize) {
+        self.predict(&Stage { model, stage });
+    }
+
+    /// Weighs every particle by stage `stage`'s likelihood alone: the weights carried in are
+    /// replaced, since resampling has absorbed them.
+    pub fn partitioned_weigh<M: PartitionedModel<S>>(
+        &mut self,
+        model: &M,
+        stage: usize,
+        cues: &M::Cues,
+    ) {
+        self.clear_log_weights();
+        self.weigh(&Stage { model, stage }, cues);
     }
 }
 

@@ -25,8 +25,10 @@
 //!   `lane_change` = 1 while the camera's lane differs from the previous frame's, `blackout` = 1
 //!   on frames of a total blackout (the disturbances `lanepf eval` measures recovery from).
 //!
-//! Liu's top-view (rho, theta, d) depends on the tracker's top-view configuration and is
-//! added with that tracker.
+//! - Liu et al. (eqs. 15-16): `liu.<role>.rho`, `liu.<role>.theta`, `liu.<role>.d` of each
+//!   boundary on the default top view of `liu-ppf` (pixels, y_m at half its height), by least
+//!   squares on the boundary's points inside the top view, as the paper computes its ground
+//!   truth from marked lane points.
 
 use super::ego::Pose;
 use super::markings::Pattern;
@@ -133,6 +135,7 @@ impl Scene {
         } else {
             lane
         };
+        let liu = liu_truth(&boundaries);
         let state = [
             ("t", pose.t),
             ("speed_mps", pose.speed),
@@ -166,6 +169,7 @@ impl Scene {
         ]
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
+        .chain(liu)
         .collect();
         LaneEstimate {
             frame: format!("{frame:06}.png"),
@@ -208,6 +212,38 @@ impl Scene {
         }
         (TRUTH_RANGE_M, 0.0)
     }
+}
+
+/// Liu's (rho, theta, d) of each boundary on `liu-ppf`'s default top view (see the module
+/// docs); boundaries with too few points in the view are left out.
+fn liu_truth(boundaries: &[Boundary]) -> Vec<(String, f64)> {
+    let config = crate::trackers::liu::config::LiuConfig::default();
+    let v = config.top_view;
+    let Ok((_, height)) = v.size() else {
+        return Vec::new();
+    };
+    let y_m = config.split_row(height);
+    let mut out = Vec::new();
+    for b in boundaries {
+        let points: Vec<[f64; 2]> = b
+            .road_points
+            .iter()
+            .map(|&[x, y]| {
+                [
+                    (v.y_left_m - y) / v.m_per_px - 0.5,
+                    (v.x_max_m - x) / v.m_per_px - 0.5,
+                ]
+            })
+            .filter(|&[_, r]| r >= 0.0 && r < height as f64)
+            .collect();
+        if let Some(m) = crate::lane::LinearParabolic::fit(&points, y_m) {
+            let role = b.role.as_str();
+            out.push((format!("liu.{role}.rho"), m.rho));
+            out.push((format!("liu.{role}.theta"), m.theta));
+            out.push((format!("liu.{role}.d"), m.d));
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -36,6 +36,8 @@ use votes::Votes;
 
 /// The tracker id.
 pub const ID: &str = "adachi-mmpf";
+/// Particles N when the config does not say.
+pub const DEFAULT_PARTICLES: usize = 500;
 
 struct Measure<'a>(&'a Likelihood);
 
@@ -133,7 +135,12 @@ impl AdachiTracker {
             policy: ResamplePolicy::Always,
             injection: Injection::None,
         };
-        let filter = ParticleFilter::new(config.particles, filter_config, config.seed, &initial)?;
+        let filter = ParticleFilter::new(
+            config.particles_or(DEFAULT_PARTICLES),
+            filter_config,
+            config.seed,
+            &initial,
+        )?;
         Ok(Self {
             camera,
             config: adachi,

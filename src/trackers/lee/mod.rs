@@ -58,6 +58,8 @@ use motion::{Initial, Limits, Motion, Part};
 
 /// The tracker id.
 pub const ID: &str = "lee-cpf";
+/// Particles N (per stage) when the config does not say.
+pub const DEFAULT_PARTICLES: usize = 500;
 
 /// Stage 1's model: eq. 33 on the near map, first-order lane (the full-model baseline uses
 /// [`FarModel`] with the near map instead).
@@ -283,10 +285,15 @@ impl LeeTracker {
             policy: ResamplePolicy::EssBelow(lee.ess_threshold),
             injection: Injection::None,
         };
-        let stage1 = ParticleFilter::new(config.particles, filter_config, config.seed, &initial)?;
+        let stage1 = ParticleFilter::new(
+            config.particles_or(DEFAULT_PARTICLES),
+            filter_config,
+            config.seed,
+            &initial,
+        )?;
         let stage2 = if lee.variant == Variant::Cascade {
             let n2 = if lee.stage2_particles == 0 {
-                config.particles
+                config.particles_or(DEFAULT_PARTICLES)
             } else {
                 lee.stage2_particles
             };

@@ -1,0 +1,215 @@
+//! Settings of the Liu trackers (all optional in the tracker config; defaults documented).
+//!
+//! Values the paper gives are its defaults: the gradient mask threshold 10 (Sec. IV-C),
+//! sigma_x^2 = sigma_y^2 = 1 (Sec. III-A), y_m at half the top-view height (Sec. III-C),
+//! N' = 50 initialisation particles (Sec. IV-D), mu_0 = 1 and sigma_0^2 = 0.5 for the intensity
+//! kernel (Sec. V-A), three boundaries (Fig. 3). The paper's validity checks are in pixels of
+//! its top view (spacing > 12 px, spacing difference < 5 px); here they are in metres so they
+//! hold at any resolution. What the paper leaves open is our choice, said so below.
+
+use crate::error::{require_finite, require_positive, Error, Result};
+use crate::vision::TopViewConfig;
+use serde::{Deserialize, Serialize};
+
+/// Largest number of boundaries n_l.
+pub const MAX_BOUNDARIES: usize = 6;
+
+/// Settings of `liu-ppf` and `liu-ppf-nokernel`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LiuConfig {
+    /// The top view (IPM) the model lives on. Ours: 6 to 36 m ahead, 6 m to each side, 10 cm
+    /// per pixel (120 x 300 pixels): three boundaries of 3.5 m lanes fit with room to move,
+    /// and a 15 cm marking is 1.5 pixels wide, so sigma_x = 1 pixel is 10 cm.
+    pub top_view: TopViewConfig,
+    /// Number of boundaries n_l tracked (Fig. 3: 3).
+    pub boundaries: usize,
+    /// The split row y_m as a fraction of the top-view height (the paper: 0.5).
+    pub split: f64,
+    /// Gradient-magnitude threshold of the measurement mask (Sobel on 0-255 grey levels).
+    pub gradient_threshold: f64,
+    /// Variances sigma_x^2 and sigma_y^2 of the position kernels, pixels^2.
+    pub position_variance_px2: f64,
+    /// Mean mu_c of the intensity kernel K_c on the normalised image.
+    pub intensity_mean: f64,
+    /// Variance sigma_c^2 of the intensity kernel (the paper gives it for PPF-NoKernel only;
+    /// we use the same for PPF-Kernel).
+    pub intensity_variance: f64,
+    /// Gauss-Hermite nodes of the parabolic kernel integral (eq. 12; the paper does not say how
+    /// many). Three reproduce a fine numerical integral to 2.5e-4 relative on the slopes and
+    /// bends a top view has (five: 5e-7), far below the kernels' own modelling error.
+    pub quadrature_nodes: usize,
+    /// Half-width, in pixels across the boundary, of the band whose mask pixels are "near the
+    /// predicted lane" (the paper does not say; 3 = 3 sigma_x).
+    pub band_px: usize,
+    /// Initialisation particles N' added every frame (Sec. IV-D).
+    pub init_particles: usize,
+    /// Random walk of the linear part (eq. 19): sigma_rho (pixels) and sigma_theta (rad).
+    pub sigma_rho_px: f64,
+    /// See `sigma_rho_px`.
+    pub sigma_theta: f64,
+    /// Random walk of the parabolic part (eq. 23): sigma_d (pixels per pixel).
+    pub sigma_d: f64,
+    /// Smallest spacing between neighbouring boundaries, metres (the paper: 12 px).
+    pub min_spacing_m: f64,
+    /// Largest difference between neighbouring spacings, metres (the paper: 5 px).
+    pub max_spacing_difference_m: f64,
+    /// A frame is valid when both ego boundaries of the estimate have a mask pixel within
+    /// 1 pixel (sigma_x) in at least this fraction of the near rows (the paper does not define
+    /// valid frames; this is ours, as for lee-cpf).
+    pub valid_fraction: f64,
+    /// Default lane model (Sec. IV-D): range of lane widths, metres.
+    pub default_width_m: [f64; 2],
+    /// Default lane model: largest heading of the straight boundaries, radians.
+    pub default_heading_rad: f64,
+    /// Default lane model: spread of each boundary about the parallel set, metres.
+    pub default_jitter_m: f64,
+}
+
+impl Default for LiuConfig {
+    fn default() -> Self {
+        Self {
+            top_view: TopViewConfig {
+                x_min_m: 6.0,
+                x_max_m: 36.0,
+                y_left_m: 6.0,
+                y_right_m: -6.0,
+                m_per_px: 0.1,
+            },
+            boundaries: 3,
+            split: 0.5,
+            gradient_threshold: 10.0,
+            position_variance_px2: 1.0,
+            intensity_mean: 1.0,
+            intensity_variance: 0.5,
+            quadrature_nodes: 3,
+            band_px: 3,
+            init_particles: 50,
+            sigma_rho_px: 1.0,
+            sigma_theta: 0.004,
+            sigma_d: 0.01,
+            min_spacing_m: 2.4,
+            max_spacing_difference_m: 0.5,
+            valid_fraction: 0.15,
+            default_width_m: [3.0, 4.0],
+            default_heading_rad: 0.05,
+            default_jitter_m: 0.1,
+        }
+    }
+}
+
+impl LiuConfig {
+    /// Reads the tracker-specific options.
+    ///
+    /// # Errors
+    /// [`Error::Config`] for an unknown option or a wrong type; [`Error::Parameter`] for a bad
+    /// value.
+    pub fn from_options(
+        id: &str,
+        options: &std::collections::BTreeMap<String, serde_json::Value>,
+    ) -> Result<Self> {
+        let config: Self = crate::trackers::parse_options(id, options)?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// Checks every value.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] naming the first bad value.
+    pub fn validate(&self) -> Result<()> {
+        let (w, h) = self.top_view.size()?;
+        if w * h > 2_000_000 {
+            return Err(Error::parameter(
+                "top_view",
+                format!("{w}x{h}"),
+                "is larger than 2 million pixels",
+            ));
+        }
+        if !(1..=MAX_BOUNDARIES).contains(&self.boundaries) {
+            return Err(Error::parameter(
+                "boundaries",
+                self.boundaries,
+                &format!("must be between 1 and {MAX_BOUNDARIES}"),
+            ));
+        }
+        require_finite("split", self.split)?;
+        if !(0.1..=0.9).contains(&self.split) {
+            return Err(Error::parameter(
+                "split",
+                self.split,
+                "must be a fraction between 0.1 and 0.9",
+            ));
+        }
+        require_finite("gradient_threshold", self.gradient_threshold)?;
+        require_positive("position_variance_px2", self.position_variance_px2)?;
+        require_finite("intensity_mean", self.intensity_mean)?;
+        require_positive("intensity_variance", self.intensity_variance)?;
+        if !(1..=20).contains(&self.quadrature_nodes) {
+            return Err(Error::parameter(
+                "quadrature_nodes",
+                self.quadrature_nodes,
+                "must be between 1 and 20",
+            ));
+        }
+        if !(1..=50).contains(&self.band_px) {
+            return Err(Error::parameter(
+                "band_px",
+                self.band_px,
+                "must be between 1 and 50",
+            ));
+        }
+        if self.init_particles > 100_000 {
+            return Err(Error::parameter(
+                "init_particles",
+                self.init_particles,
+                "must be at most 100000",
+            ));
+        }
+        require_positive("sigma_rho_px", self.sigma_rho_px)?;
+        require_positive("sigma_theta", self.sigma_theta)?;
+        require_positive("sigma_d", self.sigma_d)?;
+        require_positive("min_spacing_m", self.min_spacing_m)?;
+        require_positive("max_spacing_difference_m", self.max_spacing_difference_m)?;
+        require_finite("valid_fraction", self.valid_fraction)?;
+        if !(0.0..=1.0).contains(&self.valid_fraction) {
+            return Err(Error::parameter(
+                "valid_fraction",
+                self.valid_fraction,
+                "must be a fraction in [0, 1]",
+            ));
+        }
+        let [lo, hi] = self.default_width_m;
+        require_positive("default_width_m", lo)?;
+        require_finite("default_width_m", hi)?;
+        if hi < lo {
+            return Err(Error::parameter(
+                "default_width_m",
+                hi,
+                "max must not be below min",
+            ));
+        }
+        require_finite("default_heading_rad", self.default_heading_rad)?;
+        if !(0.0..1.0).contains(&self.default_heading_rad) {
+            return Err(Error::parameter(
+                "default_heading_rad",
+                self.default_heading_rad,
+                "must be in [0, 1)",
+            ));
+        }
+        require_finite("default_jitter_m", self.default_jitter_m)?;
+        if self.default_jitter_m < 0.0 {
+            return Err(Error::parameter(
+                "default_jitter_m",
+                self.default_jitter_m,
+                "must not be negative",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The split row y_m of a top view `height` rows high.
+    pub fn split_row(&self, height: usize) -> f64 {
+        self.split * height as f64
+    }
+}

@@ -1,0 +1,517 @@
+//! `liu-ppf` and `liu-ppf-nokernel`: the partitioned particle filter of Liu, Wörgötter &
+//! Markelić 2013 with its kernel-density measurement model, and the PPF-NoKernel baseline the
+//! paper compares it with (Sec. V-A).
+//!
+//! One frame (Fig. 4):
+//! 1. pre-processing ([`descriptors`]): grey, IPM top view, Sobel, gradient mask, per-pixel
+//!    orientation, its variance 1/|grad I| and the intensity kernel;
+//! 2. resample the last frame's N + N' weighted particles to N and add N' initialisation
+//!    particles from the default straight-lane model (Sec. IV-D), so N_l = N + N';
+//! 3. linear part (Sec. IV-E): random walk of (rho_k, theta_k) (eqs. 18-19), weights by the
+//!    line kernel density with the orientation and intensity kernels (eqs. 20-21) after the
+//!    multiple-lane checks (Sec. IV-A), resampling of all N_l particles (N_p = N_l);
+//! 4. parabolic part (Sec. IV-F): random walk of d_k (eqs. 22-23), weights by the parabolic
+//!    kernel density by Gauss-Hermite quadrature (eqs. 24-25, A = 1/n_k^l);
+//! 5. estimate: the weighted mean of (rho, theta, d) per boundary over the parabolic weights,
+//!    taken over the mode of the best particle (the paper does not say how it reads its
+//!    estimate off the particles; see [`LiuTracker::estimate`]). The next frame's resampling
+//!    to N gives the paper's X_t.
+//!
+//! The boundaries (left to right) get their roles from where their near lines cross the car's
+//! axis x = 0: the nearest on the left is `ego-left`, the nearest on the right `ego-right`, the
+//! next ones the adjacent boundaries (further ones are tracked but not output). The lane's
+//! lateral offset and width come from the ego boundaries' near lines at the car, the heading
+//! from their slope, the curvature from the far parabolas (y'' = -2 e / s at s metres per
+//! pixel; the near part is straight by the model's definition).
+
+pub mod config;
+pub mod descriptors;
+pub mod exp_table;
+pub mod kernels;
+pub mod model;
+
+use super::{now, Layer, StageTimes, Tracker, TrackerConfig};
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::filter::{FilterConfig, Injection, ParticleFilter, ResamplePolicy, Resampler};
+use crate::lane::{sample_road_curve, Boundary, LaneEstimate, LinearParabolic, Role};
+use crate::math;
+use config::{LiuConfig, MAX_BOUNDARIES};
+use descriptors::Descriptors;
+use model::{DefaultLanes, LaneParticle, PpfModel};
+
+/// The id of PPF-Kernel.
+pub const ID: &str = "liu-ppf";
+/// The id of PPF-NoKernel.
+pub const ID_NOKERNEL: &str = "liu-ppf-nokernel";
+/// Particles N when the config does not say (the paper gives only N' = 50): 200, which keeps
+/// PPF-Kernel near real time at 640x480 (RESULTS.md); N_l = N + N' in the linear part.
+pub const DEFAULT_PARTICLES: usize = 200;
+
+/// The steps of one frame after [`LiuTracker::begin`] (per-step mode).
+pub const STEP_NAMES: [&str; 7] = [
+    "resample to N and add N' initialisation particles from the default lane model (Sec. IV-D)",
+    "linear part: random walk of rho, theta (eqs. 18-19)",
+    "linear part: weigh by the line kernel density and lane checks (eqs. 20-21, Sec. IV-A)",
+    "resample the N_l particles for the parabolic part",
+    "parabolic part: random walk of d (eqs. 22-23)",
+    "parabolic part: weigh by the parabolic kernel density (eqs. 24-25)",
+    "estimate: weighted mean of (rho, theta, d) per boundary over the best particle's mode",
+];
+
+/// The steps of PPF-NoKernel.
+pub const STEP_NAMES_NOKERNEL: [&str; 7] = [
+    STEP_NAMES[0],
+    STEP_NAMES[1],
+    "linear part: weigh by the intensity of the edge pixels and lane checks (eq. 26, Sec. IV-A)",
+    STEP_NAMES[3],
+    STEP_NAMES[4],
+    "parabolic part: weigh by the intensity of the edge pixels (eq. 27)",
+    STEP_NAMES[6],
+];
+
+/// A frame in progress in per-step mode.
+#[derive(Debug, Clone)]
+struct Frame {
+    next: usize,
+    times: StageTimes,
+}
+
+/// The estimate of one frame in the paper's terms.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LiuEstimate {
+    /// The boundaries, left to right, on the top view.
+    pub boundaries: Vec<LinearParabolic>,
+    /// Fraction of near rows with a mask pixel within 1 pixel of each boundary.
+    pub support: Vec<f64>,
+}
+
+/// The Liu tracker (either variant).
+#[derive(Debug)]
+pub struct LiuTracker {
+    id: &'static str,
+    camera: Camera,
+    config: LiuConfig,
+    descriptors: Descriptors,
+    model: PpfModel,
+    initial: DefaultLanes,
+    filter: ParticleFilter<LaneParticle>,
+    times: StageTimes,
+    frame: Option<Frame>,
+}
+
+impl LiuTracker {
+    /// Builds `liu-ppf` (`kernel` true) or `liu-ppf-nokernel`.
+    ///
+    /// # Errors
+    /// Camera, particle-count and option errors, named; [`Error::Config`] when the top view is
+    /// not visible in the camera.
+    pub fn new(config: &TrackerConfig, kernel: bool) -> Result<Self> {
+        let id = if kernel { ID } else { ID_NOKERNEL };
+        let camera = config.validate()?;
+        let liu = LiuConfig::from_options(id, &config.options)?;
+        let descriptors = Descriptors::new(
+            &camera,
+            liu.top_view,
+            liu.gradient_threshold,
+            (liu.intensity_mean, liu.intensity_variance),
+            kernel,
+        )?;
+        let (w, h) = (descriptors.width(), descriptors.height());
+        let visible = descriptors
+            .ipm()
+            .valid()
+            .data()
+            .iter()
+            .filter(|&&v| v == 1)
+            .count();
+        if visible < w * h / 10 {
+            return Err(Error::Config(format!(
+                "the top view ({} to {} m ahead) is hardly visible in this camera's image \
+                 ({visible} of {} pixels); check the camera height and pitch or the top_view",
+                liu.top_view.x_min_m,
+                liu.top_view.x_max_m,
+                w * h
+            )));
+        }
+        let model = PpfModel::new(&liu, w, h, kernel);
+        let initial = DefaultLanes::new(&liu, h);
+        let filter_config = FilterConfig {
+            resampler: Resampler::Systematic,
+            policy: ResamplePolicy::Always,
+            injection: if liu.init_particles == 0 {
+                Injection::None
+            } else {
+                Injection::Count(liu.init_particles)
+            },
+        };
+        let filter = ParticleFilter::new(
+            config.particles_or(DEFAULT_PARTICLES) + liu.init_particles,
+            filter_config,
+            config.seed,
+            &initial,
+        )?;
+        Ok(Self {
+            id,
+            camera,
+            config: liu,
+            descriptors,
+            model,
+            initial,
+            filter,
+            times: StageTimes::default(),
+            frame: None,
+        })
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &LiuConfig {
+        &self.config
+    }
+    /// The partitioned model.
+    pub fn model(&self) -> &PpfModel {
+        &self.model
+    }
+    /// The last frame's descriptors.
+    pub fn descriptors(&self) -> &Descriptors {
+        &self.descriptors
+    }
+
+    /// The particles (N + N') with their normalised weights.
+    pub fn particle_states(&self) -> impl Iterator<Item = (&LaneParticle, f64)> + '_ {
+        self.filter
+            .states()
+            .iter()
+            .zip(self.filter.weights().iter().copied())
+    }
+
+    /// One frame: [`LiuTracker::begin`], then every step in order.
+    ///
+    /// # Errors
+    /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
+    pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LiuEstimate> {
+        self.begin(rgba, width, height)?;
+        loop {
+            if let Some(e) = self.advance_step() {
+                return Ok(e);
+            }
+        }
+    }
+
+    /// Starts a frame: checks it and computes its descriptors. A frame still in progress is
+    /// abandoned where it stands.
+    ///
+    /// # Errors
+    /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
+    pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        super::check_frame(&self.camera, rgba, width, height)?;
+        let t0 = now();
+        self.descriptors.compute(rgba, width, height)?;
+        self.frame = Some(Frame {
+            next: 0,
+            times: StageTimes {
+                preprocess: now() - t0,
+                ..StageTimes::default()
+            },
+        });
+        Ok(())
+    }
+
+    /// Index into the step names of the next step of the frame in progress.
+    pub fn next_step(&self) -> Option<usize> {
+        self.frame.as_ref().map(|f| f.next)
+    }
+
+    /// Runs the next step of the frame in progress; returns the estimate after the last one
+    /// (`None` before, or when no frame is in progress).
+    pub fn advance_step(&mut self) -> Option<LiuEstimate> {
+        let mut frame = self.frame.take()?;
+        let step = frame.next;
+        frame.next += 1;
+        let t = now();
+        match step {
+            0 => {
+                self.filter.resample();
+                self.filter.inject(&self.initial);
+                frame.times.resample += now() - t;
+            }
+            1 | 4 => {
+                self.filter.partitioned_predict(&self.model, step / 4);
+                frame.times.predict += now() - t;
+            }
+            2 | 5 => {
+                self.filter
+                    .partitioned_weigh(&self.model, step / 4, &self.descriptors);
+                frame.times.weigh += now() - t;
+            }
+            3 => {
+                self.filter.resample_between_stages();
+                frame.times.resample += now() - t;
+            }
+            _ => {
+                let estimate = self.estimate();
+                frame.times.estimate += now() - t;
+                self.times = frame.times;
+                return Some(estimate);
+            }
+        }
+        self.frame = Some(frame);
+        None
+    }
+
+    /// The weighted mean of (rho, theta, d) over the mode of the best particle: the particles
+    /// whose every boundary lies within half the minimum lane spacing of the best particle's,
+    /// at the bottom row and at y_m. (A plain mean would average modes that explain different
+    /// sets of n_l boundaries of a wider road, e.g. the three left and the three right
+    /// boundaries of a three-lane road, into lines between the markings.)
+    fn estimate(&self) -> LiuEstimate {
+        let n = self.model.boundaries();
+        let states = self.filter.states();
+        let best = &states[crate::filter::map_index(self.filter.weights())];
+        let rows = [
+            self.descriptors.height() as f64 - 1.0,
+            self.model.split_row(),
+        ];
+        let radius = self.config.min_spacing_m / 2.0 / self.config.top_view.m_per_px;
+        let same_mode = |p: &LaneParticle| {
+            (0..n).all(|k| {
+                let (a, b) = (self.model.boundary(p, k), self.model.boundary(best, k));
+                rows.iter().all(|&y| (a.x_at(y) - b.x_at(y)).abs() < radius)
+            })
+        };
+        let mut mean = [[0.0; 3]; MAX_BOUNDARIES];
+        let mut total = 0.0;
+        for (p, w) in self.particle_states().filter(|(p, _)| same_mode(p)) {
+            total += w;
+            for (m, b) in mean.iter_mut().zip(&p.boundaries).take(n) {
+                for (mv, bv) in m.iter_mut().zip(b) {
+                    *mv += w * bv;
+                }
+            }
+        }
+        let particle = if total > 0.0 {
+            for b in mean.iter_mut() {
+                for v in b.iter_mut() {
+                    *v /= total;
+                }
+            }
+            LaneParticle { boundaries: mean }
+        } else {
+            *best
+        };
+        let boundaries: Vec<LinearParabolic> =
+            (0..n).map(|k| self.model.boundary(&particle, k)).collect();
+        let support = boundaries.iter().map(|b| self.support(b)).collect();
+        LiuEstimate {
+            boundaries,
+            support,
+        }
+    }
+
+    /// Fraction of near rows with a mask pixel within one pixel of the boundary's line.
+    fn support(&self, b: &LinearParabolic) -> f64 {
+        let (w, h) = (self.descriptors.width(), self.descriptors.height());
+        let first = (self.model.split_row().floor() as usize + 1).min(h);
+        let (a, slope) = (b.a(), b.b());
+        let mut hits = 0;
+        for y in first..h {
+            let x = (a + slope * y as f64).round();
+            if !(x >= 0.0 && x < w as f64) {
+                continue;
+            }
+            let x = x as usize;
+            let row = &self.descriptors.weight[y * w..(y + 1) * w];
+            if row[x.saturating_sub(1)..(x + 2).min(w)]
+                .iter()
+                .any(|&v| v > 0.0)
+            {
+                hits += 1;
+            }
+        }
+        hits as f64 / (h - first).max(1) as f64
+    }
+
+    /// Lateral position y (m, left positive) of top-view boundary `b` at `x` metres ahead (the
+    /// near line extended below the top view).
+    fn road_y(&self, b: &LinearParabolic, x: f64) -> f64 {
+        let v = &self.config.top_view;
+        let s = v.m_per_px;
+        let r = (v.x_max_m - x) / s - 0.5;
+        v.y_left_m - (b.x_at(r) + 0.5) * s
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &LiuEstimate) -> LaneEstimate {
+        let at_car: Vec<f64> = e.boundaries.iter().map(|b| self.road_y(b, 0.0)).collect();
+        // Boundaries are ordered left to right; find the first one right of the car.
+        let right = at_car
+            .iter()
+            .position(|&y| y <= 0.0)
+            .unwrap_or(at_car.len());
+        let mut roles: Vec<(usize, Role)> = Vec::new();
+        if right >= 1 {
+            roles.push((right - 1, Role::EgoLeft));
+        }
+        if right >= 2 {
+            roles.push((right - 2, Role::LeftAdjacent));
+        }
+        if right < at_car.len() {
+            roles.push((right, Role::EgoRight));
+        }
+        if right + 1 < at_car.len() {
+            roles.push((right + 1, Role::RightAdjacent));
+        }
+        let v = &self.config.top_view;
+        let mut boundaries = Vec::new();
+        let mut state = std::collections::BTreeMap::new();
+        for &(k, role) in &roles {
+            let b = &e.boundaries[k];
+            let (points, road_points) = sample_road_curve(
+                |x| self.road_y(b, x),
+                |x, y| self.camera.road_to_pixel(x, y),
+                1.0,
+                v.x_max_m,
+                self.camera.width(),
+                self.camera.height(),
+            );
+            boundaries.push(Boundary {
+                role,
+                points,
+                road_points,
+            });
+            let name = role.as_str();
+            state.insert(format!("liu.{name}.rho"), b.rho);
+            state.insert(format!("liu.{name}.theta"), b.theta);
+            state.insert(format!("liu.{name}.d"), b.d);
+        }
+        let ego = |role: Role| roles.iter().find(|r| r.1 == role).map(|r| r.0);
+        let s = v.m_per_px;
+        let (mut offset, mut heading, mut curvature, mut width, mut valid) =
+            (0.0, 0.0, 0.0, 0.0, false);
+        if let (Some(l), Some(r)) = (ego(Role::EgoLeft), ego(Role::EgoRight)) {
+            let (bl, br) = (&e.boundaries[l], &e.boundaries[r]);
+            heading = (math::atan(bl.b()) + math::atan(br.b())) / 2.0;
+            offset = -(at_car[l] + at_car[r]) / 2.0;
+            width = (at_car[l] - at_car[r]) * math::cos(heading);
+            curvature = -(bl.e() + br.e()) / s;
+            let f = self.config.valid_fraction;
+            valid = e.support[l] >= f && e.support[r] >= f;
+        }
+        state.insert("liu.mask_pixels".to_string(), self.descriptors.count as f64);
+        LaneEstimate {
+            frame: String::new(),
+            valid,
+            ms: 0.0,
+            boundaries,
+            lateral_offset_m: offset,
+            heading_rad: heading,
+            curvature_per_m: curvature,
+            lane_width_m: width,
+            state,
+        }
+    }
+}
+
+impl Tracker for LiuTracker {
+    fn id(&self) -> &'static str {
+        self.id
+    }
+
+    fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate> {
+        let e = self.track(rgba, width, height)?;
+        Ok(self.to_lane_estimate(&e))
+    }
+
+    fn reset(&mut self) {
+        self.filter.reset(&self.initial);
+        self.frame = None;
+    }
+
+    fn stage_times(&self) -> StageTimes {
+        self.times
+    }
+
+    /// 3 n_l + 1 numbers per particle: (rho px, theta rad, d) of each boundary on the top
+    /// view, left to right, then the normalised weight. The first N' particles are the frame's
+    /// initialisation particles until the linear part has resampled them.
+    fn particles(&self) -> Vec<f32> {
+        let n = self.model.boundaries();
+        self.particle_states()
+            .flat_map(|(p, w)| {
+                p.boundaries[..n]
+                    .iter()
+                    .flat_map(|b| b.iter().map(|&v| v as f32))
+                    .chain(std::iter::once(w as f32))
+                    .collect::<Vec<_>>()
+            })
+            .collect()
+    }
+
+    fn particle_stride(&self) -> usize {
+        3 * self.model.boundaries() + 1
+    }
+
+    fn step_names(&self) -> &'static [&'static str] {
+        if self.id == ID {
+            &STEP_NAMES
+        } else {
+            &STEP_NAMES_NOKERNEL
+        }
+    }
+
+    /// The measurement pixels' weights K_c sqrt(|grad I| / 2 pi) (PPF-NoKernel: K_c) relative
+    /// to half the frame's largest, clipped at 1, and the top view itself (grey / 255).
+    fn layers(&self) -> Vec<Layer> {
+        let d = &self.descriptors;
+        let (w, h) = (d.width(), d.height());
+        let v = &self.config.top_view;
+        let max = d.weight.iter().copied().fold(0.0f32, f32::max);
+        let scale = if max > 0.0 { 1.0 / (0.5 * max) } else { 0.0 };
+        // Grid rows run from near to far: flip the top view's rows.
+        let flip = |f: &dyn Fn(usize) -> f32| -> Vec<f32> {
+            (0..h)
+                .rev()
+                .flat_map(|r| (0..w).map(move |c| r * w + c))
+                .map(f)
+                .collect()
+        };
+        let grid = |name: &str, values: Vec<f32>| Layer::Grid {
+            name: name.to_string(),
+            width: w,
+            height: h,
+            x0: v.x_max_m - h as f64 * v.m_per_px,
+            y0: v.y_left_m,
+            cell: v.m_per_px,
+            values,
+        };
+        let top = d.top_view().data();
+        vec![
+            grid(
+                "measurement pixels: intensity and orientation kernel weight",
+                flip(&|i| (d.weight[i] * scale).min(1.0)),
+            ),
+            grid(
+                "top view (grey / 255)",
+                flip(&|i| f32::from(top[i]) / 255.0),
+            ),
+        ]
+    }
+
+    fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        self.begin(rgba, width, height)
+    }
+
+    fn advance(&mut self) -> Result<Option<LaneEstimate>> {
+        if self.frame.is_none() {
+            return Err(super::no_frame_in_progress());
+        }
+        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+    }
+
+    fn next_step(&self) -> Option<usize> {
+        LiuTracker::next_step(self)
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,403 @@
+//! The partitioned model of Liu Sec. IV: the particle state, the random walks of its two
+//! partitions (eqs. 18-19, 22-23), the measurement models of both partitions (PPF-Kernel eqs.
+//! 20-21 and 24-25, PPF-NoKernel eqs. 26-27), the multiple-lane validity checks (Sec. IV-A) and
+//! the default lane model the initialisation particles come from (Sec. IV-D).
+//!
+//! Stage 0 (linear part): weight = prod_k n_k^l p(z_k^l | x) = prod_k S_k^l with
+//!
+//! ```text
+//! S_k^l = sum_{i near boundary k, y_i > y_m} K_ci K_theta(theta_k; theta_i, 1/|grad I|_i) G_li(rho_k, theta_k)
+//! ```
+//!
+//! Stage 1 (parabolic part): weight = A prod_k n_k^p p(z_k^p | x) = prod_k S_k^p / n_k^l, with
+//! A = prod_k 1 / n_k^l (Sec. IV-F: the paper replaces the weighted-resampling factor 1/w^l
+//! by 1/n_k^l "to enforce the importance of the linear part"; we read it as the product over
+//! the boundaries, the counts of the particle's own linear part) and
+//!
+//! ```text
+//! S_k^p = sum_{i near boundary k, y_i <= y_m} K_ci G_pi(c_k, d_k, e_k)      (eq. 17 for c, e)
+//! ```
+//!
+//! PPF-NoKernel replaces the sums by sum_i K_ci over the same pixels (eqs. 26-27). "Near" is a
+//! band of +-`band_px` columns around the boundary in each row (the paper does not give its
+//! width). A boundary with no mask pixel near it gives S = 0 and the particle weight 0, as the
+//! product of eq. 21 says; when that happens to every particle (a blackout) the core falls back
+//! to equal weights and the random walk carries the cloud.
+//!
+//! Validity (Sec. IV-A, in metres): at the bottom row and at y_m, each boundary lies at least
+//! `min_spacing_m` to the right of its left neighbour, and neighbouring spacings differ by less
+//! than `max_spacing_difference_m`; other particles get weight 0 in stage 0.
+
+use super::config::{LiuConfig, MAX_BOUNDARIES};
+use super::descriptors::{wrap_half_turn, Descriptors};
+use super::exp_table::{ExpTable, RANGE};
+use super::kernels::GaussHermite;
+use crate::filter::{InitialDistribution, PartitionedModel, Rng};
+use crate::lane::LinearParabolic;
+use crate::math;
+use std::f64::consts::PI;
+
+/// One particle: (rho, theta, d) of each boundary, left to right; only the first n_l are used.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LaneParticle {
+    /// (rho px, theta rad, d px/px) per boundary.
+    pub boundaries: [[f64; 3]; MAX_BOUNDARIES],
+}
+
+/// The two partitions' motion and measurement, on one top view.
+#[derive(Debug, Clone)]
+pub struct PpfModel {
+    n: usize,
+    kernel: bool,
+    width: usize,
+    height: usize,
+    y_m: f64,
+    m_per_px: f64,
+    var_x: f64,
+    var_y: f64,
+    band: isize,
+    rule: GaussHermite,
+    /// w_k / sqrt(pi) of the rule.
+    node_weights: Vec<f64>,
+    /// sqrt(2 sigma_y^2) t_k.
+    node_offsets: Vec<f64>,
+    sigma_rho: f64,
+    sigma_theta: f64,
+    sigma_d: f64,
+    min_spacing: f64,
+    max_difference: f64,
+    exp: ExpTable,
+}
+
+/// A boundary's band sum and its pixel count.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BandSum {
+    /// S: the sum of the pixels' kernel products.
+    pub sum: f64,
+    /// n: mask pixels in the band.
+    pub count: usize,
+}
+
+impl PpfModel {
+    /// The model of `config` on a top view of `width` x `height` pixels; `kernel` selects
+    /// PPF-Kernel (otherwise PPF-NoKernel).
+    pub fn new(config: &LiuConfig, width: usize, height: usize, kernel: bool) -> Self {
+        let rule = GaussHermite::new(config.quadrature_nodes);
+        let var_y = config.position_variance_px2;
+        let node_weights = rule.weights.iter().map(|w| w / PI.sqrt()).collect();
+        let node_offsets = rule
+            .nodes
+            .iter()
+            .map(|t| (2.0 * var_y).sqrt() * t)
+            .collect();
+        Self {
+            n: config.boundaries,
+            kernel,
+            width,
+            height,
+            y_m: config.split_row(height),
+            m_per_px: config.top_view.m_per_px,
+            var_x: config.position_variance_px2,
+            var_y,
+            band: config.band_px as isize,
+            rule,
+            node_weights,
+            node_offsets,
+            sigma_rho: config.sigma_rho_px,
+            sigma_theta: config.sigma_theta,
+            sigma_d: config.sigma_d,
+            min_spacing: config.min_spacing_m,
+            max_difference: config.max_spacing_difference_m,
+            exp: ExpTable::default(),
+        }
+    }
+
+    /// Number of boundaries n_l.
+    pub fn boundaries(&self) -> usize {
+        self.n
+    }
+    /// The split row y_m.
+    pub fn split_row(&self) -> f64 {
+        self.y_m
+    }
+    /// The quadrature rule.
+    pub fn rule(&self) -> &GaussHermite {
+        &self.rule
+    }
+
+    /// Boundary k of a particle as a model.
+    pub fn boundary(&self, p: &LaneParticle, k: usize) -> LinearParabolic {
+        let [rho, theta, d] = p.boundaries[k];
+        LinearParabolic {
+            rho,
+            theta,
+            d,
+            y_m: self.y_m,
+        }
+    }
+
+    /// First near row (the rows y > y_m) and the last far row (y <= y_m).
+    fn near_rows(&self) -> std::ops::Range<usize> {
+        let first = (self.y_m.floor() as usize + 1).min(self.height);
+        first..self.height
+    }
+    fn far_rows(&self) -> std::ops::Range<usize> {
+        0..(self.y_m.floor() as usize + 1).min(self.height)
+    }
+
+    /// Columns of the band around x in a row, clipped to the view.
+    fn band(&self, x: f64) -> Option<std::ops::RangeInclusive<usize>> {
+        if !x.is_finite() {
+            return None;
+        }
+        let centre = x.round();
+        let lo = (centre - self.band as f64).max(0.0);
+        let hi = (centre + self.band as f64).min(self.width as f64 - 1.0);
+        (lo <= hi).then_some(lo as usize..=hi as usize)
+    }
+
+    /// Sec. IV-A: spacings at the bottom row and at y_m.
+    pub fn is_valid(&self, p: &LaneParticle) -> bool {
+        for y in [self.height as f64 - 1.0, self.y_m] {
+            let mut previous: Option<(f64, Option<f64>)> = None;
+            for k in 0..self.n {
+                let x = self.boundary(p, k).x_at(y);
+                if let Some((x_left, spacing_left)) = previous {
+                    let spacing = (x - x_left) * self.m_per_px;
+                    if spacing.is_nan() || spacing <= self.min_spacing {
+                        return false;
+                    }
+                    if let Some(s) = spacing_left {
+                        if (spacing - s).abs() >= self.max_difference {
+                            return false;
+                        }
+                    }
+                    previous = Some((x, Some(spacing)));
+                } else {
+                    previous = Some((x, None));
+                }
+            }
+        }
+        true
+    }
+
+    /// S_k^l of boundary `b` over the near rows: eq. 20 times n_k^l (PPF-Kernel) or eq. 26 times
+    /// n_k^l (PPF-NoKernel).
+    pub fn linear_sum(&self, b: &LinearParabolic, cues: &Descriptors) -> BandSum {
+        let (s, c) = (math::sin(b.theta), math::cos(b.theta));
+        let (a, slope) = (b.rho / c, -s / c);
+        // Eq. 5's variance of the distance along the normal.
+        let var = self.var_x * c * c + self.var_y * s * s;
+        let inv_2var = 0.5 / var;
+        let mut out = BandSum::default();
+        for y in self.near_rows() {
+            let xc = a + slope * y as f64;
+            let Some(cols) = self.band(xc) else { continue };
+            let span = cues.span(y, *cols.start(), *cols.end());
+            out.count += span.len();
+            if !self.kernel {
+                out.sum += cues.weight_of(span);
+                continue;
+            }
+            for px in &cues.pixels[span] {
+                let dtheta = fold(b.theta - f64::from(px.theta));
+                let orientation = 0.5 * dtheta * dtheta * f64::from(px.precision);
+                if orientation >= RANGE {
+                    continue;
+                }
+                let dist = c * (xc - f64::from(px.x));
+                let arg = dist * dist * inv_2var + orientation;
+                out.sum += f64::from(px.weight) * self.exp.neg_exp(arg);
+            }
+        }
+        if self.kernel {
+            out.sum /= (2.0 * PI * var).sqrt();
+        }
+        out
+    }
+
+    /// Mask pixels near boundary `b` in the near rows (n_k^l), without the kernels.
+    pub fn linear_count(&self, b: &LinearParabolic, cues: &Descriptors) -> usize {
+        let (a, slope) = (b.a(), b.b());
+        self.near_rows()
+            .filter_map(|y| {
+                let cols = self.band(a + slope * y as f64)?;
+                Some(cues.span(y, *cols.start(), *cols.end()).len())
+            })
+            .sum()
+    }
+
+    /// S_k^p of boundary `b` over the far rows: eq. 24 times n_k^p (PPF-Kernel, G_pi by
+    /// Gauss-Hermite) or eq. 27 times n_k^p (PPF-NoKernel).
+    pub fn parabolic_sum(&self, b: &LinearParabolic, cues: &Descriptors) -> BandSum {
+        let [_, _, c, e] = b.coefficients();
+        let d = b.d;
+        let mut out = BandSum::default();
+        let nodes = self.node_offsets.len();
+        let inv_2var = 0.5 / self.var_x;
+        let mut node_x = [0.0; 20];
+        let mut node_theta = [0.0; 20];
+        for y in self.far_rows() {
+            let yf = y as f64;
+            let xc = c + d * yf + e * yf * yf;
+            let Some(cols) = self.band(xc) else { continue };
+            let span = cues.span(y, *cols.start(), *cols.end());
+            if span.is_empty() {
+                continue;
+            }
+            out.count += span.len();
+            if !self.kernel {
+                out.sum += cues.weight_of(span);
+                continue;
+            }
+            // The curve and its gradient orientation (eq. 7) at the row's nodes y_k: the
+            // orientation by atan at y and its first-order change across the nodes
+            // (|dtheta/dy| = 2|e| / (1 + slope^2) over +-2 rows: below 1e-6 rad off).
+            let slope = d + 2.0 * e * yf;
+            let theta = math::atan(-slope);
+            let dtheta_dy = -2.0 * e / (1.0 + slope * slope);
+            for k in 0..nodes {
+                let yk = yf + self.node_offsets[k];
+                node_x[k] = c + d * yk + e * yk * yk;
+                // The change of the curve's orientation from the row to node k.
+                node_theta[k] = dtheta_dy * self.node_offsets[k];
+            }
+            for px in &cues.pixels[span] {
+                let precision = f64::from(px.precision);
+                // The orientation difference at the row, folded once: across the nodes it
+                // changes by dtheta_dy * offset (below 1e-3 rad), too little to cross a fold.
+                let dtheta = fold(theta - f64::from(px.theta));
+                if 0.5 * dtheta * dtheta * precision >= RANGE + 1.0 {
+                    // Every node's exponent is beyond the table: the pixel adds nothing.
+                    continue;
+                }
+                let xf = f64::from(px.x);
+                let mut g = 0.0;
+                for k in 0..nodes {
+                    let dx = node_x[k] - xf;
+                    let dt = dtheta + node_theta[k];
+                    let arg = dx * dx * inv_2var + 0.5 * dt * dt * precision;
+                    g += self.node_weights[k] * self.exp.neg_exp(arg);
+                }
+                out.sum += f64::from(px.weight) * g;
+            }
+        }
+        if self.kernel {
+            out.sum /= (2.0 * PI * self.var_x).sqrt();
+        }
+        out
+    }
+}
+
+/// A difference of two orientations in (-pi/2, pi/2] each, folded into (-pi/2, pi/2].
+fn fold(d: f64) -> f64 {
+    if d > PI / 2.0 {
+        d - PI
+    } else if d <= -PI / 2.0 {
+        d + PI
+    } else {
+        d
+    }
+}
+
+impl PartitionedModel<LaneParticle> for PpfModel {
+    type Cues = Descriptors;
+
+    fn stages(&self) -> usize {
+        2
+    }
+
+    /// Eqs. 18-19 (stage 0: rho_k, theta_k) and 22-23 (stage 1: d_k): identity plus Gaussian
+    /// noise.
+    fn propagate(&self, stage: usize, p: &mut LaneParticle, rng: &mut Rng) {
+        for b in p.boundaries.iter_mut().take(self.n) {
+            if stage == 0 {
+                b[0] += rng.gaussian(0.0, self.sigma_rho);
+                b[1] = wrap_half_turn(b[1] + rng.gaussian(0.0, self.sigma_theta));
+            } else {
+                b[2] += rng.gaussian(0.0, self.sigma_d);
+            }
+        }
+    }
+
+    fn log_likelihood(&self, stage: usize, p: &LaneParticle, cues: &Descriptors) -> f64 {
+        let mut l = 0.0;
+        if stage == 0 {
+            if !self.is_valid(p) {
+                return f64::NEG_INFINITY;
+            }
+            for k in 0..self.n {
+                // Eq. 21: prod_k n_k^l p(z_k^l | x) = prod_k S_k^l.
+                l += math::ln(self.linear_sum(&self.boundary(p, k), cues).sum);
+            }
+        } else {
+            for k in 0..self.n {
+                let b = self.boundary(p, k);
+                // Eq. 25 with A = prod_k 1 / n_k^l.
+                let n_l = self.linear_count(&b, cues);
+                l += math::ln(self.parabolic_sum(&b, cues).sum) - math::ln(n_l as f64);
+            }
+        }
+        if l.is_nan() {
+            f64::NEG_INFINITY
+        } else {
+            l
+        }
+    }
+}
+
+/// The default lane model (Sec. IV-D): n_l straight (d = b), parallel boundaries one lane
+/// width apart with a common heading, placed so that the car is inside the set, each jittered.
+#[derive(Debug, Clone)]
+pub struct DefaultLanes {
+    n: usize,
+    y_m: f64,
+    width_m: [f64; 2],
+    heading: f64,
+    jitter_m: f64,
+    view: crate::vision::TopViewConfig,
+}
+
+impl DefaultLanes {
+    /// The default lane model of `config` on a top view of `height` rows.
+    pub fn new(config: &LiuConfig, height: usize) -> Self {
+        Self {
+            n: config.boundaries,
+            y_m: config.split_row(height),
+            width_m: config.default_width_m,
+            heading: config.default_heading_rad,
+            jitter_m: config.default_jitter_m,
+            view: config.top_view,
+        }
+    }
+
+    /// The straight boundary at lateral position `y0` (m, left positive) at the car with
+    /// heading tan = `slope`, in top-view pixels: column(r) = a + b r with b = slope.
+    pub fn straight_boundary(&self, y0: f64, slope: f64) -> [f64; 3] {
+        let v = &self.view;
+        // y(x) = y0 + slope x; column = (y_left - y) / s - 1/2; x(r) = x_max - (r + 1/2) s.
+        let s = v.m_per_px;
+        let a = (v.y_left_m - y0 - slope * (v.x_max_m - 0.5 * s)) / s - 0.5;
+        let b = slope;
+        let m = LinearParabolic::from_line(a, b, b, self.y_m);
+        [m.rho, m.theta, m.d]
+    }
+}
+
+impl InitialDistribution<LaneParticle> for DefaultLanes {
+    fn sample(&self, rng: &mut Rng) -> LaneParticle {
+        let [lo, hi] = self.width_m;
+        let w = lo + (hi - lo) * rng.uniform();
+        let shift = (rng.uniform() - 0.5) * w;
+        let slope = math::tan((2.0 * rng.uniform() - 1.0) * self.heading);
+        let mut p = LaneParticle {
+            boundaries: [[0.0; 3]; MAX_BOUNDARIES],
+        };
+        let centre = (self.n as f64 - 1.0) / 2.0;
+        for k in 0..self.n {
+            let y0 = shift + (centre - k as f64) * w + rng.gaussian(0.0, self.jitter_m);
+            p.boundaries[k] = self.straight_boundary(y0, slope);
+        }
+        p
+    }
+}
