@@ -6,7 +6,7 @@ PORT ?= 8080
 WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
                  CHROMEDRIVER=/usr/bin/chromedriver WASM_BINDGEN_TEST_TIMEOUT=120
 
-.PHONY: demo test setup pkg lint test-native test-wasm test-browser bench
+.PHONY: demo test setup pkg lint test-native test-wasm test-browser bench bench-browser
 
 ## Build everything and serve the demo on http://127.0.0.1:$(PORT)/
 demo: pkg
@@ -40,3 +40,7 @@ test-browser:
 ## Criterion benchmarks (not part of `make test`).
 bench:
 	cargo bench
+
+## Time every tracker in headless Chromium (ms/frame of Tracker.step).
+bench-browser: pkg
+	node scripts/bench-browser.mjs

@@ -79,6 +79,18 @@ pub fn rad_to_deg(r: f64) -> f64 {
     r * (180.0 / std::f64::consts::PI)
 }
 
+/// Composite Simpson's rule over [a, b] with `n` (even) intervals: the slow reference that
+/// tests check closed forms and quadratures against.
+#[cfg(test)]
+pub(crate) fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
+    let h = (b - a) / n as f64;
+    let mut sum = f(a) + f(b);
+    for i in 1..n {
+        sum += if i % 2 == 1 { 4.0 } else { 2.0 } * f(a + i as f64 * h);
+    }
+    sum * h / 3.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

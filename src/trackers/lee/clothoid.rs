@@ -221,23 +221,12 @@ impl LaneState {
 mod tests {
     use super::*;
 
-    /// Simpson's rule with `n` intervals.
-    fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, n: usize) -> f64 {
-        let h = (b - a) / n as f64;
-        let mut sum = f(a) + f(b);
-        for i in 1..n {
-            let x = a + i as f64 * h;
-            sum += if i % 2 == 1 { 4.0 } else { 2.0 } * f(x);
-        }
-        sum * h / 3.0
-    }
-
     #[test]
     fn fresnel_series_matches_numerical_integration() {
         for &t in &[0.0, 0.1, 0.5, 1.0, 1.25, 1.7, 2.0, -0.8] {
             let (c, s) = fresnel(t);
-            let cn = simpson(|u| math::cos(u * u), 0.0, t, 20_000);
-            let sn = simpson(|u| math::sin(u * u), 0.0, t, 20_000);
+            let cn = math::simpson(|u| math::cos(u * u), 0.0, t, 20_000);
+            let sn = math::simpson(|u| math::sin(u * u), 0.0, t, 20_000);
             assert!(
                 (c - cn).abs() < 1e-12 && (s - sn).abs() < 1e-12,
                 "t {t}: {c} {s} vs {cn} {sn}"

@@ -39,10 +39,6 @@ pub struct Descriptors {
     /// Kernel-variant weight K_c sqrt(|grad I| / 2 pi) (or K_c for PPF-NoKernel), 0 off the
     /// mask; row-major, top-view width per row.
     pub weight: Vec<f32>,
-    /// Gradient orientation modulo pi, radians.
-    pub theta: Vec<f32>,
-    /// Orientation precision 1 / sigma_theta^2 = |grad I|.
-    pub precision: Vec<f32>,
     /// Mask pixels in the last frame.
     pub count: usize,
     /// The mask pixels in row-major order (compact): column, weight, orientation, precision.
@@ -104,8 +100,6 @@ impl Descriptors {
             intensity_variance: intensity.1,
             kernel,
             weight: vec![0.0; w * h],
-            theta: vec![0.0; w * h],
-            precision: vec![0.0; w * h],
             count: 0,
             pixels: Vec::with_capacity(w * h),
             before: vec![0; (w + 1) * h],
@@ -170,8 +164,6 @@ impl Descriptors {
                 };
                 let theta = orientation_mod_pi(gy[i], gx[i]);
                 self.weight[i] = weight;
-                self.theta[i] = theta;
-                self.precision[i] = m;
                 self.pixels.push(MaskPixel {
                     x: x as f32,
                     weight,

@@ -194,16 +194,6 @@ pub fn parabolic_kernel(
 mod tests {
     use super::*;
 
-    /// Composite Simpson over [a, b] with m (even) intervals.
-    fn simpson(f: impl Fn(f64) -> f64, a: f64, b: f64, m: usize) -> f64 {
-        let h = (b - a) / m as f64;
-        let mut s = f(a) + f(b);
-        for k in 1..m {
-            s += f(a + k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 };
-        }
-        s * h / 3.0
-    }
-
     #[test]
     fn gauss_hermite_rules_integrate_polynomials_exactly() {
         for n in 1..=12 {
@@ -253,7 +243,7 @@ mod tests {
             let (x, y) = (rho * c - t * s, rho * s + t * c);
             gaussian(x - xi, vx) * gaussian(y - yi, vy)
         };
-        let numeric = simpson(along, -40.0, 40.0, 20_000);
+        let numeric = math::simpson(along, -40.0, 40.0, 20_000);
         let g = line_kernel(rho, theta, xi, yi, vx, vy);
         assert!(
             (numeric - g).abs() < 1e-9 * g.max(1e-12),
@@ -282,7 +272,7 @@ mod tests {
                             theta,
                             precision: 60.0,
                         };
-                        let numeric = simpson(
+                        let numeric = math::simpson(
                             |t| parabolic_integrand(&p, &px, t, 1.0) * gaussian(t - y, 1.0),
                             y - 12.0,
                             y + 12.0,
