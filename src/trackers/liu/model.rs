@@ -55,7 +55,7 @@ pub struct PpfModel {
     m_per_px: f64,
     var_x: f64,
     var_y: f64,
-    band: isize,
+    band: usize,
     rule: GaussHermite,
     /// w_k / sqrt(pi) of the rule.
     node_weights: Vec<f64>,
@@ -99,7 +99,7 @@ impl PpfModel {
             m_per_px: config.top_view.m_per_px,
             var_x: config.position_variance_px2,
             var_y,
-            band: config.band_px as isize,
+            band: config.band_px,
             rule,
             node_weights,
             node_offsets,
@@ -147,12 +147,18 @@ impl PpfModel {
 
     /// Columns of the band around x in a row, clipped to the view.
     fn band(&self, x: f64) -> Option<std::ops::RangeInclusive<usize>> {
+        // Rounding half away from zero (as f64::round) by saturating casts, without the libm
+        // call; NaN gives 0 and infinities saturate, both far outside any view.
         if !x.is_finite() {
             return None;
         }
-        let centre = x.round();
-        let lo = (centre - self.band as f64).max(0.0);
-        let hi = (centre + self.band as f64).min(self.width as f64 - 1.0);
+        let centre = if x >= 0.0 {
+            (x + 0.5) as i64
+        } else {
+            (x - 0.5) as i64
+        };
+        let lo = (centre - self.band as i64).max(0);
+        let hi = (centre + self.band as i64).min(self.width as i64 - 1);
         (lo <= hi).then_some(lo as usize..=hi as usize)
     }
 
