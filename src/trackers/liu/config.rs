@@ -54,9 +54,10 @@ pub struct LiuConfig {
     pub min_spacing_m: f64,
     /// Largest difference between neighbouring spacings, metres (the paper: 5 px).
     pub max_spacing_difference_m: f64,
-    /// A frame is valid when both ego boundaries of the estimate have a mask pixel within
-    /// 1 pixel (sigma_x) in at least this fraction of the near rows (the paper does not define
-    /// valid frames; this is ours, as for lee-cpf).
+    /// A frame is valid when both ego boundaries of the estimate have a strong edge pixel of
+    /// their orientation (within 0.1 rad, gradient at least twice the threshold) within 1 pixel
+    /// (sigma_x) in at least this fraction of the near rows (the paper does not define valid
+    /// frames; this is ours, as for lee-cpf; a dashed line gives about 0.25).
     pub valid_fraction: f64,
     /// Default lane model (Sec. IV-D): range of lane widths, metres.
     pub default_width_m: [f64; 2],

@@ -48,6 +48,11 @@ pub const ID_NOKERNEL: &str = "liu-ppf-nokernel";
 /// PPF-Kernel near real time at 640x480 (RESULTS.md); N_l = N + N' in the linear part.
 pub const DEFAULT_PARTICLES: usize = 200;
 
+/// Orientation tolerance of a supporting edge pixel (see `LiuTracker::support`), radians.
+pub const SUPPORT_ORIENTATION_RAD: f64 = 0.1;
+/// A supporting edge pixel's gradient, in multiples of the mask threshold.
+pub const SUPPORT_GRADIENT_FACTOR: f64 = 2.0;
+
 /// The steps of one frame after [`LiuTracker::begin`] (per-step mode).
 pub const STEP_NAMES: [&str; 7] = [
     "resample to N and add N' initialisation particles from the default lane model (Sec. IV-D)",
@@ -308,11 +313,16 @@ impl LiuTracker {
         }
     }
 
-    /// Fraction of near rows with a mask pixel within one pixel of the boundary's line.
+    /// Fraction of near rows with a strong edge pixel on the boundary's line: within one
+    /// pixel, its orientation within [`SUPPORT_ORIENTATION_RAD`] of the line's and its
+    /// gradient at least [`SUPPORT_GRADIENT_FACTOR`] times the mask threshold. (Any mask pixel
+    /// would not do: the paper's threshold passes asphalt texture, and half the top view.)
     fn support(&self, b: &LinearParabolic) -> f64 {
-        let (w, h) = (self.descriptors.width(), self.descriptors.height());
+        let d = &self.descriptors;
+        let (w, h) = (d.width(), d.height());
         let first = (self.model.split_row().floor() as usize + 1).min(h);
         let (a, slope) = (b.a(), b.b());
+        let strong = (SUPPORT_GRADIENT_FACTOR * self.config.gradient_threshold) as f32;
         let mut hits = 0;
         for y in first..h {
             let x = (a + slope * y as f64).round();
@@ -320,11 +330,12 @@ impl LiuTracker {
                 continue;
             }
             let x = x as usize;
-            let row = &self.descriptors.weight[y * w..(y + 1) * w];
-            if row[x.saturating_sub(1)..(x + 2).min(w)]
-                .iter()
-                .any(|&v| v > 0.0)
-            {
+            let span = d.span(y, x.saturating_sub(1), (x + 1).min(w - 1));
+            if d.pixels[span].iter().any(|px| {
+                px.precision >= strong
+                    && descriptors::wrap_half_turn(b.theta - f64::from(px.theta)).abs()
+                        < SUPPORT_ORIENTATION_RAD
+            }) {
                 hits += 1;
             }
         }
