@@ -12,7 +12,7 @@
 //! Stage 1 (parabolic part): weight = A prod_k n_k^p p(z_k^p | x) = prod_k S_k^p / n_k^l, with
 //! A = prod_k 1 / n_k^l (Sec. IV-F: the paper replaces the weighted-resampling factor 1/w^l
 //! by 1/n_k^l "to enforce the importance of the linear part"; we read it as the product over
-//! the boundaries, the counts of the particle's own linear part) and
+//! the boundaries, the counts of the particle's own linear part, with n_k^l = 0 read as 1) and
 //!
 //! ```text
 //! S_k^p = sum_{i near boundary k, y_i <= y_m} K_ci G_pi(c_k, d_k, e_k)      (eq. 17 for c, e)
@@ -339,8 +339,11 @@ impl PartitionedModel<LaneParticle> for PpfModel {
         } else {
             for k in 0..self.n {
                 let b = self.boundary(p, k);
-                // Eq. 25 with A = prod_k 1 / n_k^l.
-                let n_l = self.linear_count(&b, cues);
+                // Eq. 25 with A = prod_k 1 / n_k^l. A particle can reach this stage with
+                // n_k^l = 0 only when the linear stage gave every particle weight 0 (its
+                // weights then fell back to equal); A is undefined there and taken as 1,
+                // not as an infinite weight.
+                let n_l = self.linear_count(&b, cues).max(1);
                 l += math::ln(self.parabolic_sum(&b, cues).sum) - math::ln(n_l as f64);
             }
         }

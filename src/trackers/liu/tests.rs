@@ -199,3 +199,41 @@ fn the_truth_top_view_parameters_describe_the_true_boundaries() {
         }
     }
 }
+
+#[test]
+fn a_hidden_near_field_gives_finite_far_weights() {
+    // The near field blacked out: no measurement pixel in the near part, so
+    // every particle's linear weight is 0 and A = 1/n_k^l of eq. 25 is undefined. The far part
+    // must still weigh particles by finite amounts (not +infinity for some of them).
+    use crate::filter::PartitionedModel;
+    let mut scene = Scene::new(
+        scenario("highway-straight").unwrap(),
+        default_camera(320, 240).unwrap(),
+        1,
+    )
+    .unwrap();
+    let mut rgba = vec![0; 320 * 240 * 4];
+    scene.render(0, Eye::Left, &mut rgba, None).unwrap();
+    // The near part ends 21 m ahead (y_m at half of 6-36 m); black out the image below the
+    // road 21.6 m ahead, so the black edge's gradient stays in the far part.
+    let [_, v] = default_camera(320, 240)
+        .unwrap()
+        .road_to_pixel(21.6, 0.0)
+        .unwrap();
+    for px in rgba[320 * v.floor() as usize * 4..].chunks_mut(4) {
+        px[..3].fill(0);
+    }
+    let mut t = LiuTracker::new(&config(""), true).unwrap();
+    t.step(&rgba, 320, 240).unwrap();
+    let lanes = DefaultLanes::new(&t.config, t.descriptors.height());
+    let mut p = LaneParticle {
+        boundaries: [[0.0; 3]; MAX_BOUNDARIES],
+    };
+    for (k, y) in [5.4, 1.8, -1.8].into_iter().enumerate() {
+        p.boundaries[k] = lanes.straight_boundary(y, 0.0);
+    }
+    let linear = t.model.log_likelihood(0, &p, &t.descriptors);
+    let far = t.model.log_likelihood(1, &p, &t.descriptors);
+    assert_eq!(linear, f64::NEG_INFINITY);
+    assert!(far.is_finite(), "{far}");
+}
