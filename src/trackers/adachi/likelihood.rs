@@ -1,7 +1,7 @@
 //! The likelihood of Adachi et al. (eqs. 3-6).
 //!
 //! Boundaries (eq. 3): rho_l = q + [-1, 1, -3, 3]_l w / 2; model r switches them on with c_r
-//! (eq. 5): model 1 [1,1,0,0], 2 [1,1,1,0], 3 [1,1,0,1], 4 [1,1,1,1]. The edge distribution
+//! (eq. 5): model 1 `[1,1,0,0]`, 2 `[1,1,1,0]`, 3 `[1,1,0,1]`, 4 `[1,1,1,1]`. The edge distribution
 //! (eq. 4) is
 //!
 //! ```text

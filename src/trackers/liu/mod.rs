@@ -14,7 +14,7 @@
 //!    kernel density by Gauss-Hermite quadrature (eqs. 24-25, A = 1/n_k^l);
 //! 5. estimate: the weighted mean of (rho, theta, d) per boundary over the parabolic weights,
 //!    taken over the mode of the best particle (the paper does not say how it reads its
-//!    estimate off the particles; see [`LiuTracker::estimate`]). The next frame's resampling
+//!    estimate off the particles; see `LiuTracker::estimate`). The next frame's resampling
 //!    to N gives the paper's X_t.
 //!
 //! The boundaries (left to right) get their roles from where their near lines cross the car's
@@ -44,8 +44,8 @@ use model::{DefaultLanes, LaneParticle, PpfModel};
 pub const ID: &str = "liu-ppf";
 /// The id of PPF-NoKernel.
 pub const ID_NOKERNEL: &str = "liu-ppf-nokernel";
-/// Particles N when the config does not say (the paper gives only N' = 50): 200, which keeps
-/// PPF-Kernel near real time at 640x480 (RESULTS.md); N_l = N + N' in the linear part.
+/// Particles N when the config does not say (the paper gives only N' = 50): 200, with which
+/// PPF-Kernel takes about 13 ms per 640x480 frame (RESULTS.md); N_l = N + N' in the linear part.
 pub const DEFAULT_PARTICLES: usize = 200;
 
 /// Orientation tolerance of a supporting edge pixel (see `LiuTracker::support`), radians.
