@@ -7,6 +7,7 @@ export class Controls {
     this.tracker = doc.getElementById('tracker');
     this.source = doc.getElementById('source');
     this.showTruth = doc.getElementById('show-truth');
+    this.showCues = doc.getElementById('show-cues');
     this.status = doc.getElementById('status');
     this.timing = doc.getElementById('timing');
     this.version = doc.getElementById('version');

@@ -3,10 +3,11 @@
 import { WorkerClient } from './worker-client.js';
 import { SceneSource, TestRoadSource } from './source.js';
 import { Controls } from './controls.js';
-import { drawFrame, drawBoundaries } from './render.js';
+import { drawFrame, drawBoundaries, drawLayer } from './render.js';
 
 const controls = new Controls();
 const ctx = document.getElementById('view').getContext('2d');
+const cues = document.getElementById('cues').getContext('2d');
 const client = new WorkerClient();
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = { frames: 0, lastTruth: null, lastFrame: null });
@@ -17,6 +18,14 @@ function draw(frame) {
     drawBoundaries(ctx, frame.truth.boundaries, { dashed: true, width: 2 });
   }
   if (frame.estimate) drawBoundaries(ctx, frame.estimate.boundaries, { width: 4 });
+  // The tracker's first layer (its main cue: Adachi's votes, Lee's map, Liu's pixels).
+  const layer = frame.layers?.[0];
+  document.getElementById('cues-figure').hidden = !layer;
+  if (layer) {
+    drawLayer(cues, layer);
+    document.getElementById('cues-caption').textContent = layer.name;
+  }
+  demo.lastLayer = layer ?? null;
   demo.lastEstimate = frame.estimate;
   demo.frames += 1;
   demo.lastTruth = frame.truth;
@@ -58,7 +67,7 @@ async function main() {
     if (busy) return;
     busy = true;
     try {
-      draw(await source.next());
+      draw(await source.next({ layers: controls.showCues.checked }));
     } catch (err) {
       document.body.dataset.state = 'error';
       controls.say(err.message, true);

@@ -33,3 +33,55 @@ export function drawBoundaries(ctx, boundaries, { dashed = false, width = 3 } = 
   }
   ctx.restore();
 }
+
+/** Heat colour of a value in [0, 1]: red grows linearly, then yellow and white show the top. */
+function heat(v) {
+  const t = Math.min(1, Math.max(0, v));
+  return [255 * t, 255 * t * t, 255 * t * t * t];
+}
+
+/**
+ * Draws one of a tracker's cue layers (Tracker.layers()): a `grid` on the road plane as a heat
+ * map, far at the top and left on the left as seen from the car, or a `histogram` over a road
+ * axis as bars. Values are scaled by the layer's largest.
+ */
+export function drawLayer(ctx, layer) {
+  const canvas = ctx.canvas;
+  if (layer.kind === 'grid') {
+    const { width, height, values } = layer;
+    if (canvas.width !== width || canvas.height !== height) {
+      canvas.width = width;
+      canvas.height = height;
+    }
+    const max = values.reduce((a, v) => Math.max(a, v), 0) || 1;
+    const img = new ImageData(width, height);
+    for (let r = 0; r < height; r++) {
+      // Grid row 0 is nearest the car: draw it at the bottom.
+      const out = (height - 1 - r) * width;
+      for (let c = 0; c < width; c++) {
+        const [red, green, blue] = heat(values[r * width + c] / max);
+        const i = 4 * (out + c);
+        img.data[i] = red;
+        img.data[i + 1] = green;
+        img.data[i + 2] = blue;
+        img.data[i + 3] = 255;
+      }
+    }
+    ctx.putImageData(img, 0, 0);
+    return;
+  }
+  const { values } = layer;
+  if (canvas.width !== 640 || canvas.height !== 200) {
+    canvas.width = 640;
+    canvas.height = 200;
+  }
+  ctx.fillStyle = '#000';
+  ctx.fillRect(0, 0, canvas.width, canvas.height);
+  const max = values.reduce((a, v) => Math.max(a, v), 0) || 1;
+  const w = canvas.width / Math.max(1, values.length);
+  ctx.fillStyle = '#ffb74d';
+  values.forEach((v, k) => {
+    const h = (canvas.height - 10) * (v / max);
+    ctx.fillRect(k * w, canvas.height - h, Math.max(1, w), h);
+  });
+}

@@ -21,9 +21,9 @@ export class TestRoadSource {
     return this.client.request('openTestRoad', { camera: this.camera, options: this.options });
   }
 
-  /** Renders the next frame. */
-  async next() {
-    const frame = await this.client.request('renderFrame', { index: this.index });
+  /** Renders the next frame; `extra` goes to the worker (e.g. { layers: true }). */
+  async next(extra = {}) {
+    const frame = await this.client.request('renderFrame', { ...extra, index: this.index });
     frame.index = this.index++;
     return frame;
   }
@@ -47,8 +47,8 @@ export class SceneSource {
     return info;
   }
 
-  async next() {
-    const frame = await this.client.request('renderFrame', { index: this.index });
+  async next(extra = {}) {
+    const frame = await this.client.request('renderFrame', { ...extra, index: this.index });
     frame.index = this.index;
     this.index = (this.index + 1) % this.frames;
     return frame;

@@ -31,7 +31,8 @@ const handlers = {
     tracker = new Tracker(trackerId, { ...(options ?? {}), camera });
     return { trackerId: tracker.id };
   },
-  async renderFrame({ index }) {
+  // `layers`: also return the tracker's cue pictures (Tracker.layers()) after the step.
+  async renderFrame({ index, layers: withLayers = false }) {
     if (!road) throw new Error('no source is open: call openTestRoad or openScene first');
     const t0 = performance.now();
     const rgba = road.render(index);
@@ -39,13 +40,15 @@ const handlers = {
     const truth = road.truth(index);
     let estimate = null;
     let trackMs = 0;
+    let layers = null;
     if (tracker) {
       const t1 = performance.now();
       estimate = tracker.step(rgba, road.width, road.height);
       trackMs = performance.now() - t1;
+      if (withLayers) layers = tracker.layers();
     }
     return {
-      result: { rgba, width: road.width, height: road.height, truth, ms, estimate, trackMs },
+      result: { rgba, width: road.width, height: road.height, truth, ms, estimate, trackMs, layers },
       transfer: [rgba.buffer],
     };
   },

@@ -150,3 +150,47 @@ test('demo runs the adachi-mmpf tracker in the worker and draws its lanes on the
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('demo runs liu-ppf and shows its measurement pixels as the tracker cue view', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/`);
+  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  await page.click('#play');
+  await page.selectOption('#source', 'highway-straight');
+  await page.waitForFunction(() => /highway-straight/.test(document.getElementById('status').textContent));
+  await page.selectOption('#tracker', 'liu-ppf');
+  assert.equal(await page.isVisible('#cues'), false, 'no cue view before it is asked for');
+  await page.check('#show-cues');
+  await page.click('#play');
+  await page.waitForFunction(() => window.lanepfDemo.lastLayer && window.lanepfDemo.frames > 8,
+    null, { timeout: 30000 });
+  await page.click('#play');
+  const layer = await page.evaluate(() => window.lanepfDemo.lastLayer);
+  assert.equal(layer.kind, 'grid');
+  assert.match(await page.textContent('#cues-caption'), /measurement pixels/);
+  assert.equal(await page.isVisible('#cues'), true);
+  // The cue canvas is the top view: the markings are bright columns near the car, at the
+  // true boundaries' lateral positions (y = y0 - (c + 1/2) cell).
+  const cue = await page.evaluate(() => {
+    const c = document.getElementById('cues');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height);
+    return { width: d.width, height: d.height, data: Array.from(d.data) };
+  });
+  assert.equal(cue.width, layer.width);
+  const truth = await page.evaluate(() => window.lanepfDemo.lastTruth);
+  const ego = truth.boundaries.find((b) => b.role === 'ego-left');
+  // Over 1-13 m from the near edge of the view (a dashed line has a dash in any 12 m): the
+  // brightest pixel within 3 columns of the line, and the brightest 0.8-1.2 m inside the lane.
+  let best = 0;
+  let background = 0;
+  for (let x = layer.x0 + 1; x < layer.x0 + 13; x += layer.cell) {
+    const near = ego.road_points.reduce((a, p) => (Math.abs(p[0] - x) < Math.abs(a[0] - x) ? p : a));
+    const col = Math.floor((layer.y0 - near[1]) / layer.cell);
+    const row = cue.height - 1 - Math.floor((x - layer.x0) / layer.cell);
+    const red = (c) => cue.data[4 * (row * cue.width + c)];
+    for (let c = col - 3; c <= col + 3; c++) best = Math.max(best, red(c));
+    for (let c = col + 8; c < col + 12; c++) background = Math.max(background, red(c));
+  }
+  assert.ok(best > 150 && best > background + 50, `marking ${best} vs asphalt ${background}`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
