@@ -254,23 +254,25 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     assert!(tracker.step(&rgba, 320, 240).is_ok());
 }
 
-#[wasm_bindgen_test]
-fn lee_tracker_runs_in_the_browser_with_the_native_result() {
-    // Same run as the native unit test `trackers::lee::tests::same_result_as_the_browser_build`:
-    // highway-curve seed 1 at 320x240, 400 particles, seed 2, five frames.
+/// Runs tracker `id` with `options` (plus the scene's camera) over five frames of
+/// highway-curve (seed 1, 320x240), once by `step` and once in per-step mode, checking the
+/// step order; returns the scene, its camera, the whole-step tracker and both last estimates.
+fn track_five_frames_both_ways(
+    id: &str,
+    options: &str,
+) -> (JsScene, JsValue, JsTracker, JsValue, JsValue) {
     let mut scene = JsScene::new(
         "highway-curve",
         obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
     )
     .unwrap();
     let camera = scene.camera().unwrap();
-    let config = obj(r#"{"particles": 400, "seed": 2}"#);
+    let config = obj(options);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut tracker = JsTracker::new("lee-cpf", config.clone()).unwrap();
-    // A second tracker runs the same frames in per-step (teaching) mode.
-    let mut stepped = JsTracker::new("lee-cpf", config).unwrap();
+    let mut tracker = JsTracker::new(id, config.clone()).unwrap();
+    let mut stepped = JsTracker::new(id, config).unwrap();
     let steps = stepped.step_names().len();
-    assert_eq!(steps, 7);
+    assert_eq!(steps, 7, "{id}");
     let (mut last, mut last_stepped) = (JsValue::UNDEFINED, JsValue::UNDEFINED);
     for f in 0..5 {
         let rgba = scene.render(f).unwrap().to_vec();
@@ -282,6 +284,17 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
             assert_eq!(last_stepped.is_null(), k + 1 < steps);
         }
     }
+    let m = message(stepped.advance());
+    assert!(m.contains("begin_frame"), "{m}");
+    (scene, camera, tracker, last, last_stepped)
+}
+
+#[wasm_bindgen_test]
+fn lee_tracker_runs_in_the_browser_with_the_native_result() {
+    // Same run as the native unit test `trackers::lee::tests::same_result_as_the_browser_build`:
+    // highway-curve seed 1 at 320x240, 400 particles, seed 2, five frames, also step by step.
+    let (mut scene, camera, mut tracker, last, last_stepped) =
+        track_five_frames_both_ways("lee-cpf", r#"{"particles": 400, "seed": 2}"#);
     let offset = |v: &JsValue| {
         js_sys::Reflect::get(v, &"lateral_offset_m".into())
             .unwrap()
@@ -291,8 +304,6 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
     let o = offset(&last);
     assert_eq!(o.to_bits(), 0x3faf_ad71_da16_c37b, "{o}");
     assert_eq!(offset(&last_stepped).to_bits(), o.to_bits());
-    let m = message(stepped.advance());
-    assert!(m.contains("begin_frame"), "{m}");
     // Both stages' clouds: 400 + 400 particles of 8 numbers, each stage's weights summing to 1.
     assert_eq!(tracker.particle_stride(), 8);
     let cloud = tracker.particles().to_vec();
@@ -319,28 +330,11 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
 #[wasm_bindgen_test]
 fn liu_tracker_runs_in_the_browser_with_the_native_result() {
     // Same run as the native unit test `trackers::liu::tests::same_result_as_the_browser_build`:
-    // highway-curve seed 1 at 320x240, 300 particles, seed 2, five frames.
-    let mut scene = JsScene::new(
-        "highway-curve",
-        obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
-    )
-    .unwrap();
-    let camera = scene.camera().unwrap();
+    // highway-curve seed 1 at 320x240, 300 particles, seed 2, five frames, also step by step.
+    let (mut scene, camera, mut tracker, last, last_stepped) =
+        track_five_frames_both_ways("liu-ppf", r#"{"particles": 300, "seed": 2}"#);
     let config = obj(r#"{"particles": 300, "seed": 2}"#);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut tracker = JsTracker::new("liu-ppf", config.clone()).unwrap();
-    let mut stepped = JsTracker::new("liu-ppf", config.clone()).unwrap();
-    let steps = stepped.step_names().len();
-    assert_eq!(steps, 7);
-    let (mut last, mut last_stepped) = (JsValue::UNDEFINED, JsValue::UNDEFINED);
-    for f in 0..5 {
-        let rgba = scene.render(f).unwrap().to_vec();
-        last = tracker.step(&rgba, 320, 240).unwrap();
-        stepped.begin_frame(&rgba, 320, 240).unwrap();
-        for _ in 0..steps {
-            last_stepped = stepped.advance().unwrap();
-        }
-    }
     let rho = |v: &JsValue| {
         let state = js_sys::Reflect::get(v, &"state".into()).unwrap();
         js_sys::Reflect::get(&state, &"liu.ego-left.rho".into())

@@ -1,6 +1,7 @@
 //! Pre-processing and local image descriptors (Liu Secs. II and IV-C).
 //!
-//! Per frame: grey levels -> IPM top view -> Sobel gradient (magnitude |grad I| and
+//! Per frame: grey levels -> IPM top view (bilinear, where the paper shows a cubic
+//! interpolation, Fig. 1; a simplification) -> Sobel gradient (magnitude |grad I| and
 //! orientation) -> the measurement mask |grad I| > threshold (10 in the paper) on pixels whose
 //! 3 x 3 neighbourhood lies inside the camera's view (the IPM's fill value would otherwise make
 //! an edge along the border of the visible area). For every mask pixel i the descriptors are:
@@ -39,8 +40,6 @@ pub struct Descriptors {
     /// Kernel-variant weight K_c sqrt(|grad I| / 2 pi) (or K_c for PPF-NoKernel), 0 off the
     /// mask; row-major, top-view width per row.
     pub weight: Vec<f32>,
-    /// Mask pixels in the last frame.
-    pub count: usize,
     /// The mask pixels in row-major order (compact): column, weight, orientation, precision.
     pub pixels: Vec<MaskPixel>,
     /// before[y (W + 1) + x]: mask pixels before column x of row y in row-major order, so the
@@ -100,7 +99,6 @@ impl Descriptors {
             intensity_variance: intensity.1,
             kernel,
             weight: vec![0.0; w * h],
-            count: 0,
             pixels: Vec::with_capacity(w * h),
             before: vec![0; (w + 1) * h],
             weight_sum: Vec::with_capacity(w * h + 1),
@@ -175,13 +173,16 @@ impl Descriptors {
             }
             self.before[y * (w + 1) + w] = self.pixels.len() as u32;
         }
-        let count = self.pixels.len();
-        self.count = count;
         Ok(())
     }
 }
 
 impl Descriptors {
+    /// Mask pixels in the last frame.
+    pub fn count(&self) -> usize {
+        self.pixels.len()
+    }
+
     /// Indices into [`Descriptors::pixels`] of row y's mask pixels in columns lo..=hi.
     pub fn span(&self, y: usize, lo: usize, hi: usize) -> std::ops::Range<usize> {
         let base = y * (self.width() + 1);

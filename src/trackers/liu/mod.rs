@@ -408,7 +408,10 @@ impl LiuTracker {
             let f = self.config.valid_fraction;
             valid = e.support[l] >= f && e.support[r] >= f;
         }
-        state.insert("liu.mask_pixels".to_string(), self.descriptors.count as f64);
+        state.insert(
+            "liu.mask_pixels".to_string(),
+            self.descriptors.count() as f64,
+        );
         LaneEstimate {
             frame: String::new(),
             valid,
@@ -447,15 +450,14 @@ impl Tracker for LiuTracker {
     /// initialisation particles until the linear part has resampled them.
     fn particles(&self) -> Vec<f32> {
         let n = self.model.boundaries();
-        self.particle_states()
-            .flat_map(|(p, w)| {
-                p.boundaries[..n]
-                    .iter()
-                    .flat_map(|b| b.iter().map(|&v| v as f32))
-                    .chain(std::iter::once(w as f32))
-                    .collect::<Vec<_>>()
-            })
-            .collect()
+        let mut out = Vec::with_capacity(self.filter.len() * (3 * n + 1));
+        for (p, w) in self.particle_states() {
+            for b in &p.boundaries[..n] {
+                out.extend(b.iter().map(|&v| v as f32));
+            }
+            out.push(w as f32);
+        }
+        out
     }
 
     fn particle_stride(&self) -> usize {

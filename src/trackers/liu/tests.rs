@@ -237,3 +237,81 @@ fn a_hidden_near_field_gives_finite_far_weights() {
     assert_eq!(linear, f64::NEG_INFINITY);
     assert!(far.is_finite(), "{far}");
 }
+
+#[test]
+fn the_band_sums_match_the_reference_kernels() {
+    // linear_sum and parabolic_sum (table exp, orientation linearised across the nodes) against
+    // the reference forms of kernels.rs summed over the same band pixels, on a real frame,
+    // for boundaries on and beside a marking.
+    use super::kernels::{
+        line_kernel, orientation_kernel, parabolic_kernel, GaussHermite, Parabola, Pixel,
+    };
+    let mut scene = Scene::new(
+        scenario("highway-curve").unwrap(),
+        default_camera(320, 240).unwrap(),
+        1,
+    )
+    .unwrap();
+    let mut rgba = vec![0; 320 * 240 * 4];
+    scene.render(60, Eye::Left, &mut rgba, None).unwrap();
+    let mut t = LiuTracker::new(&config(""), true).unwrap();
+    t.step(&rgba, 320, 240).unwrap();
+    let (d, m) = (&t.descriptors, &t.model);
+    let rule = GaussHermite::new(t.config.quadrature_nodes);
+    let lanes = DefaultLanes::new(&t.config, d.height());
+    let y_m = m.split_row();
+    for (y0, bend) in [(1.8, 0.0), (1.9, 0.05), (-1.8, -0.1)] {
+        let [rho, theta, _] = lanes.straight_boundary(y0, 0.0);
+        let b = LinearParabolic {
+            rho,
+            theta,
+            d: -math::tan(theta) + bend,
+            y_m,
+        };
+        let [a, slope, c, e] = b.coefficients();
+        let (mut linear, mut parabolic) = (0.0, 0.0);
+        for y in 0..d.height() {
+            let yf = y as f64;
+            let xc = if yf > y_m {
+                a + slope * yf
+            } else {
+                c + b.d * yf + e * yf * yf
+            };
+            let centre = xc.round();
+            let lo = (centre - t.config.band_px as f64).max(0.0) as usize;
+            let hi = (centre + t.config.band_px as f64).min(d.width() as f64 - 1.0) as usize;
+            for px in &d.pixels[d.span(y, lo, hi)] {
+                let precision = f64::from(px.precision);
+                // weight = K_c sqrt(|grad I| / 2 pi): K_c alone times the kernels.
+                let kc = f64::from(px.weight) / (precision / (2.0 * std::f64::consts::PI)).sqrt();
+                let pixel = Pixel {
+                    x: f64::from(px.x),
+                    y: yf,
+                    theta: f64::from(px.theta),
+                    precision,
+                };
+                if yf > y_m {
+                    linear += kc
+                        * orientation_kernel(theta, pixel.theta, precision)
+                        * line_kernel(rho, theta, pixel.x, yf, 1.0, 1.0);
+                } else {
+                    let p = Parabola { c, d: b.d, e };
+                    parabolic += kc * parabolic_kernel(&p, &pixel, 1.0, 1.0, &rule);
+                }
+            }
+        }
+        let (fast_l, fast_p) = (m.linear_sum(&b, d), m.parabolic_sum(&b, d));
+        assert!(
+            linear > 0.0 && parabolic > 0.0,
+            "{y0}: {linear} {parabolic}"
+        );
+        assert!(
+            (fast_l - linear).abs() < 1e-3 * linear,
+            "{y0}: {fast_l} vs {linear}"
+        );
+        assert!(
+            (fast_p - parabolic).abs() < 1e-3 * parabolic,
+            "{y0}: {fast_p} vs {parabolic}"
+        );
+    }
+}
