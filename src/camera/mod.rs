@@ -150,6 +150,14 @@ impl Camera {
     pub fn pitch(&self) -> f64 {
         math::deg_to_rad(self.file.pitch_deg)
     }
+    /// Yaw, radians (positive to the left).
+    pub fn yaw(&self) -> f64 {
+        math::deg_to_rad(self.file.yaw_deg)
+    }
+    /// Roll, radians.
+    pub fn roll(&self) -> f64 {
+        math::deg_to_rad(self.file.roll_deg)
+    }
     /// Focal lengths (fx, fy), pixels.
     pub fn focal(&self) -> [f64; 2] {
         [self.file.fx, self.file.fy]
@@ -266,7 +274,7 @@ impl Camera {
 
 /// R (road to camera): rows are the camera's X = -L, Y = -U, Z = F axes in road coordinates,
 /// with [F L U] = Rz(yaw) Ry(pitch) Rx(roll).
-fn road_to_camera_rotation(pitch: f64, yaw: f64, roll: f64) -> Matrix3<f64> {
+pub(crate) fn road_to_camera_rotation(pitch: f64, yaw: f64, roll: f64) -> Matrix3<f64> {
     let (sp, cp) = (math::sin(pitch), math::cos(pitch));
     let (sy, cy) = (math::sin(yaw), math::cos(yaw));
     let (sr, cr) = (math::sin(roll), math::cos(roll));

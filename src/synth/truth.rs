@@ -13,7 +13,7 @@
 //!   `lee.w` = W, `lee.w1` = dW/ds, `lee.c` = distance ahead to the next change of curvature
 //!   (0 inside a curve or transition), `lee.delta` = the curvature the road reaches there.
 //! - Danescu & Nedevschi (Sec. II, X right): `danescu.w0` = W - (W_L + W_R)/2 (between inner
-//!   edges), `danescu.ch`, `danescu.wl` = dW/ds, `danescu.cv` = C_V, `danescu.y0` = the
+//!   edges), `danescu.ch` = -kappa (curving right positive), `danescu.wl` = dW/ds, `danescu.cv` = C_V, `danescu.y0` = the
 //!   camera's height change, `danescu.xcw` = o (lane centre to the right of the camera),
 //!   `danescu.alpha` = pitch, `danescu.gamma` = roll, `danescu.psi` = -heading,
 //!   `danescu.wl_mark` / `danescu.wr_mark` = W_L / W_R.
@@ -150,7 +150,7 @@ impl Scene {
             ("lee.c", lee_c),
             ("lee.delta", lee_delta),
             ("danescu.w0", width - (wl_mark + wr_mark) / 2.0),
-            ("danescu.ch", kappa),
+            ("danescu.ch", -kappa),
             ("danescu.wl", road.lane_width_rate(s)),
             ("danescu.cv", c_v),
             ("danescu.y0", pose.height_offset),

@@ -7,13 +7,15 @@
 //! - [`GaussianBlur`]: separable Gaussian smoothing;
 //! - [`Canny`]: Canny edges with hysteresis;
 //! - [`Dld`]: the dark-light-dark marking detector of Lee et al. (eqs. 21-24);
-//! - [`DistanceTransform`]: the exact Euclidean distance transform.
+//! - [`DistanceTransform`]: the exact Euclidean distance transform;
+//! - [`HGradient`]: Danescu's horizontal gradient with a variable-width kernel.
 
 mod blur;
 mod canny;
 mod distance_transform;
 mod dld;
 mod gradient;
+mod hgradient;
 mod ipm;
 
 pub use blur::{GaussianBlur, MAX_SIGMA};
@@ -21,4 +23,5 @@ pub use canny::{Canny, CannyConfig, EDGE};
 pub use distance_transform::DistanceTransform;
 pub use dld::{Dld, DldConfig, FALLING, RISING};
 pub use gradient::Gradients;
+pub use hgradient::{HGradient, HGradientConfig};
 pub use ipm::{Ipm, TopViewConfig};
