@@ -54,6 +54,7 @@ pub struct HGradient {
     half_width: Vec<usize>,
     prefix: Vec<u32>,
     out: Image<u8>,
+    difference: Image<f32>,
 }
 
 impl HGradient {
@@ -91,6 +92,7 @@ impl HGradient {
             half_width,
             prefix: vec![0; w + 1],
             out: Image::new(w, h)?,
+            difference: Image::new(w, h)?,
         })
     }
 
@@ -102,6 +104,12 @@ impl HGradient {
     /// HG of the last frame.
     pub fn image(&self) -> &Image<u8> {
         &self.out
+    }
+
+    /// The unscaled difference g(u, v) of the last frame, grey levels (0 where HG is not
+    /// computed).
+    pub fn difference(&self) -> &Image<f32> {
+        &self.difference
     }
 
     /// Computes HG of the grey image `src`.
@@ -123,6 +131,8 @@ impl HGradient {
             let row = src.row(v);
             let out = self.out.row_mut(v);
             out.fill(128);
+            let diff = self.difference.row_mut(v);
+            diff.fill(0.0);
             if k == 0 || w < 2 * k + 1 {
                 continue;
             }
@@ -130,13 +140,14 @@ impl HGradient {
             for (u, &p) in row.iter().enumerate() {
                 self.prefix[u + 1] = self.prefix[u] + p as u32;
             }
-            let scale = gain / k as f32;
-            for (u, o) in out.iter_mut().enumerate().take(w - k).skip(k) {
+            let inv = 1.0 / k as f32;
+            for u in k..w - k {
                 // Right mean over u+1..=u+k, left mean over u-k..=u-1.
                 let right = self.prefix[u + k + 1] - self.prefix[u + 1];
                 let left = self.prefix[u] - self.prefix[u - k];
-                let g = (right as f32 - left as f32) * scale;
-                *o = (128.0 + g).clamp(0.0, 255.0) as u8;
+                let g = (right as f32 - left as f32) * inv;
+                diff[u] = g;
+                out[u] = (128.0 + gain * g).clamp(0.0, 255.0) as u8;
             }
         }
         Ok(())
@@ -208,6 +219,7 @@ mod tests {
             let l: f32 = (1..=k).map(|j| img.get(u - j, v) as f32).sum::<f32>() / k as f32;
             let want = (128.0 + 2.0 * (r - l)).clamp(0.0, 255.0);
             assert!((hg.image().get(u, v) as f32 - want).abs() <= 1.0, "u {u}");
+            assert!((hg.difference().get(u, v) - (r - l)).abs() < 1e-3, "u {u}");
         }
     }
 

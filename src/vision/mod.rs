@@ -8,10 +8,12 @@
 //! - [`Canny`]: Canny edges with hysteresis;
 //! - [`Dld`]: the dark-light-dark marking detector of Lee et al. (eqs. 21-24);
 //! - [`DistanceTransform`]: the exact Euclidean distance transform;
-//! - [`HGradient`]: Danescu's horizontal gradient with a variable-width kernel.
+//! - [`HGradient`]: Danescu's horizontal gradient with a variable-width kernel;
+//! - [`Density`]: Danescu's 3-D point density image in the lateral plane and DT^D.
 
 mod blur;
 mod canny;
+mod density;
 mod distance_transform;
 mod dld;
 mod gradient;
@@ -20,6 +22,7 @@ mod ipm;
 
 pub use blur::{GaussianBlur, MAX_SIGMA};
 pub use canny::{Canny, CannyConfig, EDGE};
+pub use density::{Density, DensityConfig};
 pub use distance_transform::DistanceTransform;
 pub use dld::{Dld, DldConfig, FALLING, RISING};
 pub use gradient::Gradients;
