@@ -7,6 +7,7 @@
 //! available ones.
 
 pub mod adachi;
+pub mod danescu;
 pub mod lee;
 pub mod liu;
 
@@ -27,6 +28,14 @@ pub trait Tracker {
     fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate>;
     /// Forgets the past: the next frame starts from the initial distribution.
     fn reset(&mut self);
+    /// The car's motion for the next frame (Danescu's drift input). Trackers whose motion
+    /// model has no ego-motion input ignore it.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for a NaN or out-of-range value (see [`EgoMotion::check`]).
+    fn set_ego_motion(&mut self, motion: EgoMotion) -> Result<()> {
+        motion.check()
+    }
     /// The particle cloud after the last step, flattened for drawing: `particle_stride()`
     /// numbers per particle, the layout documented by each tracker; empty by default.
     fn particles(&self) -> Vec<f32> {
@@ -77,6 +86,48 @@ pub trait Tracker {
     /// progress.
     fn next_step(&self) -> Option<usize> {
         None
+    }
+}
+
+/// The car's motion at a frame: its timestamp, speed and yaw rate (the frame interval is the
+/// difference of consecutive timestamps).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize, serde::Serialize)]
+pub struct EgoMotion {
+    /// Frame timestamp, seconds.
+    pub t_s: f64,
+    /// Speed, metres per second.
+    pub speed_mps: f64,
+    /// Yaw rate, radians per second, positive turning left.
+    pub yaw_rate: f64,
+}
+
+impl EgoMotion {
+    /// Largest accepted |speed|, m/s.
+    pub const MAX_SPEED_MPS: f64 = 150.0;
+    /// Largest accepted |yaw rate|, rad/s.
+    pub const MAX_YAW_RATE: f64 = 5.0;
+
+    /// Checks the values.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] naming the value for a NaN or infinite one, a speed beyond
+    /// [`EgoMotion::MAX_SPEED_MPS`] or a yaw rate beyond [`EgoMotion::MAX_YAW_RATE`].
+    pub fn check(&self) -> Result<()> {
+        crate::error::require_finite("t_s", self.t_s)?;
+        for (name, v, max) in [
+            ("speed_mps", self.speed_mps, Self::MAX_SPEED_MPS),
+            ("yaw_rate", self.yaw_rate, Self::MAX_YAW_RATE),
+        ] {
+            crate::error::require_finite(name, v)?;
+            if v.abs() > max {
+                return Err(Error::parameter(
+                    name,
+                    v,
+                    &format!("must be within +-{max}"),
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -173,7 +224,13 @@ pub(crate) fn no_frame_in_progress() -> Error {
 }
 
 /// The ids of the trackers implemented so far.
-pub const TRACKER_IDS: &[&str] = &[adachi::ID, lee::ID, liu::ID, liu::ID_NOKERNEL];
+pub const TRACKER_IDS: &[&str] = &[
+    adachi::ID,
+    danescu::ID_MONO,
+    lee::ID,
+    liu::ID,
+    liu::ID_NOKERNEL,
+];
 
 /// Largest accepted particle count.
 pub const MAX_PARTICLES: usize = 200_000;
@@ -241,6 +298,12 @@ pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
     let _camera = config.validate()?;
     if id == adachi::ID {
         return Ok(Box::new(adachi::AdachiTracker::new(config)?));
+    }
+    if id == danescu::ID_MONO {
+        return Ok(Box::new(danescu::DanescuTracker::new(
+            config,
+            danescu::ID_MONO,
+        )?));
     }
     if id == lee::ID {
         return Ok(Box::new(lee::LeeTracker::new(config)?));

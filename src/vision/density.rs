@@ -112,7 +112,7 @@ impl Density {
         let c = (z / self.config.dz_m).round();
         let r = (y / self.config.dy_m + (self.config.rows / 2) as f64).round();
         (c >= 0.0 && r >= 0.0 && (c as usize) < self.config.cols && (r as usize) < self.config.rows)
-            .then(|| (r as usize, c as usize))
+            .then_some((r as usize, c as usize))
     }
 
     /// Counts one road point of height `y` at distance `z` (ignored outside the grid).

@@ -1,0 +1,248 @@
+//! The options of `danescu-stereo` and `danescu-mono` (all optional; unknown ones are refused).
+//!
+//! Where the paper gives a value it is used: the discrete 3-D space of 200 x 300 cells of
+//! 1 cm x 10 cm, D_3D = 15 m, the 11 x 11 triangular filter. The rest is ours and named so:
+//! the particle budget and initialisation share, the diffusion noise, the distance range and
+//! point count P of the image mapping, the likelihood widths, the validation limits and the
+//! preliminary pitch detection's histogram.
+
+use crate::error::{require_finite, require_positive, Error, Result};
+use crate::vision::{CannyConfig, DensityConfig, HGradientConfig};
+use serde::Deserialize;
+
+/// Every option of the Danescu trackers.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DanescuConfig {
+    /// Share of each frame's particles drawn from the generic initialisation distribution
+    /// (Sec. III), in [0, 1).
+    pub init_fraction: f64,
+    /// Nearest distance of the image-space mapping, metres (raised to the first visible row).
+    pub near_m: f64,
+    /// Farthest distance of the image-space mapping, metres.
+    pub far_m: f64,
+    /// Points P per delimiter edge in image space and in the 3-D space (eq. 5).
+    pub points: usize,
+    /// D_3D: range of the 3-D mapping (eq. 5), metres.
+    pub range_3d_m: f64,
+    /// Diffusion: standard deviation per frame of each parameter, in the order of
+    /// `Lane3d::NAMES` (w0, ch, wl, cv, y0, xcw, alpha, gamma, psi, wl_mark, wr_mark).
+    pub diffusion: [f64; 11],
+    /// The generic initialisation distribution: uniform lane width (inner edges), metres.
+    pub init_width_m: [f64; 2],
+    /// ... uniform |X_CW| up to this, metres.
+    pub init_offset_m: f64,
+    /// ... uniform |psi| up to this, radians.
+    pub init_yaw_rad: f64,
+    /// ... uniform |C_H| up to this, 1/m.
+    pub init_curvature: f64,
+    /// ... uniform |W_l| up to this.
+    pub init_width_rate: f64,
+    /// ... uniform marking widths W_L, W_R, metres.
+    pub init_marking_m: [f64; 2],
+    /// ... uniform |alpha - calibrated pitch| up to this, radians (stereo only).
+    pub init_pitch_rad: f64,
+    /// ... uniform |Y_0| up to this, metres (stereo only).
+    pub init_height_m: f64,
+    /// Validation (Sec. VII-D): the lane width W(Z) must stay in this range over the mapped
+    /// distances, metres.
+    pub width_range_m: [f64; 2],
+    /// Validation: the car may be at most this far outside the lane, |X_CW| <= W_0/2 + margin.
+    pub offset_margin_m: f64,
+    /// Validation: largest marking width, metres.
+    pub max_marking_m: f64,
+    /// sigma of the road-edge likelihood (DT^E), pixels.
+    pub sigma_edge_px: f64,
+    /// sigma of the marking likelihood (DT^S), pixels.
+    pub sigma_marking_px: f64,
+    /// sigma_G of eq. 12, HG units.
+    pub sigma_gradient: f64,
+    /// sigma_D of eq. 14, cells.
+    pub sigma_density: f64,
+    /// Negative points lie this far inside the lane from the inner edges, metres.
+    pub negative_offset_m: f64,
+    /// A negative point costs c - DT when an edge is closer than c pixels.
+    pub negative_reach_px: f64,
+    /// The variable-width gradient.
+    pub hgradient: HGradientConfig,
+    /// Marking detection on HG: smallest |g| of a marking edge, grey levels.
+    pub marking_contrast: f32,
+    /// Marking detection: accepted marking widths on the road, metres.
+    pub marking_width_range_m: [f64; 2],
+    /// Road edges (Canny).
+    pub canny: CannyConfig,
+    /// The discrete 3-D space and its density threshold (stereo only).
+    pub density: DensityConfig,
+    /// Preliminary pitch detection: histogram bin, radians.
+    pub pitch_bin_rad: f64,
+    /// Preliminary pitch detection: searched pitch changes, +- radians.
+    pub pitch_range_rad: f64,
+    /// Road points lie within this height of the detected road line, metres.
+    pub road_tolerance_m: f64,
+    /// MBSAS: distance threshold on X_CW, metres.
+    pub cluster_threshold_m: f64,
+    /// MBSAS: at most this many clusters S.
+    pub max_clusters: usize,
+    /// A frame is valid when, on each side, at least `valid_support` of the estimate's
+    /// inner-edge points are within this many pixels of a road edge ...
+    pub valid_distance_px: f64,
+    /// ... (0.15 by default: a dashed line of 3 m dashes every 12 m gives about 0.25) ...
+    pub valid_support: f64,
+    /// ... and its cluster holds at least this share of the resampled particles.
+    pub valid_cluster_share: f64,
+}
+
+impl Default for DanescuConfig {
+    fn default() -> Self {
+        Self {
+            init_fraction: 0.1,
+            near_m: 5.0,
+            far_m: 35.0,
+            points: 20,
+            range_3d_m: 15.0,
+            diffusion: [
+                0.03, 0.0003, 0.001, 0.00002, 0.005, 0.04, 0.002, 0.001, 0.004, 0.01, 0.01,
+            ],
+            init_width_m: [2.6, 4.2],
+            init_offset_m: 1.2,
+            init_yaw_rad: 0.06,
+            init_curvature: 0.003,
+            init_width_rate: 0.01,
+            init_marking_m: [0.0, 0.3],
+            init_pitch_rad: 0.01,
+            init_height_m: 0.05,
+            width_range_m: [2.2, 5.0],
+            offset_margin_m: 0.5,
+            max_marking_m: 0.5,
+            sigma_edge_px: 3.0,
+            sigma_marking_px: 3.0,
+            sigma_gradient: 30.0,
+            sigma_density: 3.0,
+            negative_offset_m: 0.3,
+            negative_reach_px: 3.0,
+            hgradient: HGradientConfig {
+                gain: 1.0,
+                ..HGradientConfig::default()
+            },
+            marking_contrast: 40.0,
+            marking_width_range_m: [0.05, 0.5],
+            canny: CannyConfig::default(),
+            density: DensityConfig::default(),
+            pitch_bin_rad: 0.0005,
+            pitch_range_rad: 0.05,
+            road_tolerance_m: 0.1,
+            cluster_threshold_m: 0.4,
+            max_clusters: 5,
+            valid_distance_px: 2.0,
+            valid_support: 0.15,
+            valid_cluster_share: 0.3,
+        }
+    }
+}
+
+impl DanescuConfig {
+    /// Reads and checks the options.
+    ///
+    /// # Errors
+    /// [`Error::Config`] for an unknown option or a wrong type; [`Error::Parameter`] naming
+    /// the option for a value out of range.
+    pub fn from_options(
+        options: &std::collections::BTreeMap<String, serde_json::Value>,
+        id: &str,
+    ) -> Result<Self> {
+        let c: Self = super::super::parse_options(id, options)?;
+        c.check()?;
+        Ok(c)
+    }
+
+    fn check(&self) -> Result<()> {
+        if !(0.0..1.0).contains(&self.init_fraction) {
+            return Err(Error::parameter(
+                "init_fraction",
+                self.init_fraction,
+                "must be in [0, 1)",
+            ));
+        }
+        for (name, v) in [
+            ("near_m", self.near_m),
+            ("range_3d_m", self.range_3d_m),
+            ("sigma_edge_px", self.sigma_edge_px),
+            ("sigma_marking_px", self.sigma_marking_px),
+            ("sigma_gradient", self.sigma_gradient),
+            ("sigma_density", self.sigma_density),
+            ("cluster_threshold_m", self.cluster_threshold_m),
+            ("pitch_bin_rad", self.pitch_bin_rad),
+            ("pitch_range_rad", self.pitch_range_rad),
+            ("road_tolerance_m", self.road_tolerance_m),
+            ("valid_distance_px", self.valid_distance_px),
+            ("max_marking_m", self.max_marking_m),
+        ] {
+            require_positive(name, v)?;
+        }
+        if self.far_m.is_nan() || self.far_m <= self.near_m || !self.far_m.is_finite() {
+            return Err(Error::parameter("far_m", self.far_m, "must exceed near_m"));
+        }
+        if !(2..=200).contains(&self.points) {
+            return Err(Error::parameter(
+                "points",
+                self.points,
+                "must be between 2 and 200",
+            ));
+        }
+        for (k, &s) in self.diffusion.iter().enumerate() {
+            require_finite("diffusion", s)?;
+            if s < 0.0 {
+                return Err(Error::parameter(
+                    "diffusion",
+                    s,
+                    &format!("entry {k} must not be negative"),
+                ));
+            }
+        }
+        for (name, [lo, hi]) in [
+            ("init_width_m", self.init_width_m),
+            ("init_marking_m", self.init_marking_m),
+            ("width_range_m", self.width_range_m),
+            ("marking_width_range_m", self.marking_width_range_m),
+        ] {
+            require_finite(name, lo)?;
+            require_finite(name, hi)?;
+            if lo < 0.0 || hi < lo {
+                return Err(Error::parameter(
+                    name,
+                    format!("[{lo}, {hi}]"),
+                    "must be a range [low, high] with 0 <= low <= high",
+                ));
+            }
+        }
+        for (name, v) in [
+            ("init_offset_m", self.init_offset_m),
+            ("init_yaw_rad", self.init_yaw_rad),
+            ("init_curvature", self.init_curvature),
+            ("init_width_rate", self.init_width_rate),
+            ("init_pitch_rad", self.init_pitch_rad),
+            ("init_height_m", self.init_height_m),
+            ("offset_margin_m", self.offset_margin_m),
+            ("negative_offset_m", self.negative_offset_m),
+            ("negative_reach_px", self.negative_reach_px),
+        ] {
+            require_finite(name, v)?;
+            if v < 0.0 {
+                return Err(Error::parameter(name, v, "must not be negative"));
+            }
+        }
+        require_positive("marking_contrast", self.marking_contrast as f64)?;
+        for (name, v) in [
+            ("valid_cluster_share", self.valid_cluster_share),
+            ("valid_support", self.valid_support),
+        ] {
+            if !(0.0..=1.0).contains(&v) {
+                return Err(Error::parameter(name, v, "must be in [0, 1]"));
+            }
+        }
+        if self.max_clusters == 0 {
+            return Err(Error::parameter("max_clusters", 0, "must be at least 1"));
+        }
+        Ok(())
+    }
+}

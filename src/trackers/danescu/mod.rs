@@ -1,0 +1,509 @@
+//! `danescu-stereo` and `danescu-mono`: the lane tracker of Danescu & Nedevschi 2011 with the
+//! 11-parameter 3-D lane ([`crate::lane::Lane3d`]).
+//!
+//! One frame (Sec. III), each step also available on its own (per-step mode):
+//! 1. **resample** from the previous weights, keeping N - R particles, and draw R
+//!    initialisation particles from the generic distribution ([`model::Initial`]);
+//! 2. **drift and diffusion**: the ego motion (speed, yaw rate, timestamps, from
+//!    [`Tracker::set_ego_motion`]; zero when unknown) moves every particle, then Gaussian noise
+//!    ([`model::Motion`]);
+//! 3. **weigh**: the particles mapped into the image (and the 3-D space) and compared with the
+//!    cues ([`cues`], [`model::Measurement`]); degenerate lanes get weight zero;
+//! 4. **estimate** (Sec. VIII): MBSAS clusters on X_CW over the resampled particles, the
+//!    estimate by eq. 15 from the most populous cluster's above-average-weight particles.
+//!
+//! The cues are computed when the frame begins: HG, the markings and DT^S, the road edges and
+//! DT^E (and, for the stereo tracker, the disparity, the preliminary pitch, the road points and
+//! the density image DT^D).
+//!
+//! `danescu-mono` is our extension for a single camera: the same lane model and image-space
+//! cues with a flat-road prior: pitch, roll, Y_0 and C_V are held at the calibration (no
+//! diffusion, no density cue), and all edges count as road edges.
+//!
+//! Lane changes (our addition; the paper does not say): when the estimate's lane centre is
+//! more than half a lane away (|X_CW| > W_0 / 2), the car is in the next lane; every particle
+//! moves by one lane (X_CW +- (W_0 + the crossed marking's width), the crossed marking becoming
+//! the new near one) and the change is reported, as `lee-cpf` does.
+//!
+//! A frame is valid when the chosen cluster holds at least `valid_cluster_share` of the
+//! resampled particles and, on each side, at least `valid_support` of the estimate's
+//! inner-edge points are within `valid_distance_px` of a road edge (our definition, as for
+//! `lee-cpf`; the paper's validation step is not spelled out).
+
+pub mod config;
+pub mod cues;
+pub mod model;
+
+use super::{now, EgoMotion, Layer, StageTimes, Tracker, TrackerConfig};
+use crate::camera::Camera;
+use crate::error::Result;
+use crate::filter::{
+    FilterConfig, Injection, Mbsas, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
+};
+use crate::lane::{sample_road_curve, Boundary, Lane3d, LaneCamera, LaneEstimate, Role};
+use config::DanescuConfig;
+use cues::ImageCues;
+use model::{Initial, Measurement, Motion};
+
+/// The monocular tracker's id.
+pub const ID_MONO: &str = "danescu-mono";
+/// Particles N when the config does not say.
+pub const DEFAULT_PARTICLES: usize = 500;
+/// Indices of the vertical-profile parameters in `Lane3d::NAMES` (held by the mono tracker):
+/// C_V, Y_0, alpha, gamma.
+const VERTICAL: [usize; 4] = [3, 4, 6, 7];
+
+/// The steps of one frame in per-step mode.
+pub const STEP_NAMES: [&str; 4] = [
+    "resample: N - R from the previous set, R initialisation particles (Sec. III)",
+    "drift (ego motion) and diffusion",
+    "weigh: road edges, markings, gradient (eqs. 9-12) and density (eqs. 13-14); validation",
+    "estimate: MBSAS clusters on X_CW, eq. 15",
+];
+
+/// A frame in progress in per-step mode.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    next: usize,
+    first: bool,
+    motion: Motion,
+    times: StageTimes,
+}
+
+/// The estimate of one frame in the paper's terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DanescuEstimate {
+    /// The 11 parameters.
+    pub lane: Lane3d,
+    /// Whether the frame is valid (see the module docs).
+    pub valid: bool,
+    /// Share of the resampled particles in the chosen cluster.
+    pub cluster_share: f64,
+    /// Clusters found.
+    pub clusters: usize,
+    /// Lane change this frame: +1 to the left, -1 to the right, 0 none.
+    pub change: i8,
+    /// Effective sample size after weighing.
+    pub ess: f64,
+    /// Share of the estimate's left and right inner-edge points near a road edge.
+    pub support: [f64; 2],
+}
+
+struct Weigh<'a> {
+    measurement: &'a Measurement,
+    camera: &'a Camera,
+    cues: &'a ImageCues,
+}
+
+impl MeasurementModel<Lane3d> for Weigh<'_> {
+    type Cues = ();
+    fn log_likelihood(&self, lane: &Lane3d, _: &()) -> f64 {
+        self.measurement
+            .log_likelihood(self.camera, lane, self.cues, None)
+    }
+}
+
+/// The Danescu tracker.
+#[derive(Debug)]
+pub struct DanescuTracker {
+    id: &'static str,
+    camera: Camera,
+    config: DanescuConfig,
+    cues: ImageCues,
+    measurement: Measurement,
+    filter: ParticleFilter<Lane3d>,
+    initial: Initial,
+    diffusion: [f64; 11],
+    mbsas: Mbsas<11>,
+    motion: Option<EgoMotion>,
+    last_time: Option<f64>,
+    first: bool,
+    frame: Option<Frame>,
+    times: StageTimes,
+}
+
+impl DanescuTracker {
+    /// Builds the tracker `id` (only [`ID_MONO`] so far).
+    ///
+    /// # Errors
+    /// Camera, particle-count and option errors, named.
+    pub fn new(config: &TrackerConfig, id: &'static str) -> Result<Self> {
+        let camera = config.validate()?;
+        let danescu = DanescuConfig::from_options(&config.options, id)?;
+        let cues = ImageCues::new(&camera, &danescu)?;
+        let measurement = Measurement::new(&camera, &danescu);
+        let n = config.particles_or(DEFAULT_PARTICLES);
+        let initial = Initial {
+            pitch: camera.pitch(),
+            roll: camera.roll(),
+            vertical: false,
+            config: danescu.clone(),
+        };
+        let mut diffusion = danescu.diffusion;
+        for k in VERTICAL {
+            diffusion[k] = 0.0;
+        }
+        let filter = ParticleFilter::new(
+            n,
+            FilterConfig {
+                resampler: Resampler::Systematic,
+                policy: ResamplePolicy::Always,
+                injection: Injection::Fraction(danescu.init_fraction),
+            },
+            config.seed,
+            &initial,
+        )?;
+        let mbsas = Mbsas::new(danescu.cluster_threshold_m, danescu.max_clusters)?;
+        Ok(Self {
+            id,
+            camera,
+            config: danescu,
+            cues,
+            measurement,
+            filter,
+            initial,
+            diffusion,
+            mbsas,
+            motion: None,
+            last_time: None,
+            first: true,
+            frame: None,
+            times: StageTimes::default(),
+        })
+    }
+
+    /// One frame in the paper's terms: [`DanescuTracker::begin`], then every step.
+    ///
+    /// # Errors
+    /// As [`DanescuTracker::begin`].
+    pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<DanescuEstimate> {
+        self.begin(rgba, width, height)?;
+        loop {
+            if let Some(e) = self.advance_step() {
+                return Ok(e);
+            }
+        }
+    }
+
+    /// Starts a frame: checks it, computes the cues and the drift from the ego motion given
+    /// since the last frame.
+    ///
+    /// # Errors
+    /// [`crate::error::Error::BufferSize`] / [`crate::error::Error::Dimensions`] for a frame
+    /// that does not match the camera.
+    pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        super::check_frame(&self.camera, rgba, width, height)?;
+        let t0 = now();
+        self.cues.begin(rgba)?;
+        self.cues.finish()?;
+        let (travelled_m, turned_rad) = match self.motion.take() {
+            Some(m) => {
+                let dt = self
+                    .last_time
+                    .map(|t| m.t_s - t)
+                    .filter(|dt| *dt > 0.0 && *dt <= 1.0)
+                    .unwrap_or(0.0);
+                self.last_time = Some(m.t_s);
+                (m.speed_mps * dt, m.yaw_rate * dt)
+            }
+            None => (0.0, 0.0),
+        };
+        let first = self.first;
+        self.first = false;
+        self.frame = Some(Frame {
+            next: 0,
+            first,
+            motion: Motion {
+                travelled_m,
+                turned_rad,
+                diffusion: self.diffusion,
+            },
+            times: StageTimes {
+                preprocess: now() - t0,
+                ..StageTimes::default()
+            },
+        });
+        Ok(())
+    }
+
+    /// Index into [`STEP_NAMES`] of the next step of the frame in progress.
+    pub fn next_step(&self) -> Option<usize> {
+        self.frame.as_ref().map(|f| f.next)
+    }
+
+    /// Runs the next step of the frame in progress; the estimate after the last one. The
+    /// first frame has no previous set: its particles come from the initial distribution and
+    /// are only weighed.
+    pub fn advance_step(&mut self) -> Option<DanescuEstimate> {
+        let mut frame = self.frame.take()?;
+        let step = frame.next;
+        frame.next += 1;
+        let t = now();
+        match step {
+            0 => {
+                if !frame.first {
+                    self.filter.resample();
+                    self.filter.inject(&self.initial);
+                }
+                frame.times.resample += now() - t;
+            }
+            1 => {
+                if !frame.first {
+                    self.filter.predict(&frame.motion);
+                }
+                frame.times.predict += now() - t;
+            }
+            2 => {
+                let weigh = Weigh {
+                    measurement: &self.measurement,
+                    camera: &self.camera,
+                    cues: &self.cues,
+                };
+                self.filter.weigh(&weigh, &());
+                frame.times.weigh += now() - t;
+            }
+            _ => {
+                let e = self.estimate();
+                frame.times.estimate += now() - t;
+                self.times = frame.times;
+                return Some(e);
+            }
+        }
+        self.frame = Some(frame);
+        None
+    }
+
+    fn estimate(&mut self) -> DanescuEstimate {
+        let first = self.filter.injected();
+        let states = self.filter.states();
+        let weights = self.filter.weights();
+        let f = |l: &Lane3d| l.to_array();
+        self.mbsas
+            .cluster(states, first, &f, &|a, b| (a[5] - b[5]).abs());
+        let resampled = (states.len() - first).max(1);
+        let best_count = self.mbsas.counts().iter().copied().max().unwrap_or(0);
+        let lane = self
+            .mbsas
+            .estimate(states, weights, &f)
+            .map(Lane3d::from_array)
+            .unwrap_or_else(|| states[crate::filter::map_index(weights)]);
+        let ess = self.filter.ess();
+        let mut e = DanescuEstimate {
+            lane,
+            valid: false,
+            cluster_share: best_count as f64 / resampled as f64,
+            clusters: self.mbsas.counts().len(),
+            change: 0,
+            ess,
+            support: [0.0; 2],
+        };
+        let d = self
+            .measurement
+            .distances_of(&self.camera, &e.lane, &self.cues, None);
+        e.support = d.support;
+        e.valid = e.cluster_share >= self.config.valid_cluster_share
+            && d.support.iter().all(|&s| s >= self.config.valid_support)
+            && self.measurement.is_valid(&e.lane);
+        // Lane change: re-centre the cloud on the lane the car is now in.
+        let half = e.lane.w0 / 2.0;
+        let change = if e.lane.xcw < -half {
+            -1 // the lane centre is left of the car by more than half a lane: moved right
+        } else if e.lane.xcw > half {
+            1
+        } else {
+            0
+        };
+        if change != 0 {
+            for l in self.filter.states_mut().iter_mut().chain([&mut e.lane]) {
+                recentre(l, change);
+            }
+            e.change = change;
+        }
+        e
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &DanescuEstimate) -> LaneEstimate {
+        let lane = &e.lane;
+        let lc = LaneCamera::new(&self.camera, lane);
+        let mut boundaries = Vec::new();
+        for (role, right) in [(Role::EgoLeft, false), (Role::EgoRight, true)] {
+            let (points, road_points) = sample_road_curve(
+                |x| -lane.marking_centre_x(right, x),
+                |x, y| lc.project(-y, x),
+                1.0,
+                self.config.far_m * 2.0,
+                self.camera.width(),
+                self.camera.height(),
+            );
+            boundaries.push(Boundary {
+                role,
+                points,
+                road_points,
+            });
+        }
+        let mut state: std::collections::BTreeMap<String, f64> = Lane3d::NAMES
+            .iter()
+            .zip(lane.to_array())
+            .map(|(n, v)| (format!("danescu.{n}"), v))
+            .collect();
+        for (k, v) in [
+            ("danescu.cluster_share", e.cluster_share),
+            ("danescu.clusters", e.clusters as f64),
+            ("danescu.change", e.change as f64),
+            ("danescu.ess", e.ess),
+            ("danescu.support_left", e.support[0]),
+            ("danescu.support_right", e.support[1]),
+        ] {
+            state.insert(k.to_string(), v);
+        }
+        LaneEstimate {
+            frame: String::new(),
+            valid: e.valid,
+            ms: 0.0,
+            boundaries,
+            lateral_offset_m: lane.xcw,
+            heading_rad: -lane.psi,
+            curvature_per_m: -lane.ch,
+            lane_width_m: lane.w0 + (lane.wl_mark + lane.wr_mark) / 2.0,
+            state,
+        }
+    }
+
+    /// The particles with their weights and cluster labels (`usize::MAX` for none).
+    pub fn particle_states(&self) -> impl Iterator<Item = (&Lane3d, f64, usize)> + '_ {
+        let labels = self.mbsas.labels();
+        self.filter
+            .states()
+            .iter()
+            .zip(self.filter.weights())
+            .enumerate()
+            .map(move |(i, (s, &w))| (s, w, labels.get(i).copied().unwrap_or(usize::MAX)))
+    }
+}
+
+/// Moves a lane hypothesis to the neighbouring lane: `change` -1 when the car moved into the
+/// lane on the right, +1 into the lane on the left.
+fn recentre(l: &mut Lane3d, change: i8) {
+    if change < 0 {
+        l.xcw += l.w0 + l.wr_mark;
+        l.wl_mark = l.wr_mark;
+    } else {
+        l.xcw -= l.w0 + l.wl_mark;
+        l.wr_mark = l.wl_mark;
+    }
+}
+
+impl Tracker for DanescuTracker {
+    fn id(&self) -> &'static str {
+        self.id
+    }
+
+    fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LaneEstimate> {
+        let e = self.track(rgba, width, height)?;
+        Ok(self.to_lane_estimate(&e))
+    }
+
+    fn reset(&mut self) {
+        self.filter.reset(&self.initial);
+        self.first = true;
+        self.frame = None;
+        self.motion = None;
+        self.last_time = None;
+    }
+
+    fn set_ego_motion(&mut self, motion: EgoMotion) -> Result<()> {
+        motion.check()?;
+        self.motion = Some(motion);
+        Ok(())
+    }
+
+    fn stage_times(&self) -> StageTimes {
+        self.times
+    }
+
+    /// 13 numbers per particle: the 11 parameters in `Lane3d::NAMES` order, the normalised
+    /// weight, and the MBSAS cluster (-1 for an initialisation particle).
+    fn particles(&self) -> Vec<f32> {
+        let mut out = Vec::with_capacity(self.filter.len() * 13);
+        for (s, w, label) in self.particle_states() {
+            out.extend(s.to_array().iter().map(|&v| v as f32));
+            out.push(w as f32);
+            out.push(if label == usize::MAX {
+                -1.0
+            } else {
+                label as f32
+            });
+        }
+        out
+    }
+
+    fn particle_stride(&self) -> usize {
+        13
+    }
+
+    /// The marking and road-edge cues seen on the road: exp(-DT^2 / 2) of DT^S and DT^E
+    /// sampled on a 0.1 m grid from `near_m` to `far_m` and +-6 m (1 on an edge pixel).
+    fn layers(&self) -> Vec<Layer> {
+        const CELL: f64 = 0.1;
+        const HALF_WIDTH_M: f64 = 6.0;
+        let (x0, x1) = (self.config.near_m, self.config.far_m);
+        let height = ((x1 - x0) / CELL).round() as usize;
+        let width = (2.0 * HALF_WIDTH_M / CELL).round() as usize;
+        let grid = |name: &str, distance: &dyn Fn(f64, f64) -> Option<f32>| {
+            let mut values = vec![0.0f32; width * height];
+            for r in 0..height {
+                let x = x0 + (r as f64 + 0.5) * CELL;
+                for c in 0..width {
+                    let y = HALF_WIDTH_M - (c as f64 + 0.5) * CELL;
+                    if let Some(d) = self
+                        .camera
+                        .road_to_pixel(x, y)
+                        .and_then(|[u, v]| distance(u, v))
+                    {
+                        values[r * width + c] = crate::math::exp(-0.5 * (d * d) as f64) as f32;
+                    }
+                }
+            }
+            Layer::Grid {
+                name: name.to_string(),
+                width,
+                height,
+                x0,
+                y0: HALF_WIDTH_M,
+                cell: CELL,
+                values,
+            }
+        };
+        vec![
+            grid("marking edges: exp(-DT^S^2 / 2)", &|u, v| {
+                self.cues.marking_distance(u, v)
+            }),
+            grid("road edges: exp(-DT^E^2 / 2)", &|u, v| {
+                self.cues.edge_distance(u, v)
+            }),
+        ]
+    }
+
+    fn step_names(&self) -> &'static [&'static str] {
+        &STEP_NAMES
+    }
+
+    fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        self.begin(rgba, width, height)
+    }
+
+    fn advance(&mut self) -> Result<Option<LaneEstimate>> {
+        if self.frame.is_none() {
+            return Err(super::no_frame_in_progress());
+        }
+        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+    }
+
+    fn next_step(&self) -> Option<usize> {
+        DanescuTracker::next_step(self)
+    }
+}
+
+#[cfg(test)]
+mod tests;
