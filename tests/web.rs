@@ -256,10 +256,11 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
 
 /// Runs tracker `id` with `options` (plus the scene's camera) over five frames of
 /// highway-curve (seed 1, 320x240), once by `step` and once in per-step mode, checking the
-/// step order; returns the scene, its camera, the whole-step tracker and both last estimates.
+/// order of its `steps` steps; returns the scene, its camera, the whole-step tracker and both last estimates.
 fn track_five_frames_both_ways(
     id: &str,
     options: &str,
+    steps: usize,
 ) -> (JsScene, JsValue, JsTracker, JsValue, JsValue) {
     let mut scene = JsScene::new(
         "highway-curve",
@@ -271,8 +272,7 @@ fn track_five_frames_both_ways(
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
     let mut tracker = JsTracker::new(id, config.clone()).unwrap();
     let mut stepped = JsTracker::new(id, config).unwrap();
-    let steps = stepped.step_names().len();
-    assert_eq!(steps, 7, "{id}");
+    assert_eq!(stepped.step_names().len(), steps, "{id}");
     let (mut last, mut last_stepped) = (JsValue::UNDEFINED, JsValue::UNDEFINED);
     for f in 0..5 {
         let rgba = scene.render(f).unwrap().to_vec();
@@ -294,7 +294,7 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
     // Same run as the native unit test `trackers::lee::tests::same_result_as_the_browser_build`:
     // highway-curve seed 1 at 320x240, 400 particles, seed 2, five frames, also step by step.
     let (mut scene, camera, mut tracker, last, last_stepped) =
-        track_five_frames_both_ways("lee-cpf", r#"{"particles": 400, "seed": 2}"#);
+        track_five_frames_both_ways("lee-cpf", r#"{"particles": 400, "seed": 2}"#, 7);
     let offset = |v: &JsValue| {
         js_sys::Reflect::get(v, &"lateral_offset_m".into())
             .unwrap()
@@ -332,7 +332,7 @@ fn liu_tracker_runs_in_the_browser_with_the_native_result() {
     // Same run as the native unit test `trackers::liu::tests::same_result_as_the_browser_build`:
     // highway-curve seed 1 at 320x240, 300 particles, seed 2, five frames, also step by step.
     let (mut scene, camera, mut tracker, last, last_stepped) =
-        track_five_frames_both_ways("liu-ppf", r#"{"particles": 300, "seed": 2}"#);
+        track_five_frames_both_ways("liu-ppf", r#"{"particles": 300, "seed": 2}"#, 7);
     let config = obj(r#"{"particles": 300, "seed": 2}"#);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
     let rho = |v: &JsValue| {
@@ -363,6 +363,45 @@ fn liu_tracker_runs_in_the_browser_with_the_native_result() {
     assert!(m.contains("boundaries"), "{m}");
     let m = message(tracker.step(&[0; 12], 320, 240));
     assert!(m.contains("320x240"), "{m}");
+    let rgba = scene.render(5).unwrap().to_vec();
+    assert!(tracker.step(&rgba, 320, 240).is_ok());
+}
+
+#[wasm_bindgen_test]
+fn danescu_mono_runs_in_the_browser_with_the_native_result() {
+    // Same run as the native unit test
+    // `trackers::danescu::tests::same_result_as_the_browser_build`: highway-curve seed 1 at
+    // 320x240, 300 particles, seed 2, five frames, also step by step.
+    let (mut scene, camera, mut tracker, last, last_stepped) =
+        track_five_frames_both_ways("danescu-mono", r#"{"particles": 300, "seed": 2}"#, 4);
+    let offset = |v: &JsValue| {
+        js_sys::Reflect::get(v, &"lateral_offset_m".into())
+            .unwrap()
+            .as_f64()
+            .unwrap()
+    };
+    let o = offset(&last);
+    assert_eq!(o.to_bits(), 0xbfe3_42c5_da14_0de7, "{o}");
+    assert_eq!(offset(&last_stepped).to_bits(), o.to_bits());
+    // 11 parameters, weight and cluster per particle; weights sum to 1.
+    assert_eq!(tracker.particle_stride(), 13);
+    let cloud = tracker.particles().to_vec();
+    assert_eq!(cloud.len(), 300 * 13);
+    let total: f32 = cloud.chunks(13).map(|p| p[11]).sum();
+    assert!((total - 1.0).abs() < 1e-3, "{total}");
+    // Ego motion: accepted when complete and finite, a thrown Error otherwise.
+    assert!(tracker
+        .set_ego_motion(obj(r#"{"t_s": 0.2, "speed_mps": 25, "yaw_rate": 0.01}"#))
+        .is_ok());
+    let m = message(tracker.set_ego_motion(obj(r#"{"t_s": 0.2, "speed_mps": 25}"#)));
+    assert!(m.contains("yaw_rate"), "{m}");
+    let m =
+        message(tracker.set_ego_motion(obj(r#"{"t_s": 0.2, "speed_mps": 1e9, "yaw_rate": 0}"#)));
+    assert!(m.contains("speed_mps"), "{m}");
+    let bad = obj(r#"{"points": 0}"#);
+    js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
+    let m = message(JsTracker::new("danescu-mono", bad));
+    assert!(m.contains("points"), "{m}");
     let rgba = scene.render(5).unwrap().to_vec();
     assert!(tracker.step(&rgba, 320, 240).is_ok());
 }

@@ -44,7 +44,10 @@ impl JsTracker {
 
     /// The particle cloud after the last step as a `Float32Array` of `particleStride` numbers
     /// per particle (adachi-mmpf: model r 1..4, q in metres, w in metres, weight; lee-cpf:
-    /// stage 1 or 2 (0 for a single-stage variant), psi, y0, w, w', c, delta, weight).
+    /// stage 1 or 2 (0 for a single-stage variant), psi, y0, w, w', c, delta, weight;
+    /// liu-ppf: 3 numbers (rho, theta, d) per boundary and the weight; danescu-mono: the 11
+    /// lane parameters w0, ch, wl, cv, y0, xcw, alpha, gamma, psi, wl_mark, wr_mark, the
+    /// weight and the MBSAS cluster, -1 for an initialisation particle).
     pub fn particles(&self) -> js_sys::Float32Array {
         js_sys::Float32Array::from(&self.inner.particles()[..])
     }
@@ -52,7 +55,9 @@ impl JsTracker {
     /// Pictures of the tracker's cues after the last frame: `[{ kind: 'histogram', name, axis,
     /// start, step, values } | { kind: 'grid', name, width, height, x0, y0, cell, values }]`
     /// (adachi-mmpf: the vote and noise histograms; lee-cpf: the likelihood map D and the DLD
-    /// candidates; grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres left).
+    /// candidates; liu-ppf: the measurement pixels and the top view; danescu-mono: the marking
+    /// and road edges; grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres
+    /// left).
     pub fn layers(&self) -> Result<JsValue, JsError> {
         super::to_js_value(&self.inner.layers())
     }
@@ -61,6 +66,16 @@ impl JsTracker {
     #[wasm_bindgen(getter, js_name = particleStride)]
     pub fn particle_stride(&self) -> usize {
         self.inner.particle_stride()
+    }
+
+    /// The car's motion for the next frame: `{ t_s, speed_mps, yaw_rate }` (timestamp in
+    /// seconds, speed in m/s, yaw rate in rad/s positive turning left). danescu-mono and
+    /// danescu-stereo drift their particles by it; the other trackers ignore it. Throws for a
+    /// missing field or a NaN or out-of-range value.
+    #[wasm_bindgen(js_name = setEgoMotion)]
+    pub fn set_ego_motion(&mut self, motion: JsValue) -> Result<(), JsError> {
+        let motion: trackers::EgoMotion = from_js_object(&motion, "ego motion")?;
+        self.inner.set_ego_motion(motion).map_err(to_js)
     }
 
     /// Forgets the past.

@@ -30,6 +30,12 @@ pub struct Args {
     /// JSON file of tracker options (merged over `camera`, `particles`, `seed`).
     #[arg(long)]
     config: Option<PathBuf>,
+    /// JSON-lines file of the car's motion, one line per frame in frame order, with `t`
+    /// (seconds), `speed_mps` and `yaw_rate` (rad/s, positive left) at the top level or in
+    /// `state` (the `gt.jsonl` of `lanepf synth` works); used by trackers with an ego-motion
+    /// model (danescu-*).
+    #[arg(long)]
+    motion: Option<PathBuf>,
     /// Treat every frame as an independent still: reset, then K filter iterations on it.
     #[arg(long)]
     still: Option<u32>,
@@ -73,13 +79,20 @@ pub fn run(args: Args) -> Result<()> {
         ));
     }
     let files = frames::list(&args.frames)?;
+    let motion = match &args.motion {
+        Some(path) => Some(read_motion(path, files.len())?),
+        None => None,
+    };
     let out = std::fs::File::create(&args.out).map_err(|e| Error::Io {
         path: args.out.display().to_string(),
         reason: e.to_string(),
     })?;
     let mut out = std::io::BufWriter::new(out);
-    for path in &files {
+    for (index, path) in files.iter().enumerate() {
         let frame = read_rgba(path)?;
+        if let Some(m) = &motion {
+            tracker.set_ego_motion(m[index])?;
+        }
         if (frame.width, frame.height) != (camera.width, camera.height) {
             return Err(Error::Dimensions(format!(
                 "{} is {}x{} but the camera is {}x{}",
@@ -115,4 +128,40 @@ pub fn run(args: Args) -> Result<()> {
         reason: e.to_string(),
     })?;
     Ok(())
+}
+
+/// Reads one ego-motion record per frame from a JSON-lines file.
+fn read_motion(path: &std::path::Path, frames: usize) -> Result<Vec<trackers::EgoMotion>> {
+    let bad = |line: usize, reason: String| {
+        Error::Config(format!("{} line {}: {reason}", path.display(), line + 1))
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    let mut out = Vec::with_capacity(frames);
+    for (i, line) in text.lines().filter(|l| !l.trim().is_empty()).enumerate() {
+        let v: serde_json::Value = serde_json::from_str(line).map_err(|e| bad(i, e.to_string()))?;
+        let field = |name: &str| {
+            v.get(name)
+                .or_else(|| v.get("state").and_then(|s| s.get(name)))
+                .and_then(serde_json::Value::as_f64)
+                .ok_or_else(|| bad(i, format!("no number `{name}`")))
+        };
+        let m = trackers::EgoMotion {
+            t_s: field("t")?,
+            speed_mps: field("speed_mps")?,
+            yaw_rate: field("yaw_rate")?,
+        };
+        m.check().map_err(|e| bad(i, e.to_string()))?;
+        out.push(m);
+    }
+    if out.len() < frames {
+        return Err(Error::Config(format!(
+            "{} has motion for {} frames but there are {frames}",
+            path.display(),
+            out.len()
+        )));
+    }
+    Ok(out)
 }
