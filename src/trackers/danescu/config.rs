@@ -63,6 +63,10 @@ pub struct DanescuConfig {
     pub negative_offset_m: f64,
     /// A negative point costs c - DT when an edge is closer than c pixels.
     pub negative_reach_px: f64,
+    /// The marking-width model and the gradient cue (Sec. II, VI-A c, VII-B). `false` runs
+    /// the authors' previous approach the paper compares with (Fig. 10): W_L = W_R = 0 and no
+    /// gradient likelihood.
+    pub marking_widths: bool,
     /// The variable-width gradient.
     pub hgradient: HGradientConfig,
     /// Marking detection on HG: smallest |g| of a marking edge, grey levels.
@@ -120,6 +124,7 @@ impl Default for DanescuConfig {
             sigma_density: 3.0,
             negative_offset_m: 0.3,
             negative_reach_px: 3.0,
+            marking_widths: true,
             hgradient: HGradientConfig {
                 gain: 1.0,
                 ..HGradientConfig::default()

@@ -52,6 +52,8 @@ pub const DEFAULT_PARTICLES: usize = 500;
 /// Indices of the vertical-profile parameters in `Lane3d::NAMES` (held by the mono tracker):
 /// C_V, Y_0, alpha, gamma.
 const VERTICAL: [usize; 4] = [3, 4, 6, 7];
+/// Indices of W_L and W_R in `Lane3d::NAMES`.
+const MARKING_WIDTHS: [usize; 2] = [9, 10];
 
 /// The steps of one frame in per-step mode.
 pub const STEP_NAMES: [&str; 4] = [
@@ -142,6 +144,10 @@ impl DanescuTracker {
         let mut diffusion = danescu.diffusion;
         for k in VERTICAL {
             diffusion[k] = 0.0;
+        }
+        if !danescu.marking_widths {
+            diffusion[MARKING_WIDTHS[0]] = 0.0;
+            diffusion[MARKING_WIDTHS[1]] = 0.0;
         }
         let filter = ParticleFilter::new(
             n,

@@ -23,7 +23,8 @@
 //!   `negative_reach_px` (an edge closer than c pixels inside the lane costs), and
 //!   D = (D+ + D-) / 2 as eq. 11 averages its two halves;
 //! - the gradient (eqs. 9-12): the left outer and right inner points should be on 255, the
-//!   left inner and right outer points on 0;
+//!   left inner and right outer points on 0 (off with `marking_widths: false`, the paper's
+//!   "previous approach");
 //! - the density (eqs. 5-8, 13-14; stereo only): the P points of the vertical profile in the
 //!   discrete 3-D space against DT^D.
 //!
@@ -64,8 +65,14 @@ impl InitialDistribution<Lane3d> for Initial {
         let psi = sym(c.init_yaw_rad, &mut u);
         let ch = sym(c.init_curvature, &mut u);
         let wl = sym(c.init_width_rate, &mut u);
-        let wl_mark = u(c.init_marking_m[0], c.init_marking_m[1]);
-        let wr_mark = u(c.init_marking_m[0], c.init_marking_m[1]);
+        let (wl_mark, wr_mark) = if c.marking_widths {
+            (
+                u(c.init_marking_m[0], c.init_marking_m[1]),
+                u(c.init_marking_m[0], c.init_marking_m[1]),
+            )
+        } else {
+            (0.0, 0.0)
+        };
         let (alpha, y0) = if self.vertical {
             (
                 self.pitch + sym(c.init_pitch_rad, &mut u),
@@ -297,9 +304,14 @@ impl Measurement {
         let g = |x: f64, sigma: f64| -0.5 * (x / sigma) * (x / sigma);
         let edge = (d.edge[0] + d.edge[1]) / 2.0;
         let marking = (d.marking[0] + d.marking[1]) / 2.0;
+        let gradient = if c.marking_widths {
+            g(d.gradient, c.sigma_gradient)
+        } else {
+            0.0
+        };
         g(edge, c.sigma_edge_px)
             + g(marking, c.sigma_marking_px)
-            + g(d.gradient, c.sigma_gradient)
+            + gradient
             + d.density.map_or(0.0, |x| g(x, c.sigma_density))
     }
 }

@@ -1,0 +1,108 @@
+//! danescu-mono on the simulator: per scenario, over several seeds at 640x480 with the
+//! simulator's ego motion, the RMSE of the lateral offset, yaw, horizontal curvature, lane width
+//! W_0 (inner edges) and the mean absolute error of the marking widths W_L, W_R, the valid
+//! rate and the median ms/frame (indicative: the runs share the machine). Each scenario runs
+//! twice: with the marking-width model and the gradient cue (the paper's new approach) and
+//! without (`marking_widths: false`, its previous approach, Fig. 10).
+//! `cargo run --release --example danescu_mono_sweep -- [SEEDS] [FRAMES] [SCENARIO...]`
+
+use lanepf::synth::{default_camera, scenario, Eye, Scene};
+use lanepf::trackers::{create, EgoMotion, TrackerConfig};
+
+#[derive(Default)]
+struct Sums {
+    n: f64,
+    offset: f64,
+    psi: f64,
+    ch: f64,
+    w0: f64,
+    marks: f64,
+    marks_n: f64,
+    valid: f64,
+    ms: Vec<f64>,
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let seeds: u64 = args.get(1).map_or(Ok(3), |s| s.parse())?;
+    let frames: u32 = args.get(2).map_or(Ok(150), |s| s.parse())?;
+    let names: Vec<String> = if args.len() > 3 {
+        args[3..].to_vec()
+    } else {
+        [
+            "highway-straight",
+            "highway-curve",
+            "s-curve",
+            "width-change",
+            "pitch-bumps",
+            "shadows",
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    let camera = default_camera(640, 480)?;
+    let cam = serde_json::to_string(&camera.to_file())?;
+    println!(
+        "{seeds} seeds x {frames} frames, N = 500, 640x480, first 30 frames of each run skipped"
+    );
+    println!();
+    println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | W_L, W_R MAE (m) | valid | ms/frame (median) |");
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for name in &names {
+        for marking_widths in [true, false] {
+            let mut s = Sums::default();
+            for seed in 1..=seeds {
+                let mut scene = Scene::new(scenario(name)?, camera.clone(), seed)?;
+                let config = TrackerConfig::from_json_str(&format!(
+                    r#"{{"camera": {cam}, "seed": {seed}, "marking_widths": {marking_widths}}}"#
+                ))?;
+                let mut tracker = create("danescu-mono", &config)?;
+                let mut rgba = vec![0; 640 * 480 * 4];
+                for f in 0..frames {
+                    let pose = scene.render(f, Eye::Left, &mut rgba, None)?;
+                    tracker.set_ego_motion(EgoMotion {
+                        t_s: pose.t,
+                        speed_mps: pose.speed,
+                        yaw_rate: pose.yaw_rate,
+                    })?;
+                    let t0 = std::time::Instant::now();
+                    let e = tracker.step(&rgba, 640, 480)?;
+                    s.ms.push(t0.elapsed().as_secs_f64() * 1e3);
+                    if f < 30 {
+                        continue;
+                    }
+                    let t = scene.truth(f);
+                    let sq = |k: &str| (t.state[k] - e.state[k]).powi(2);
+                    s.n += 1.0;
+                    s.offset += sq("danescu.xcw");
+                    s.psi += sq("danescu.psi");
+                    s.ch += sq("danescu.ch");
+                    s.w0 += sq("danescu.w0");
+                    for k in ["danescu.wl_mark", "danescu.wr_mark"] {
+                        s.marks += (t.state[k] - e.state[k]).abs();
+                        s.marks_n += 1.0;
+                    }
+                    s.valid += f64::from(u8::from(e.valid));
+                }
+            }
+            s.ms.sort_by(f64::total_cmp);
+            let r = |x: f64| (x / s.n).sqrt();
+            println!(
+                "| {name} | {} | {:.3} | {:.4} | {:.5} | {:.3} | {:.3} | {:.1} % | {:.1} |",
+                if marking_widths {
+                    "marking widths + gradient"
+                } else {
+                    "previous (no widths, no gradient)"
+                },
+                r(s.offset),
+                r(s.psi),
+                r(s.ch),
+                r(s.w0),
+                s.marks / s.marks_n,
+                100.0 * s.valid / s.n,
+                s.ms[s.ms.len() / 2],
+            );
+        }
+    }
+    Ok(())
+}
