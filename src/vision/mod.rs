@@ -7,10 +7,12 @@
 //! - [`GaussianBlur`]: separable Gaussian smoothing;
 //! - [`Canny`]: Canny edges with hysteresis;
 //! - [`Dld`]: the dark-light-dark marking detector of Lee et al. (eqs. 21-24);
-//! - [`DistanceTransform`]: the exact Euclidean distance transform.
+//! - [`DistanceTransform`]: the exact Euclidean distance transform;
+//! - [`StereoMatcher`]: dense stereo disparity of the road rows by census block matching.
 
 mod blur;
 mod canny;
+mod disparity;
 mod distance_transform;
 mod dld;
 mod gradient;
@@ -18,6 +20,7 @@ mod ipm;
 
 pub use blur::{GaussianBlur, MAX_SIGMA};
 pub use canny::{Canny, CannyConfig, EDGE};
+pub use disparity::{DisparityConfig, StereoMatcher, MAX_DISPARITY, MAX_RADIUS};
 pub use distance_transform::DistanceTransform;
 pub use dld::{Dld, DldConfig, FALLING, RISING};
 pub use gradient::Gradients;
