@@ -24,7 +24,10 @@
 //!    competitor and passes.
 //! 6. **Left-right consistency**: the right image's own winner comes from the same volume,
 //!    `d*_r(u_r) = argmin_d C(u_r + d, v, d)`; the left match is kept when
-//!    `|d* - d*_r(u - d*)| <= tolerance`.
+//!    `|d* - d*_r(u - d*)| <= tolerance`. Ties are read generously: the check passes when
+//!    *some* minimiser of the right cost is within the tolerance, which needs only the right
+//!    minimum `min_d C(u_r + d, v, d)` (a running min per right column, O(D) per pixel,
+//!    vectorised) and the 2 floor(tolerance) + 1 costs around d*.
 //! 7. **Sub-pixel refinement** by the parabola through (d* - 1, C_-), (d*, C_0),
 //!    (d* + 1, C_+): its vertex is at
 //!    `d* + (C_- - C_+) / (2 (C_- - 2 C_0 + C_+))`, the offset clamped to [-1/2, 1/2]; at the
@@ -144,6 +147,8 @@ pub struct StereoMatcher {
     census_right: Vec<u32>,
     /// Ring of the 2r + 1 latest raw cost rows e(., v, .), `[slot][u * stride + d]`.
     raw: Vec<u8>,
+    /// The right census row being matched, reversed, word-planar: `[k * W + (W - 1 - u)]`.
+    reversed: Vec<u32>,
     /// Column sums of the raw costs over the ring, `[u * stride + d]`.
     columns: Vec<u16>,
     /// The aggregated costs C(., v, .) of the current row, `[u * stride + d]`.
@@ -152,8 +157,8 @@ pub struct StereoMatcher {
     left_best: Vec<u16>,
     /// Per column: the refined left disparity.
     left_refined: Vec<f32>,
-    /// Per right column, indexed `W - 1 - u_r`: min over d of `C(u_r + d, d) << 16 | d`.
-    right_best: Vec<u32>,
+    /// Per right column, indexed `W - 1 - u_r`: the least cost `min_d C(u_r + d, d)`.
+    right_cost: Vec<u16>,
     disparity: Image<f32>,
 }
 
@@ -191,11 +196,12 @@ impl StereoMatcher {
             census_left: vec![0; words * n],
             census_right: vec![0; words * n],
             raw: vec![0; (2 * r + 1) * width * stride],
+            reversed: vec![0; words * width],
             columns: vec![0; width * stride],
             aggregated: vec![0; width * stride],
             left_best: vec![NONE; width],
             left_refined: vec![0.0; width],
-            right_best: vec![u32::MAX; width],
+            right_cost: vec![u16::MAX; width],
             disparity: Image::new(width, height)?,
         })
     }
@@ -250,62 +256,80 @@ impl StereoMatcher {
         self.columns.fill(0);
         self.raw.fill(0);
         let slots = 2 * r + 1;
-        let row_len = w * self.stride;
         for v in v0 - r..v1 + r {
             let slot = (v - (v0 - r)) % slots;
-            let ring = &mut self.raw[slot * row_len..(slot + 1) * row_len];
-            // Take the leaving row out of the column sums, then put the entering one in.
-            for (col, &e) in self.columns.iter_mut().zip(ring.iter()) {
-                *col -= e as u16;
-            }
-            self.raw_costs(v, slot);
-            let ring = &self.raw[slot * row_len..(slot + 1) * row_len];
-            for (col, &e) in self.columns.iter_mut().zip(ring.iter()) {
-                *col += e as u16;
-            }
+            self.enter_row(v, slot);
             if v >= v0 + r {
-                self.match_row(v - r);
+                self.aggregate_row();
+                self.select_row(v - r);
             }
         }
         Ok(())
     }
 
-    /// Raw costs e(u, v, d) of row v into ring slot `slot`; d runs over 0..=min(D, u - c)
-    /// (the right pixel's census must exist), other entries are 0.
-    fn raw_costs(&mut self, v: usize, slot: usize) {
+    /// Raw costs e(u, v, d) of row v into ring slot `slot`, replacing the row that leaves the
+    /// column sums: `columns += e(., v, .) - (old slot)`. d runs over 0..=min(D, u - c) (the
+    /// right pixel's census must exist); the other entries stay 0.
+    #[inline(never)]
+    fn enter_row(&mut self, v: usize, slot: usize) {
         let (w, h) = (self.width, self.height);
         let c = self.config.census_radius;
         let dmax = self.config.max_disparity;
         let stride = self.stride;
         let row_len = w * stride;
         let ring = &mut self.raw[slot * row_len..(slot + 1) * row_len];
-        ring.fill(0);
+        let plane = w * h;
+        let row = v * w;
+        // The right census row reversed, so that T_r(u - d) for d = 0, 1, ... is read forwards.
         for k in 0..self.words {
-            let plane = k * w * h + v * w;
-            let lrow = &self.census_left[plane..plane + w];
-            let rrow = &self.census_right[plane..plane + w];
-            for u in c..w - c {
-                let n = dmax.min(u - c) + 1;
-                let tl = lrow[u];
-                let costs = &mut ring[u * stride..u * stride + n];
-                // rrow[u - d] for d = 0..n, i.e. rrow[u + 1 - n..=u] reversed.
-                let rs = &rrow[u + 1 - n..=u];
-                for (e, &tr) in costs.iter_mut().zip(rs.iter().rev()) {
-                    *e += (tl ^ tr).count_ones() as u8;
+            let src = &self.census_right[k * plane + row..k * plane + row + w];
+            for (dst, &t) in self.reversed[k * w..(k + 1) * w]
+                .iter_mut()
+                .zip(src.iter().rev())
+            {
+                *dst = t;
+            }
+        }
+        for u in c..w - c {
+            let n = dmax.min(u - c) + 1;
+            let ring = &mut ring[u * stride..u * stride + n];
+            let cols = &mut self.columns[u * stride..u * stride + n];
+            // T_r(u - d) = reversed[w - 1 - u + d].
+            let first = w - 1 - u;
+            if self.words == 1 {
+                let tl = self.census_left[row + u];
+                let rs = &self.reversed[first..first + n];
+                for ((e, col), &tr) in ring.iter_mut().zip(cols.iter_mut()).zip(rs) {
+                    let new = (tl ^ tr).count_ones() as u8;
+                    *col = col.wrapping_add(new as u16).wrapping_sub(*e as u16);
+                    *e = new;
+                }
+            } else {
+                for (d, (e, col)) in ring.iter_mut().zip(cols.iter_mut()).enumerate() {
+                    let new: u32 = (0..self.words)
+                        .map(|k| {
+                            let tl = self.census_left[k * plane + row + u];
+                            (tl ^ self.reversed[k * w + first + d]).count_ones()
+                        })
+                        .sum();
+                    *col = col.wrapping_add(new as u16).wrapping_sub(*e as u16);
+                    *e = new as u8;
                 }
             }
         }
     }
 
-    /// Box-aggregates the column sums along row `v` (whose rows v - r..=v + r are in the
-    /// sums), then runs winner-takes-all, uniqueness, left-right check and refinement.
-    fn match_row(&mut self, v: usize) {
+    /// Box-aggregates the column sums (which hold rows v - r..=v + r) along the row into
+    /// `aggregated`, for the columns u0..u1 that have a full box.
+    #[inline(never)]
+    fn aggregate_row(&mut self) {
         let w = self.width;
-        let c = self.config.census_radius;
         let r = self.config.window_radius;
-        let dmax = self.config.max_disparity;
         let stride = self.stride;
-        let (u0, u1) = (c + r, w - c - r);
+        let (u0, u1) = (
+            self.config.census_radius + r,
+            w - self.config.census_radius - r,
+        );
         let cols = &self.columns;
         let agg = &mut self.aggregated;
         // C(u0) = sum of columns u0 - r..=u0 + r; then slide.
@@ -328,47 +352,42 @@ impl StereoMatcher {
                 *a = p.wrapping_add(e).wrapping_sub(l);
             }
         }
+    }
 
+    /// Winner-takes-all, uniqueness, left-right check and refinement of the aggregated row,
+    /// written to row `v` of the disparity map.
+    #[inline(never)]
+    fn select_row(&mut self, v: usize) {
+        let w = self.width;
+        let dmax = self.config.max_disparity;
+        let stride = self.stride;
+        let band = self.config.census_radius + self.config.window_radius;
+        let (u0, u1) = (band, w - band);
+        let agg = &self.aggregated;
         let k = self.config.uniqueness;
-        self.right_best.fill(u32::MAX);
+        self.right_cost.fill(u16::MAX);
         for u in u0..u1 {
             let n = dmax.min(u - u0) + 1;
             let costs = &agg[u * stride..u * stride + n];
-            // Winner (ties to the smaller d) as the min of cost << 16 | d.
-            let best_key = costs
-                .iter()
-                .zip(0u32..)
-                .map(|(&a, d)| (a as u32) << 16 | d)
-                .min()
-                .unwrap_or(u32::MAX);
-            // The right winners: u_r = u - d, stored at W - 1 - u_r = W - 1 - u + d, so
-            // d = 0..n is a contiguous run.
+            // The right image's least costs: u_r = u - d, stored at W - 1 - u_r = W - 1 - u + d,
+            // so d = 0..n is a contiguous run; the same pass finds the left minimum.
             let start = w - 1 - u;
-            for ((rb, &a), d) in self.right_best[start..start + n]
-                .iter_mut()
-                .zip(costs)
-                .zip(0u32..)
-            {
-                *rb = (*rb).min((a as u32) << 16 | d);
+            let mut min = u16::MAX;
+            for (rc, &a) in self.right_cost[start..start + n].iter_mut().zip(costs) {
+                *rc = (*rc).min(a);
+                min = min.min(a);
             }
-            let best = (best_key & 0xFFFF) as usize;
-            let best_cost = (best_key >> 16) as f32;
-            if best + 1 == n && std::env::var("DISP_EDGE").is_ok() {
+            // Winner, ties to the smaller d.
+            let best = first_index_of(costs, min);
+            let best_cost = min as f32;
+            // Best cost at a non-neighbouring disparity; without one there is no rival.
+            let fold = |s: &[u16]| s.iter().copied().fold(u16::MAX, u16::min);
+            let below = fold(&costs[..best.saturating_sub(1)]);
+            let above = fold(costs.get(best + 2..).unwrap_or(&[]));
+            let has_rival = best >= 2 || best + 2 < n;
+            if has_rival && best_cost >= k * below.min(above) as f32 {
                 self.left_best[u] = NONE;
                 continue;
-            }
-            let below = costs[..best.saturating_sub(1)].iter().min();
-            let above = costs.get(best + 2..).and_then(|s| s.iter().min());
-            let second = match (below, above) {
-                (Some(&a), Some(&b)) => Some(a.min(b)),
-                (Some(&a), None) | (None, Some(&a)) => Some(a),
-                (None, None) => None,
-            };
-            if let Some(s) = second {
-                if best_cost >= k * s as f32 {
-                    self.left_best[u] = NONE;
-                    continue;
-                }
             }
             let mut refined = best as f32;
             if best > 0 && best + 1 < n {
@@ -386,20 +405,40 @@ impl StereoMatcher {
             self.left_refined[u] = refined;
         }
 
-        let tol = self.config.left_right_tolerance;
+        // Integer disparities within the tolerance of an integer d*.
+        let t = self.config.left_right_tolerance.min(dmax as f32) as usize;
         let out = self.disparity.row_mut(v);
         let lefts = self.left_best.iter().zip(&self.left_refined);
         for (u, (o, (&best, &refined))) in out.iter_mut().zip(lefts).enumerate().take(u1).skip(u0) {
             if best == NONE {
                 continue;
             }
-            let ur = u - best as usize;
-            let right = (self.right_best[w - 1 - ur] & 0xFFFF) as f32;
-            if (right - best as f32).abs() <= tol {
+            let best = best as usize;
+            let ur = u - best;
+            // Is min_d C(u_r + d, d) reached at some d with |d - d*| <= t?
+            let hi = (best + t).min(dmax).min(u1 - 1 - ur);
+            let near = (best.saturating_sub(t)..=hi)
+                .map(|d| agg[(ur + d) * stride + d])
+                .min()
+                .unwrap_or(u16::MAX);
+            if near <= self.right_cost[w - 1 - ur] {
                 *o = refined;
             }
         }
     }
+}
+
+/// Index of the first element of `values` equal to `target` (0 when there is none): a
+/// vectorisable test per block of 16 before the scalar search inside the block.
+fn first_index_of(values: &[u16], target: u16) -> usize {
+    let mut base = 0;
+    for block in values.chunks(16) {
+        if block.iter().fold(false, |hit, &a| hit | (a == target)) {
+            return base + block.iter().position(|&a| a == target).unwrap_or(0);
+        }
+        base += block.len();
+    }
+    0
 }
 
 /// Census strings of row v (pixels c..w - c; the others are left as they are) into the
@@ -513,6 +552,7 @@ mod tests {
             valid as f64 / interior as f64,
             good as f64 / valid.max(1) as f64,
         );
+        eprintln!("integer shift: {fv:.3} of interior valid, {fg:.3} of valid within 0.25 px");
         assert!(
             fv >= 0.9 && fg >= 0.95,
             "valid {fv:.3} of interior, {fg:.3} of valid within 0.25 px"
@@ -541,6 +581,7 @@ mod tests {
         let count = errors.len();
         assert!(count > w * h / 2, "only {count} valid pixels");
         let med = median(&mut errors);
+        eprintln!("half-pixel shift: {count} valid, median |d - 6.5| = {med:.3}");
         assert!(med < 0.2, "median |d - 6.5| = {med}");
     }
 
@@ -648,7 +689,7 @@ mod tests {
     fn matches_the_simulators_exact_disparity() {
         // The brief asked for median < 0.5 px, >= 80 % of valid pixels within 1 px and >= 50 %
         // of road pixels valid. With the scenario's sensor noise this measures (default
-        // matcher, frame 30): 25.1 % valid, median 0.528 px, 90th percentile 2.34 px, 71.6 %
+        // matcher, frame 30): 25.1 % valid, median 0.529 px, 90th percentile 2.35 px, 71.6 %
         // within 1 px. The simulator's asphalt cannot support more: its fine texture is a
         // value noise of 12 cycles/m and +-5 grey levels, so in the near field (Z ~ 5 m, a
         // cycle ~ 9 px) neighbouring pixels differ by a grey level or two while the sensor
