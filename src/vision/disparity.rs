@@ -270,7 +270,6 @@ impl StereoMatcher {
     /// Raw costs e(u, v, d) of row v into ring slot `slot`, replacing the row that leaves the
     /// column sums: `columns += e(., v, .) - (old slot)`. d runs over 0..=min(D, u - c) (the
     /// right pixel's census must exist); the other entries stay 0.
-    #[inline(never)]
     fn enter_row(&mut self, v: usize, slot: usize) {
         let (w, h) = (self.width, self.height);
         let c = self.config.census_radius;
@@ -321,7 +320,6 @@ impl StereoMatcher {
 
     /// Box-aggregates the column sums (which hold rows v - r..=v + r) along the row into
     /// `aggregated`, for the columns u0..u1 that have a full box.
-    #[inline(never)]
     fn aggregate_row(&mut self) {
         let w = self.width;
         let r = self.config.window_radius;
@@ -356,7 +354,6 @@ impl StereoMatcher {
 
     /// Winner-takes-all, uniqueness, left-right check and refinement of the aggregated row,
     /// written to row `v` of the disparity map.
-    #[inline(never)]
     fn select_row(&mut self, v: usize) {
         let w = self.width;
         let dmax = self.config.max_disparity;
@@ -703,6 +700,154 @@ mod tests {
             s.median < 0.55 && s.within_1px >= 0.70 && s.valid >= 0.24,
             "{s}"
         );
+    }
+
+    /// The whole pipeline written straight from the definitions in the module docs: a census
+    /// as a list of bits, the box sum of Hamming distances for every (u, v, d), no running
+    /// sums and no tricks.
+    fn reference(
+        left: &Image<u8>,
+        right: &Image<u8>,
+        cfg: DisparityConfig,
+        first: usize,
+    ) -> Vec<f32> {
+        let (w, h) = (left.width(), left.height());
+        let (c, r, dmax) = (
+            cfg.census_radius as i64,
+            cfg.window_radius as i64,
+            cfg.max_disparity,
+        );
+        let census = |img: &Image<u8>, x: i64, y: i64| -> Vec<bool> {
+            let p = img.get(x as usize, y as usize);
+            let mut bits = Vec::new();
+            for j in -c..=c {
+                for i in -c..=c {
+                    if i != 0 || j != 0 {
+                        bits.push(img.get((x + i) as usize, (y + j) as usize) < p);
+                    }
+                }
+            }
+            bits
+        };
+        let cost = |x: i64, y: i64, d: i64| -> u32 {
+            let mut sum = 0;
+            for j in -r..=r {
+                for i in -r..=r {
+                    let a = census(left, x + i, y + j);
+                    let b = census(right, x + i - d, y + j);
+                    sum += a.iter().zip(&b).filter(|(p, q)| p != q).count() as u32;
+                }
+            }
+            sum
+        };
+        let band = (c + r) as usize;
+        let mut out = vec![0.0; w * h];
+        for v in first.max(band)..h.saturating_sub(band) {
+            for u in band..w - band {
+                let n = dmax.min(u - band) + 1;
+                let costs: Vec<u32> = (0..n).map(|d| cost(u as i64, v as i64, d as i64)).collect();
+                let min = *costs.iter().min().unwrap();
+                let best = costs.iter().position(|&x| x == min).unwrap();
+                let rivals: Vec<u32> = (0..n)
+                    .filter(|&d| d.abs_diff(best) > 1)
+                    .map(|d| costs[d])
+                    .collect();
+                if let Some(&second) = rivals.iter().min() {
+                    if min as f32 >= cfg.uniqueness * second as f32 {
+                        continue;
+                    }
+                }
+                // The right pixel's costs over its own range.
+                let ur = u - best;
+                let right_costs: Vec<(usize, u32)> = (0..=dmax)
+                    .filter(|&d| ur + d < w - band)
+                    .map(|d| (d, cost((ur + d) as i64, v as i64, d as i64)))
+                    .collect();
+                let right_min = right_costs.iter().map(|&(_, x)| x).min().unwrap();
+                let consistent = right_costs.iter().any(|&(d, x)| {
+                    x == right_min && (d as f32 - best as f32).abs() <= cfg.left_right_tolerance
+                });
+                if !consistent {
+                    continue;
+                }
+                let mut d = best as f32;
+                if best > 0 && best + 1 < n {
+                    let (cm, c0, cp) = (
+                        costs[best - 1] as f32,
+                        costs[best] as f32,
+                        costs[best + 1] as f32,
+                    );
+                    let curvature = cm - 2.0 * c0 + cp;
+                    if curvature > 0.0 {
+                        d += ((cm - cp) / (2.0 * curvature)).clamp(-0.5, 0.5);
+                    }
+                }
+                out[v * w + u] = d;
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn running_sums_match_the_definitions() {
+        let (w, h) = (48, 30);
+        let tex = texture(w, h, 11);
+        let left = shifted(&tex, w, h, 0.0);
+        // A shift of 3.3 px plus independent noise, so that some pixels fail each test.
+        let mut right = shifted(&tex, w, h, 3.3);
+        let mut rng = Rng::new(12);
+        for p in right.data_mut() {
+            *p = (*p as f64 + 6.0 * rng.normal()).clamp(0.0, 255.0) as u8;
+        }
+        let base = DisparityConfig {
+            max_disparity: 10,
+            ..DisparityConfig::default()
+        };
+        let configs = [
+            base,
+            // 48 bits: two census words; no aggregation.
+            DisparityConfig {
+                census_radius: 3,
+                window_radius: 0,
+                ..base
+            },
+            // 168 bits: six words.
+            DisparityConfig {
+                census_radius: 6,
+                window_radius: 1,
+                ..base
+            },
+            DisparityConfig {
+                census_radius: 1,
+                window_radius: 2,
+                uniqueness: 0.7,
+                left_right_tolerance: 0.0,
+                ..base
+            },
+            DisparityConfig {
+                left_right_tolerance: 2.5,
+                uniqueness: 1.0,
+                ..base
+            },
+        ];
+        for cfg in configs {
+            let mut m = StereoMatcher::new(w, h, cfg).unwrap();
+            for first in [0, 9] {
+                m.compute(&left.view(), &right.view(), first).unwrap();
+                let want = reference(&left, &right, cfg, first);
+                let got = m.disparity().data();
+                let valid = want.iter().filter(|&&d| d != 0.0).count();
+                assert!(valid > 50, "{cfg:?}: only {valid} valid reference pixels");
+                for (i, (&g, &e)) in got.iter().zip(&want).enumerate() {
+                    assert!(
+                        g == e,
+                        "{cfg:?}, first row {first}: pixel ({}, {}) is {g}, the definition gives {e}",
+                        i % w,
+                        i / w
+                    );
+                }
+            }
+        }
     }
 
     #[test]
