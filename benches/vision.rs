@@ -5,9 +5,10 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use lanepf::camera::Camera;
 use lanepf::image::{rgba_to_gray, Image};
-use lanepf::synth::{TestRoad, TestRoadConfig};
+use lanepf::synth::{default_camera, scenario, Eye, Scene, TestRoad, TestRoadConfig};
 use lanepf::vision::{
-    Canny, CannyConfig, DistanceTransform, Dld, DldConfig, Gradients, Ipm, TopViewConfig,
+    Canny, CannyConfig, DisparityConfig, DistanceTransform, Dld, DldConfig, Gradients, Ipm,
+    StereoMatcher, TopViewConfig,
 };
 use std::hint::black_box;
 
@@ -34,6 +35,24 @@ fn frame(camera: &Camera) -> Image<u8> {
     let mut gray = Image::new(w, h).expect("size");
     rgba_to_gray(&rgba, w, h, &mut gray).expect("gray");
     gray
+}
+
+/// A rendered stereo pair (left, right) of the `highway-straight` scenario, grey.
+fn stereo_pair(w: usize, h: usize) -> (Image<u8>, Image<u8>) {
+    let camera = default_camera(w, h).expect("camera");
+    let mut scene =
+        Scene::new(scenario("highway-straight").expect("scenario"), camera, 1).expect("scene");
+    let mut rgba = vec![0; w * h * 4];
+    let mut pair = [
+        Image::new(w, h).expect("size"),
+        Image::new(w, h).expect("size"),
+    ];
+    for (eye, gray) in [Eye::Left, Eye::Right].into_iter().zip(pair.iter_mut()) {
+        scene.render(30, eye, &mut rgba, None).expect("render");
+        rgba_to_gray(&rgba, w, h, gray).expect("gray");
+    }
+    let [left, right] = pair;
+    (left, right)
 }
 
 fn vision(c: &mut Criterion) {
@@ -77,7 +96,16 @@ fn vision(c: &mut Criterion) {
             &edges,
             |b, e| b.iter(|| dt.apply(&e.view(), &mut dist).expect("dt")),
         );
-        black_box((&top, &dist));
+
+        // Census block matching of the lower half (the road), 64 disparities.
+        let (left, right) = stereo_pair(w, h);
+        let mut stereo = StereoMatcher::new(w, h, DisparityConfig::default()).expect("stereo");
+        group.bench_with_input(
+            BenchmarkId::new("disparity_lower_half_d64", &size),
+            &(left, right),
+            |b, (l, r)| b.iter(|| stereo.compute(&l.view(), &r.view(), h / 2).expect("stereo")),
+        );
+        black_box((&top, &dist, stereo.disparity()));
         group.finish();
     }
 }
