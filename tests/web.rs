@@ -381,7 +381,7 @@ fn danescu_mono_runs_in_the_browser_with_the_native_result() {
             .unwrap()
     };
     let o = offset(&last);
-    assert_eq!(o.to_bits(), 0xbfe3_42c5_da14_0de7, "{o}");
+    assert_eq!(o.to_bits(), 0xbfe3_d196_9700_a70e, "{o}");
     assert_eq!(offset(&last_stepped).to_bits(), o.to_bits());
     // 11 parameters, weight and cluster per particle; weights sum to 1.
     assert_eq!(tracker.particle_stride(), 13);

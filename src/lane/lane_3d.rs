@@ -145,10 +145,12 @@ impl Lane3d {
         }
     }
 
-    /// Y_C(Z) of eq. 4: the road height Z metres ahead relative to the road plane of the
-    /// calibrated camera (`alpha0` its pitch), to first order in the pitch change.
+    /// Y_C(Z) of eq. 4: the road height Z metres ahead in the road frame of the calibrated
+    /// camera (`alpha0` its pitch), to first order in the pitch change: a camera raised by
+    /// Y_0 sees the road Y_0 lower, and one pitched further down by alpha - alpha0 reads the
+    /// road as rising by that slope.
     pub fn road_height(&self, alpha0: f64, z: f64) -> f64 {
-        -self.y0 - (self.alpha - alpha0) * z + self.cv * z * z / 2.0
+        -self.y0 + (self.alpha - alpha0) * z + self.cv * z * z / 2.0
     }
 }
 

@@ -36,6 +36,18 @@ pub trait Tracker {
     fn set_ego_motion(&mut self, motion: EgoMotion) -> Result<()> {
         motion.check()
     }
+    /// The right image of the next frame, for stereo trackers (`danescu-stereo`): call it
+    /// before every [`Tracker::step`] / [`Tracker::begin_frame`].
+    ///
+    /// # Errors
+    /// [`Error::Config`] for a one-camera tracker; [`Error::BufferSize`] /
+    /// [`Error::Dimensions`] as for a frame.
+    fn set_right(&mut self, _rgba: &[u8], _width: usize, _height: usize) -> Result<()> {
+        Err(Error::Config(format!(
+            "{} takes one camera; a right image is for danescu-stereo",
+            self.id()
+        )))
+    }
     /// The particle cloud after the last step, flattened for drawing: `particle_stride()`
     /// numbers per particle, the layout documented by each tracker; empty by default.
     fn particles(&self) -> Vec<f32> {

@@ -1,8 +1,9 @@
 //! The horizontal gradient with a variable-width kernel (Danescu & Nedevschi 2011, Sec. VI-A c,
 //! after their ref. [9]).
 //!
-//! Each row v has its own kernel half-width k(v): the width in pixels of a lane marking of
-//! `marking_width_m` on the flat road at that row's distance, between 1 and `max_half_width`.
+//! Each row v has its own kernel half-width k(v): half the width in pixels of a lane marking
+//! of `marking_width_m` on the flat road at that row's distance, between 1 and
+//! `max_half_width`.
 //! The gradient is the difference of the means of the k pixels right and left of a pixel,
 //!
 //! ```text
@@ -13,9 +14,11 @@
 //! so near rows, where a marking is many pixels wide, average the asphalt texture away while
 //! far rows keep a one-pixel kernel and their detail. A dark-to-light transition (the left side
 //! of a marking) is above 128, a light-to-dark one below, 128 is flat (the paper's "centred in
-//! 128", eqs. 9-10). With k close to the marking's own width the response peaks on the edges
-//! and falls off linearly over k pixels on both sides, the continuous transitions the paper
-//! weighs particles on without a distance transform. Pixels closer than k to the left or right
+//! 128", eqs. 9-10). The response falls off linearly over k pixels on both sides of an edge,
+//! the continuous transitions the paper weighs particles on without a distance transform. Its
+//! extremes are centred on the edge as long as the kernel fits inside the marking (k <= M - 1
+//! for a marking M pixels wide): hence half the marking's width. A kernel as wide as the
+//! marking would put each extreme half a pixel outside it and widen every marking by a pixel. Pixels closer than k to the left or right
 //! border, and rows at or above the horizon, are 128. Means come from a prefix sum per row, so
 //! the cost does not depend on k.
 
@@ -82,7 +85,7 @@ impl HGradient {
                 // above the point projects along the optical axis at roughly x).
                 Ok([x, _]) if x > 0.0 => {
                     let px = fx * config.marking_width_m / x;
-                    (px.round() as usize).clamp(1, config.max_half_width)
+                    ((px / 2.0).round() as usize).clamp(1, config.max_half_width)
                 }
                 _ => 0,
             })

@@ -7,7 +7,7 @@
 //! preliminary pitch detection's histogram.
 
 use crate::error::{require_finite, require_positive, Error, Result};
-use crate::vision::{CannyConfig, DensityConfig, HGradientConfig};
+use crate::vision::{CannyConfig, DensityConfig, DisparityConfig, HGradientConfig};
 use serde::Deserialize;
 
 /// Every option of the Danescu trackers.
@@ -77,6 +77,9 @@ pub struct DanescuConfig {
     pub canny: CannyConfig,
     /// The discrete 3-D space and its density threshold (stereo only).
     pub density: DensityConfig,
+    /// The stereo matcher (stereo only; `max_disparity` is set from the camera: the
+    /// disparity of the nearest visible road point).
+    pub disparity: DisparityConfig,
     /// Preliminary pitch detection: histogram bin, radians.
     pub pitch_bin_rad: f64,
     /// Preliminary pitch detection: searched pitch changes, +- radians.
@@ -104,8 +107,10 @@ impl Default for DanescuConfig {
             far_m: 35.0,
             points: 20,
             range_3d_m: 15.0,
+            // The vertical ones (C_V, Y_0, alpha, gamma) are for the stereo tracker: a car's
+            // pitch changes by up to 5 mrad and its height by 1 cm per frame on bumps.
             diffusion: [
-                0.03, 0.0003, 0.001, 0.00002, 0.005, 0.04, 0.002, 0.001, 0.004, 0.01, 0.01,
+                0.03, 0.0003, 0.001, 0.00005, 0.015, 0.04, 0.008, 0.001, 0.004, 0.01, 0.01,
             ],
             init_width_m: [2.6, 4.2],
             init_offset_m: 1.2,
@@ -121,7 +126,7 @@ impl Default for DanescuConfig {
             sigma_edge_px: 3.0,
             sigma_marking_px: 3.0,
             sigma_gradient: 30.0,
-            sigma_density: 3.0,
+            sigma_density: 0.5,
             negative_offset_m: 0.3,
             negative_reach_px: 3.0,
             marking_widths: true,
@@ -133,6 +138,7 @@ impl Default for DanescuConfig {
             marking_width_range_m: [0.05, 0.5],
             canny: CannyConfig::default(),
             density: DensityConfig::default(),
+            disparity: DisparityConfig::default(),
             pitch_bin_rad: 0.0005,
             pitch_range_rad: 0.05,
             road_tolerance_m: 0.1,

@@ -33,10 +33,11 @@
 pub mod config;
 pub mod cues;
 pub mod model;
+pub mod stereo;
 
 use super::{now, EgoMotion, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::filter::{
     FilterConfig, Injection, Mbsas, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
 };
@@ -44,7 +45,10 @@ use crate::lane::{sample_road_curve, Boundary, Lane3d, LaneCamera, LaneEstimate,
 use config::DanescuConfig;
 use cues::ImageCues;
 use model::{Initial, Measurement, Motion};
+use stereo::StereoCues;
 
+/// The stereo tracker's id.
+pub const ID_STEREO: &str = "danescu-stereo";
 /// The monocular tracker's id.
 pub const ID_MONO: &str = "danescu-mono";
 /// Particles N when the config does not say.
@@ -95,13 +99,18 @@ struct Weigh<'a> {
     measurement: &'a Measurement,
     camera: &'a Camera,
     cues: &'a ImageCues,
+    stereo: Option<&'a StereoCues>,
 }
 
 impl MeasurementModel<Lane3d> for Weigh<'_> {
     type Cues = ();
     fn log_likelihood(&self, lane: &Lane3d, _: &()) -> f64 {
-        self.measurement
-            .log_likelihood(self.camera, lane, self.cues, None)
+        self.measurement.log_likelihood(
+            self.camera,
+            lane,
+            self.cues,
+            self.stereo.map(StereoCues::density),
+        )
     }
 }
 
@@ -112,6 +121,11 @@ pub struct DanescuTracker {
     camera: Camera,
     config: DanescuConfig,
     cues: ImageCues,
+    /// The stereo cues (danescu-stereo only).
+    stereo: Option<StereoCues>,
+    /// The right frame of the next step (danescu-stereo only).
+    right: Vec<u8>,
+    right_ready: bool,
     measurement: Measurement,
     filter: ParticleFilter<Lane3d>,
     initial: Initial,
@@ -125,25 +139,35 @@ pub struct DanescuTracker {
 }
 
 impl DanescuTracker {
-    /// Builds the tracker `id` (only [`ID_MONO`] so far).
+    /// Builds the tracker `id`: [`ID_STEREO`] or [`ID_MONO`].
     ///
     /// # Errors
-    /// Camera, particle-count and option errors, named.
+    /// Camera, particle-count and option errors, named; for the stereo tracker, a camera
+    /// without `baseline_m`.
     pub fn new(config: &TrackerConfig, id: &'static str) -> Result<Self> {
         let camera = config.validate()?;
         let danescu = DanescuConfig::from_options(&config.options, id)?;
         let cues = ImageCues::new(&camera, &danescu)?;
+        let is_stereo = id == ID_STEREO;
+        let n_pixels = camera.width() * camera.height();
+        let stereo = if is_stereo {
+            Some(StereoCues::new(&camera, &danescu)?)
+        } else {
+            None
+        };
         let measurement = Measurement::new(&camera, &danescu);
         let n = config.particles_or(DEFAULT_PARTICLES);
         let initial = Initial {
             pitch: camera.pitch(),
             roll: camera.roll(),
-            vertical: false,
+            vertical: is_stereo,
             config: danescu.clone(),
         };
         let mut diffusion = danescu.diffusion;
-        for k in VERTICAL {
-            diffusion[k] = 0.0;
+        if !is_stereo {
+            for k in VERTICAL {
+                diffusion[k] = 0.0;
+            }
         }
         if !danescu.marking_widths {
             diffusion[MARKING_WIDTHS[0]] = 0.0;
@@ -164,7 +188,14 @@ impl DanescuTracker {
             id,
             camera,
             config: danescu,
+            right: if is_stereo {
+                vec![0; n_pixels * 4]
+            } else {
+                Vec::new()
+            },
+            right_ready: false,
             cues,
+            stereo,
             measurement,
             filter,
             initial,
@@ -191,16 +222,45 @@ impl DanescuTracker {
         }
     }
 
-    /// Starts a frame: checks it, computes the cues and the drift from the ego motion given
-    /// since the last frame.
+    /// Gives the right frame of the next step (danescu-stereo).
+    ///
+    /// # Errors
+    /// [`Error::Config`] for the monocular tracker; buffer and size errors as for a frame.
+    pub fn set_right(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        if self.stereo.is_none() {
+            return Err(Error::Config(format!(
+                "{} takes one camera; a right image is for {ID_STEREO}",
+                self.id
+            )));
+        }
+        super::check_frame(&self.camera, rgba, width, height)?;
+        self.right.copy_from_slice(rgba);
+        self.right_ready = true;
+        Ok(())
+    }
+
+    /// Starts a frame: checks it, computes the cues (with the right frame given by
+    /// [`DanescuTracker::set_right`] for the stereo tracker) and the drift from the ego
+    /// motion given since the last frame.
     ///
     /// # Errors
     /// [`crate::error::Error::BufferSize`] / [`crate::error::Error::Dimensions`] for a frame
-    /// that does not match the camera.
+    /// that does not match the camera; [`Error::Config`] for the stereo tracker without a
+    /// right frame.
     pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         super::check_frame(&self.camera, rgba, width, height)?;
+        if self.stereo.is_some() && !self.right_ready {
+            return Err(Error::Config(format!(
+                "{ID_STEREO} needs the right image of every frame: call set_right (setRight in \
+                 JS) before each step, or use {ID_MONO} for one camera"
+            )));
+        }
         let t0 = now();
         self.cues.begin(rgba)?;
+        if let Some(stereo) = self.stereo.as_mut() {
+            self.right_ready = false;
+            stereo.process(&self.right, &mut self.cues)?;
+        }
         self.cues.finish()?;
         let (travelled_m, turned_rad) = match self.motion.take() {
             Some(m) => {
@@ -264,6 +324,7 @@ impl DanescuTracker {
                     measurement: &self.measurement,
                     camera: &self.camera,
                     cues: &self.cues,
+                    stereo: self.stereo.as_ref(),
                 };
                 self.filter.weigh(&weigh, &());
                 frame.times.weigh += now() - t;
@@ -303,9 +364,12 @@ impl DanescuTracker {
             ess,
             support: [0.0; 2],
         };
-        let d = self
-            .measurement
-            .distances_of(&self.camera, &e.lane, &self.cues, None);
+        let d = self.measurement.distances_of(
+            &self.camera,
+            &e.lane,
+            &self.cues,
+            self.stereo.as_ref().map(StereoCues::density),
+        );
         e.support = d.support;
         e.valid = e.cluster_share >= self.config.valid_cluster_share
             && d.support.iter().all(|&s| s >= self.config.valid_support)
@@ -360,8 +424,16 @@ impl DanescuTracker {
             ("danescu.ess", e.ess),
             ("danescu.support_left", e.support[0]),
             ("danescu.support_right", e.support[1]),
+            ("danescu.marking_pixels", self.cues.counts().0 as f64),
         ] {
             state.insert(k.to_string(), v);
+        }
+        if let Some(stereo) = self.stereo.as_ref() {
+            state.insert(
+                "danescu.pitch_detected".into(),
+                self.camera.pitch() + stereo.pitch_change(),
+            );
+            state.insert("danescu.road_points".into(), stereo.road_points() as f64);
         }
         LaneEstimate {
             frame: String::new(),
@@ -412,10 +484,15 @@ impl Tracker for DanescuTracker {
 
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
+        self.right_ready = false;
         self.first = true;
         self.frame = None;
         self.motion = None;
         self.last_time = None;
+    }
+
+    fn set_right(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        DanescuTracker::set_right(self, rgba, width, height)
     }
 
     fn set_ego_motion(&mut self, motion: EgoMotion) -> Result<()> {

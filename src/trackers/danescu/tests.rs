@@ -50,14 +50,7 @@ fn drift_with_the_true_ego_motion_carries_the_truth_to_the_next_frame() {
         1,
     )
     .unwrap();
-    let lane_of = |f: u32| {
-        let t = scene.truth(f);
-        let mut a = [0.0; 11];
-        for (k, n) in Lane3d::NAMES.iter().enumerate() {
-            a[k] = t.state[&format!("danescu.{n}")];
-        }
-        Lane3d::from_array(a)
-    };
+    let lane_of = |f: u32| true_lane(&scene.truth(f));
     let (mut moved, mut still) = (0.0f64, 0.0f64);
     for f in (0..150).step_by(10) {
         let (p0, p1) = (scene.pose(f), scene.pose(f + 1));
@@ -84,18 +77,16 @@ fn drift_with_the_true_ego_motion_carries_the_truth_to_the_next_frame() {
 
 #[test]
 fn mono_tracks_a_straight_highway() {
-    let run = run("highway-straight", 90, 320, 240);
+    // At 640x480, where a 0.15 m marking is 2-9 pixels wide (at 320x240 the same run is
+    // valid on 56 of the 60 frames: the far dashes are a pixel wide).
+    let run = run("highway-straight", 90, 640, 480);
     let tail = &run[30..];
     let off = rms(tail.iter().map(|(t, e)| t.lateral_offset_m - e.lane.xcw));
     let head = rms(tail.iter().map(|(t, e)| t.heading_rad + e.lane.psi));
     let width = rms(tail.iter().map(|(t, e)| t.state["danescu.w0"] - e.lane.w0));
     let valid = tail.iter().filter(|(_, e)| e.valid).count();
-    eprintln!(
-        "offset {off} heading {head} width {width} valid {valid}/{}",
-        tail.len()
-    );
     assert!(
-        off < 0.15 && head < 0.02 && width < 0.15,
+        off < 0.05 && head < 0.005 && width < 0.06,
         "offset {off} heading {head} width {width}"
     );
     assert!(valid * 100 >= tail.len() * 95, "{valid}");
@@ -109,20 +100,20 @@ fn mono_follows_curves_and_width_changes() {
     let off = rms(tail.iter().map(|(t, e)| t.lateral_offset_m - e.lane.xcw));
     let ch = rms(tail.iter().map(|(t, e)| t.state["danescu.ch"] - e.lane.ch));
     let valid = tail.iter().filter(|(_, e)| e.valid).count();
-    assert!(off < 0.1 && ch < 0.0005, "curve: offset {off} C_H {ch}");
+    assert!(off < 0.05 && ch < 0.0004, "curve: offset {off} C_H {ch}");
     assert!(valid * 100 >= tail.len() * 95, "curve: {valid} valid");
     // Frames 60-150 drive through the widening from 3.6 to 4.5 m (W_l = 0.009): W_0 follows
-    // within 0.15 m and the estimated W_l has the right sign on average.
+    // within 0.08 m and the estimated W_l has the right sign on average.
     let widening = run("width-change", 150, 640, 480);
     let part = &widening[60..150];
     let w = rms(part.iter().map(|(t, e)| t.state["danescu.w0"] - e.lane.w0));
     let wl: f64 = part.iter().map(|(_, e)| e.lane.wl).sum::<f64>() / part.len() as f64;
-    assert!(w < 0.15 && wl > 0.002, "width-change: W_0 {w} W_l {wl}");
+    assert!(w < 0.08 && wl > 0.002, "width-change: W_0 {w} W_l {wl}");
 }
 
 /// The estimate the browser test `danescu_mono_runs_in_the_browser_with_the_native_result`
 /// (tests/web.rs) must reproduce bit for bit.
-const CROSS_TARGET_OFFSET_BITS: u64 = 0xbfe3_42c5_da14_0de7;
+const CROSS_TARGET_OFFSET_BITS: u64 = 0xbfe3_d196_9700_a70e;
 
 #[test]
 fn same_result_as_the_browser_build() {
@@ -219,4 +210,171 @@ fn bad_input_is_an_error_and_the_tracker_goes_on() {
         scene.render(f, Eye::Left, &mut rgba, None).unwrap();
         assert!(t.track(&rgba, 320, 240).is_ok());
     }
+}
+
+/// Runs danescu-stereo over `frames` frames of a scenario with the simulator's ego motion.
+fn run_stereo(
+    name: &str,
+    frames: u32,
+    w: usize,
+    h: usize,
+    extra: &str,
+) -> Vec<(LaneEstimate, DanescuEstimate, f64)> {
+    let mut scene = Scene::new(scenario(name).unwrap(), default_camera(w, h).unwrap(), 1).unwrap();
+    let mut tracker = DanescuTracker::new(&config(w, h, extra), ID_STEREO).unwrap();
+    let (mut left, mut right) = (vec![0; w * h * 4], vec![0; w * h * 4]);
+    (0..frames)
+        .map(|f| {
+            let pose = scene.render(f, Eye::Left, &mut left, None).unwrap();
+            scene.render(f, Eye::Right, &mut right, None).unwrap();
+            tracker
+                .set_ego_motion(EgoMotion {
+                    t_s: pose.t,
+                    speed_mps: pose.speed,
+                    yaw_rate: pose.yaw_rate,
+                })
+                .unwrap();
+            tracker.set_right(&right, w, h).unwrap();
+            let e = tracker.track(&left, w, h).unwrap();
+            let pitch = tracker.stereo.as_ref().unwrap().pitch_change();
+            (scene.truth(f), e, pitch)
+        })
+        .collect()
+}
+
+#[test]
+fn the_density_cue_is_least_at_the_true_vertical_profile() {
+    // Sec. VI-B on pitch-bumps at 640x480: D^D (eq. 13) of the true lane is under a cell, and
+    // moving Y_0 by 4 cm or the pitch by 5 mrad costs at least two more cells. The preliminary
+    // pitch follows the true pitch change.
+    let (w, h) = (640, 480);
+    let camera = default_camera(w, h).unwrap();
+    let mut scene = Scene::new(scenario("pitch-bumps").unwrap(), camera.clone(), 1).unwrap();
+    let mut tracker = DanescuTracker::new(&config(w, h, ""), ID_STEREO).unwrap();
+    let (mut left, mut right) = (vec![0; w * h * 4], vec![0; w * h * 4]);
+    for f in [10u32, 20, 30, 40] {
+        scene.render(f, Eye::Left, &mut left, None).unwrap();
+        scene.render(f, Eye::Right, &mut right, None).unwrap();
+        tracker.set_right(&right, w, h).unwrap();
+        tracker.begin(&left, w, h).unwrap();
+        let truth = scene.truth(f);
+        let lane = true_lane(&truth);
+        let stereo = tracker.stereo.as_ref().unwrap();
+        assert!(stereo.road_points() > 10_000, "{}", stereo.road_points());
+        let dd = |l: &Lane3d| {
+            tracker
+                .measurement
+                .distances_of(&tracker.camera, l, &tracker.cues, Some(stereo.density()))
+                .density
+                .unwrap()
+        };
+        let at = dd(&lane);
+        assert!(at < 1.0, "frame {f}: {at}");
+        for moved in [
+            Lane3d {
+                y0: lane.y0 + 0.04,
+                ..lane
+            },
+            Lane3d {
+                y0: lane.y0 - 0.04,
+                ..lane
+            },
+            Lane3d {
+                alpha: lane.alpha + 0.005,
+                ..lane
+            },
+            Lane3d {
+                alpha: lane.alpha - 0.005,
+                ..lane
+            },
+        ] {
+            assert!(dd(&moved) > at + 2.0, "frame {f}: {} vs {at}", dd(&moved));
+        }
+        // The preliminary pitch is the slope of a line through the origin (Sec. IV: it ignores
+        // Y_0), so a height offset tilts it by about Y_0 over the distance of the bulk of the
+        // points (4-5 m here).
+        let change = lane.alpha - camera.pitch();
+        assert!(
+            (stereo.pitch_change() - change).abs() < 0.003 + lane.y0.abs() / 4.0,
+            "frame {f}: detected {} true {change} Y_0 {}",
+            stereo.pitch_change(),
+            lane.y0
+        );
+    }
+}
+
+/// The simulator's danescu.* truth as a lane.
+fn true_lane(truth: &LaneEstimate) -> Lane3d {
+    let mut a = [0.0; 11];
+    for (k, n) in Lane3d::NAMES.iter().enumerate() {
+        a[k] = truth.state[&format!("danescu.{n}")];
+    }
+    Lane3d::from_array(a)
+}
+
+#[test]
+fn stereo_tracks_the_pitch_and_height_on_bumps_and_a_straight_highway() {
+    // pitch-bumps: +-1.2 deg (21 mrad) and +-4 cm at 0.9 s. A tracker that held the pitch would
+    // be 15 mrad and 2.8 cm RMS off; stereo must do better than half of that.
+    let bumps = run_stereo("pitch-bumps", 90, 640, 480, "");
+    let tail = &bumps[30..];
+    let alpha = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.alpha"] - e.lane.alpha));
+    let y0 = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.y0"] - e.lane.y0));
+    let off = rms(tail.iter().map(|(t, e, _)| t.lateral_offset_m - e.lane.xcw));
+    let w0 = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.w0"] - e.lane.w0));
+    assert!(
+        alpha < 0.0075 && y0 < 0.014,
+        "bumps: alpha {alpha} Y_0 {y0}"
+    );
+    assert!(off < 0.1 && w0 < 0.1, "bumps: offset {off} W_0 {w0}");
+    let straight = run_stereo("highway-straight", 60, 640, 480, "");
+    let tail = &straight[30..];
+    let off = rms(tail.iter().map(|(t, e, _)| t.lateral_offset_m - e.lane.xcw));
+    let w0 = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.w0"] - e.lane.w0));
+    let valid = tail.iter().filter(|(_, e, _)| e.valid).count();
+    assert!(off < 0.1 && w0 < 0.1, "straight: offset {off} W_0 {w0}");
+    assert!(valid * 100 >= tail.len() * 90, "straight: {valid} valid");
+}
+
+#[test]
+fn stereo_input_errors_are_clear() {
+    let (w, h) = (320, 240);
+    let mut stereo = DanescuTracker::new(&config(w, h, ""), ID_STEREO).unwrap();
+    let frame = vec![0; w * h * 4];
+    let e = stereo.track(&frame, w, h).unwrap_err().to_string();
+    assert!(e.contains("set_right") && e.contains(ID_MONO), "{e}");
+    let e = stereo
+        .set_right(&frame[..100], w, h)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("bytes") || e.contains("buffer"), "{e}");
+    // A right frame is used once.
+    stereo.set_right(&frame, w, h).unwrap();
+    assert!(stereo.track(&frame, w, h).is_ok());
+    assert!(stereo.track(&frame, w, h).is_err());
+    let mut mono = DanescuTracker::new(&config(w, h, ""), ID_MONO).unwrap();
+    let e = mono.set_right(&frame, w, h).unwrap_err().to_string();
+    assert!(e.contains("one camera"), "{e}");
+    // Without a baseline there is no stereo rig.
+    let mut file = default_camera(w, h).unwrap().to_file();
+    file.baseline_m = None;
+    let c = TrackerConfig::from_json_str(&format!(
+        r#"{{"camera": {}}}"#,
+        serde_json::to_string(&file).unwrap()
+    ))
+    .unwrap();
+    let e = DanescuTracker::new(&c, ID_STEREO)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("baseline_m"), "{e}");
+    assert!(DanescuTracker::new(&c, ID_MONO).is_ok());
 }

@@ -1,0 +1,201 @@
+//! The stereo cues of `danescu-stereo` (Sec. IV, VI-A a, VI-B): disparity of the road rows,
+//! 3-D points, the preliminary pitch, the road points, the road-edge selection and the density
+//! image DT^D.
+//!
+//! 1. **Disparity** of the rows below the horizon ([`crate::vision::StereoMatcher`], census
+//!    block matching), searched up to the disparity of the nearest visible road point.
+//! 2. **3-D points**: each valid pixel triangulated through the rig and expressed in the road
+//!    frame of the calibrated camera (x ahead, z up).
+//! 3. **Preliminary pitch** (Sec. IV; the authors' ref. [8] detects it per frame from the
+//!    lateral projection of the points): a histogram of the slopes z / x of the points between
+//!    the blind spot and D_3D, in bins of `pitch_bin_rad` over +- `pitch_range_rad`; the
+//!    fullest bin is the road plane's apparent tilt m, the pitch change of the car. (Obstacles
+//!    stand above the road and spread over steeper slopes; the road fills one bin.)
+//! 4. **Road points**: the points within `road_tolerance_m` of the line z = m x. As the paper
+//!    says, this detected pitch only selects the road data; the tracked pitch and Y_0 come from
+//!    the particles.
+//! 5. **Road edges** (DT^E): the Canny edges whose 3-D point is a road point. Edges without a
+//!    disparity (the matcher rejects ambiguous pixels) are kept: the selection removes what is
+//!    known to stand off the road, not what could not be measured (our choice; the paper's
+//!    dense stereo hardware measured the edges themselves).
+//! 6. **Density** (Sec. VI-B): the road points in the lateral plane, [`crate::vision::Density`].
+
+use super::config::DanescuConfig;
+use super::cues::ImageCues;
+use crate::camera::{Camera, StereoRig};
+use crate::error::{Error, Result};
+use crate::image::{rgba_to_gray, Image};
+use crate::math;
+use crate::vision::{Density, DisparityConfig, StereoMatcher, EDGE};
+use nalgebra::{Matrix3, Vector3};
+
+/// The stereo executors and the last frame's stereo results.
+#[derive(Debug, Clone)]
+pub struct StereoCues {
+    rig: StereoRig,
+    /// Camera-to-road rotation (the transpose of the calibrated camera's).
+    to_road: Matrix3<f64>,
+    height: f64,
+    right_gray: Image<u8>,
+    matcher: StereoMatcher,
+    density: Density,
+    histogram: Vec<u32>,
+    bin: f64,
+    range: f64,
+    near: f64,
+    far: f64,
+    tolerance: f64,
+    pitch_change: f64,
+    road_points: usize,
+}
+
+impl StereoCues {
+    /// The executors for `camera`, whose file must give the baseline.
+    ///
+    /// # Errors
+    /// [`Error::Config`] without a baseline; option errors of the matcher and the density.
+    pub fn new(camera: &Camera, config: &DanescuConfig) -> Result<Self> {
+        let rig = StereoRig::from_camera(camera.clone())?;
+        let (w, h) = (camera.width(), camera.height());
+        let [cx, _] = camera.principal_point();
+        // The nearest visible road point bounds the disparities to search.
+        let near = camera
+            .pixel_to_road(cx, h as f64 - 1.0)
+            .map_or(1.0, |[x, _]| x)
+            .max(0.5);
+        let d_max = rig.disparity_for_depth(near * 0.8).unwrap_or(64.0).ceil() as usize + 2;
+        let matcher = StereoMatcher::new(
+            w,
+            h,
+            DisparityConfig {
+                max_disparity: d_max.min(crate::vision::MAX_DISPARITY).min(w - 1),
+                ..config.disparity
+            },
+        )?;
+        let bins = (2.0 * config.pitch_range_rad / config.pitch_bin_rad).ceil() as usize + 1;
+        if bins > 100_000 {
+            return Err(Error::parameter(
+                "pitch_bin_rad",
+                config.pitch_bin_rad,
+                "is too small for pitch_range_rad (over 100 000 bins)",
+            ));
+        }
+        Ok(Self {
+            to_road: camera.rotation().transpose(),
+            height: camera.height_m(),
+            right_gray: Image::new(w, h)?,
+            matcher,
+            density: Density::new(config.density)?,
+            histogram: vec![0; bins],
+            bin: config.pitch_bin_rad,
+            range: config.pitch_range_rad,
+            near,
+            far: config.range_3d_m,
+            tolerance: config.road_tolerance_m,
+            pitch_change: 0.0,
+            road_points: 0,
+            rig,
+        })
+    }
+
+    /// The density image and DT^D of the last frame.
+    pub fn density(&self) -> &Density {
+        &self.density
+    }
+
+    /// The disparity of the last frame.
+    pub fn disparity(&self) -> &Image<f32> {
+        self.matcher.disparity()
+    }
+
+    /// The preliminary pitch change (the road plane's apparent slope) of the last frame,
+    /// radians, positive when the camera looks further down than calibrated.
+    pub fn pitch_change(&self) -> f64 {
+        self.pitch_change
+    }
+
+    /// Road points selected in the last frame.
+    pub fn road_points(&self) -> usize {
+        self.road_points
+    }
+
+    /// Road-frame point (x ahead, y left, z up) of left pixel (u, v) with disparity d.
+    #[inline]
+    fn point(&self, u: usize, v: usize, d: f32) -> Option<[f64; 3]> {
+        let c = self.rig.triangulate(u as f64, v as f64, d as f64)?;
+        let p = self.to_road * Vector3::new(c[0], c[1], c[2]);
+        Some([p.x, p.y, p.z + self.height])
+    }
+
+    /// Runs the stereo steps on the left grey image in `cues` and the right RGBA frame,
+    /// then filters `cues`' road edges.
+    ///
+    /// # Errors
+    /// Buffer-size errors of the right frame.
+    pub fn process(&mut self, right_rgba: &[u8], cues: &mut ImageCues) -> Result<()> {
+        let (w, h) = (self.right_gray.width(), self.right_gray.height());
+        rgba_to_gray(right_rgba, w, h, &mut self.right_gray)?;
+        let top = cues.top();
+        {
+            let left = cues.gray().view();
+            self.matcher.compute(&left, &self.right_gray.view(), top)?;
+        }
+        // Preliminary pitch: the fullest slope bin.
+        self.histogram.fill(0);
+        let bins = self.histogram.len();
+        for v in top..h {
+            for u in 0..w {
+                let d = self.matcher.disparity().get(u, v);
+                if d <= 0.0 {
+                    continue;
+                }
+                let Some([x, _, z]) = self.point(u, v, d) else {
+                    continue;
+                };
+                if x < self.near || x > self.far {
+                    continue;
+                }
+                let k = ((z / x + self.range) / self.bin).round();
+                if k >= 0.0 && (k as usize) < bins {
+                    self.histogram[k as usize] += 1;
+                }
+            }
+        }
+        let best = (0..bins)
+            .max_by_key(|&k| (self.histogram[k], std::cmp::Reverse(k.abs_diff(bins / 2))))
+            .unwrap_or(bins / 2);
+        let slope = best as f64 * self.bin - self.range;
+        self.pitch_change = math::atan(slope);
+        // Road points: density, and the road-edge selection.
+        self.density.clear();
+        self.road_points = 0;
+        let region_rows = h - top;
+        let dz_max = self.density.config().cols as f64 * self.density.config().dz_m;
+        for r in 0..region_rows {
+            let v = r + top;
+            for u in 0..w {
+                let d = self.matcher.disparity().get(u, v);
+                if d <= 0.0 {
+                    continue;
+                }
+                let Some([x, _, z]) = self.point(u, v, d) else {
+                    continue;
+                };
+                let on_road = (z - slope * x).abs() <= self.tolerance;
+                if on_road {
+                    self.road_points += 1;
+                    if x < dz_max {
+                        self.density.add(x, z);
+                    }
+                } else {
+                    let e = cues.edges_mut();
+                    if e.get(u, r) == EDGE {
+                        e.set(u, r, 0);
+                    }
+                }
+            }
+        }
+        self.density.finish()?;
+        Ok(())
+    }
+}
