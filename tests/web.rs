@@ -405,3 +405,47 @@ fn danescu_mono_runs_in_the_browser_with_the_native_result() {
     let rgba = scene.render(5).unwrap().to_vec();
     assert!(tracker.step(&rgba, 320, 240).is_ok());
 }
+
+#[wasm_bindgen_test]
+fn danescu_stereo_runs_in_the_browser_with_the_native_result() {
+    // Same run as the native unit test
+    // `trackers::danescu::tests::stereo_same_result_as_the_browser_build`: highway-curve seed
+    // 1 at 320x240, 300 particles, seed 2, five stereo frames.
+    let mut scene = JsScene::new(
+        "highway-curve",
+        obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
+    )
+    .unwrap();
+    let camera = scene.camera().unwrap();
+    let config = obj(r#"{"particles": 300, "seed": 2}"#);
+    js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
+    let mut tracker = JsTracker::new("danescu-stereo", config).unwrap();
+    assert!(tracker.is_stereo());
+    let first = scene.render(0).unwrap().to_vec();
+    // Without the right image: a thrown Error that says what to do, and the tracker goes on.
+    let m = message(tracker.step(&first, 320, 240));
+    assert!(m.contains("setRight") && m.contains("danescu-mono"), "{m}");
+    let m = message(tracker.set_right(&[0; 12], 320, 240));
+    assert!(m.contains("320x240") || m.contains("bytes"), "{m}");
+    let mut last = JsValue::UNDEFINED;
+    for f in 0..5 {
+        let left = scene.render(f).unwrap().to_vec();
+        let right = scene.render_right(f).unwrap().to_vec();
+        tracker.set_right(&right, 320, 240).unwrap();
+        last = tracker.step(&left, 320, 240).unwrap();
+    }
+    let state = js_sys::Reflect::get(&last, &"state".into()).unwrap();
+    let alpha = js_sys::Reflect::get(&state, &"danescu.alpha".into())
+        .unwrap()
+        .as_f64()
+        .unwrap();
+    assert_eq!(alpha.to_bits(), 0x3fb0_b6da_ff9a_97e1, "{alpha}");
+    // A one-camera tracker refuses a right image.
+    let config = obj(r#"{}"#);
+    js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
+    let mut mono = JsTracker::new("danescu-mono", config).unwrap();
+    assert!(!mono.is_stereo());
+    let right = scene.render_right(0).unwrap().to_vec();
+    let m = message(mono.set_right(&right, 320, 240));
+    assert!(m.contains("one camera"), "{m}");
+}

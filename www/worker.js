@@ -42,6 +42,16 @@ const handlers = {
     let trackMs = 0;
     let layers = null;
     if (tracker) {
+      // A stereo tracker gets the scene's right camera (the test road has none: its step
+      // then throws an Error saying so); every tracker gets the car's motion from the truth
+      // (only the Danescu trackers use it).
+      if (tracker.isStereo && road.renderRight) {
+        tracker.setRight(road.renderRight(index), road.width, road.height);
+      }
+      const s = truth?.state;
+      if (s && Number.isFinite(s.t) && Number.isFinite(s.speed_mps) && Number.isFinite(s.yaw_rate)) {
+        tracker.setEgoMotion({ t_s: s.t, speed_mps: s.speed_mps, yaw_rate: s.yaw_rate });
+      }
       const t1 = performance.now();
       estimate = tracker.step(rgba, road.width, road.height);
       trackMs = performance.now() - t1;

@@ -36,6 +36,10 @@ pub trait Tracker {
     fn set_ego_motion(&mut self, motion: EgoMotion) -> Result<()> {
         motion.check()
     }
+    /// Whether the tracker needs a right image with every frame ([`Tracker::set_right`]).
+    fn is_stereo(&self) -> bool {
+        false
+    }
     /// The right image of the next frame, for stereo trackers (`danescu-stereo`): call it
     /// before every [`Tracker::step`] / [`Tracker::begin_frame`].
     ///
@@ -185,8 +189,10 @@ pub enum Layer {
 /// Time spent per stage of one frame, milliseconds.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct StageTimes {
-    /// Grey conversion, top view, gradients, edges, distance maps.
+    /// Grey conversion, top view, gradients, edges, distance maps (and stereo matching).
     pub preprocess: f64,
+    /// Of `preprocess`: the stereo matching (disparity) of a stereo tracker.
+    pub disparity: f64,
     /// Motion model: drift and diffusion (and injection).
     pub predict: f64,
     /// Measurement model: likelihoods of all particles.
@@ -239,6 +245,7 @@ pub(crate) fn no_frame_in_progress() -> Error {
 pub const TRACKER_IDS: &[&str] = &[
     adachi::ID,
     danescu::ID_MONO,
+    danescu::ID_STEREO,
     lee::ID,
     liu::ID,
     liu::ID_NOKERNEL,
@@ -311,11 +318,13 @@ pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
     if id == adachi::ID {
         return Ok(Box::new(adachi::AdachiTracker::new(config)?));
     }
-    if id == danescu::ID_MONO {
-        return Ok(Box::new(danescu::DanescuTracker::new(
-            config,
-            danescu::ID_MONO,
-        )?));
+    if id == danescu::ID_MONO || id == danescu::ID_STEREO {
+        let id = if id == danescu::ID_MONO {
+            danescu::ID_MONO
+        } else {
+            danescu::ID_STEREO
+        };
+        return Ok(Box::new(danescu::DanescuTracker::new(config, id)?));
     }
     if id == lee::ID {
         return Ok(Box::new(lee::LeeTracker::new(config)?));
@@ -396,6 +405,7 @@ mod tests {
         .unwrap();
         let mut scene = Scene::new(scenario("highway-curve").unwrap(), camera, 1).unwrap();
         let mut rgba = vec![0; 320 * 240 * 4];
+        let mut right = vec![0; 320 * 240 * 4];
         for id in TRACKER_IDS {
             let mut whole = create(id, &c).unwrap();
             let mut stepped = create(id, &c).unwrap();
@@ -404,6 +414,13 @@ mod tests {
             assert!(stepped.advance().is_err(), "{id}: no frame in progress");
             for f in 0..3 {
                 scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+                if whole.is_stereo() {
+                    scene.render(f, Eye::Right, &mut right, None).unwrap();
+                    whole.set_right(&right, 320, 240).unwrap();
+                    stepped.set_right(&right, 320, 240).unwrap();
+                } else {
+                    assert!(whole.set_right(&right, 320, 240).is_err(), "{id}");
+                }
                 let expected = whole.step(&rgba, 320, 240).unwrap();
                 stepped.begin_frame(&rgba, 320, 240).unwrap();
                 let results: Vec<_> = (0..n).map(|_| stepped.advance().unwrap()).collect();
@@ -426,7 +443,9 @@ mod tests {
         .unwrap();
         let mut scene = Scene::new(scenario("highway-straight").unwrap(), camera, 1).unwrap();
         let mut rgba = vec![0; 320 * 240 * 4];
+        let mut right = vec![0; 320 * 240 * 4];
         scene.render(0, Eye::Left, &mut rgba, None).unwrap();
+        scene.render(0, Eye::Right, &mut right, None).unwrap();
         let truth = scene.truth(0);
         // Lateral positions y of the true boundaries (`ego`: only the ego lane's) x metres
         // ahead.
@@ -444,6 +463,9 @@ mod tests {
         // their orientation kernels).
         for id in TRACKER_IDS.iter().filter(|&&id| id != liu::ID_NOKERNEL) {
             let mut t = create(id, &c).unwrap();
+            if t.is_stereo() {
+                t.set_right(&right, 320, 240).unwrap();
+            }
             t.step(&rgba, 320, 240).unwrap();
             let layers = t.layers();
             assert!(!layers.is_empty(), "{id}");

@@ -47,7 +47,7 @@ impl JsTracker {
     /// stage 1 or 2 (0 for a single-stage variant), psi, y0, w, w', c, delta, weight;
     /// liu-ppf: 3 numbers (rho, theta, d) per boundary and the weight; danescu-mono: the 11
     /// lane parameters w0, ch, wl, cv, y0, xcw, alpha, gamma, psi, wl_mark, wr_mark, the
-    /// weight and the MBSAS cluster, -1 for an initialisation particle).
+    /// weight and the MBSAS cluster, -1 for an initialisation particle; danescu-stereo: the same).
     pub fn particles(&self) -> js_sys::Float32Array {
         js_sys::Float32Array::from(&self.inner.particles()[..])
     }
@@ -76,6 +76,19 @@ impl JsTracker {
     pub fn set_ego_motion(&mut self, motion: JsValue) -> Result<(), JsError> {
         let motion: trackers::EgoMotion = from_js_object(&motion, "ego motion")?;
         self.inner.set_ego_motion(motion).map_err(to_js)
+    }
+
+    /// Whether the tracker needs the right image of every frame (`setRight`): danescu-stereo.
+    #[wasm_bindgen(getter, js_name = isStereo)]
+    pub fn is_stereo(&self) -> bool {
+        self.inner.is_stereo()
+    }
+
+    /// The right camera's RGBA frame for the next `step` / `beginFrame` of a stereo tracker
+    /// (used once). Throws for a one-camera tracker or a frame of the wrong size.
+    #[wasm_bindgen(js_name = setRight)]
+    pub fn set_right(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<(), JsError> {
+        self.inner.set_right(rgba, width, height).map_err(to_js)
     }
 
     /// Forgets the past.

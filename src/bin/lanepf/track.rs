@@ -2,7 +2,7 @@
 
 use super::frames;
 use lanepf::camera::CameraFile;
-use lanepf::image::read_rgba;
+use lanepf::image::{read_rgba, RgbaFrame};
 use lanepf::trackers::{self, TrackerConfig};
 use lanepf::{Error, Result};
 use std::io::Write;
@@ -65,11 +65,21 @@ pub fn run(args: Args) -> Result<()> {
     options.entry("seed").or_insert(args.seed.into());
     let config = TrackerConfig::from_json_str(&serde_json::Value::Object(options).to_string())?;
     let mut tracker = trackers::create(&args.tracker, &config)?;
-    if args.right.is_some() {
-        return Err(Error::Config(format!(
-            "tracker `{}` takes one camera; --right is for stereo trackers",
-            args.tracker
-        )));
+    match (&args.right, tracker.is_stereo()) {
+        (Some(_), false) => {
+            return Err(Error::Config(format!(
+                "tracker `{}` takes one camera; --right is for stereo trackers",
+                args.tracker
+            )))
+        }
+        (None, true) => {
+            return Err(Error::Config(format!(
+                "tracker `{}` needs the right camera's frames: give --right DIR (the same file \
+                 names as --frames)",
+                args.tracker
+            )))
+        }
+        _ => {}
     }
     if args.still == Some(0) {
         return Err(Error::parameter(
@@ -93,6 +103,26 @@ pub fn run(args: Args) -> Result<()> {
         if let Some(m) = &motion {
             tracker.set_ego_motion(m[index])?;
         }
+        let right = match &args.right {
+            Some(dir) => {
+                let file = path
+                    .file_name()
+                    .ok_or_else(|| Error::Config(format!("{} has no file name", path.display())))?;
+                let right = read_rgba(&dir.join(file))?;
+                if (right.width, right.height) != (frame.width, frame.height) {
+                    return Err(Error::Dimensions(format!(
+                        "the right frame {} is {}x{} but the left one is {}x{}",
+                        dir.join(file).display(),
+                        right.width,
+                        right.height,
+                        frame.width,
+                        frame.height
+                    )));
+                }
+                Some(right)
+            }
+            None => None,
+        };
         if (frame.width, frame.height) != (camera.width, camera.height) {
             return Err(Error::Dimensions(format!(
                 "{} is {}x{} but the camera is {}x{}",
@@ -107,13 +137,13 @@ pub fn run(args: Args) -> Result<()> {
         let mut estimate = match args.still {
             Some(k) => {
                 tracker.reset();
-                let mut last = tracker.step(&frame.data, frame.width, frame.height)?;
+                let mut last = step(tracker.as_mut(), &frame, right.as_ref())?;
                 for _ in 1..k {
-                    last = tracker.step(&frame.data, frame.width, frame.height)?;
+                    last = step(tracker.as_mut(), &frame, right.as_ref())?;
                 }
                 last
             }
-            None => tracker.step(&frame.data, frame.width, frame.height)?,
+            None => step(tracker.as_mut(), &frame, right.as_ref())?,
         };
         estimate.ms = start.elapsed().as_secs_f64() * 1e3;
         estimate.frame = frames::name(path);
@@ -128,6 +158,18 @@ pub fn run(args: Args) -> Result<()> {
         reason: e.to_string(),
     })?;
     Ok(())
+}
+
+/// One step on a frame, with its right frame for a stereo tracker.
+fn step(
+    tracker: &mut dyn trackers::Tracker,
+    frame: &RgbaFrame,
+    right: Option<&RgbaFrame>,
+) -> Result<lanepf::lane::LaneEstimate> {
+    if let Some(r) = right {
+        tracker.set_right(&r.data, r.width, r.height)?;
+    }
+    tracker.step(&frame.data, frame.width, frame.height)
 }
 
 /// Reads one ego-motion record per frame from a JSON-lines file.

@@ -110,7 +110,7 @@ impl Default for DanescuConfig {
             // The vertical ones (C_V, Y_0, alpha, gamma) are for the stereo tracker: a car's
             // pitch changes by up to 5 mrad and its height by 1 cm per frame on bumps.
             diffusion: [
-                0.03, 0.0003, 0.001, 0.00005, 0.015, 0.04, 0.008, 0.001, 0.004, 0.01, 0.01,
+                0.03, 0.0003, 0.001, 0.00005, 0.015, 0.04, 0.008, 0.0003, 0.004, 0.01, 0.01,
             ],
             init_width_m: [2.6, 4.2],
             init_offset_m: 1.2,

@@ -257,9 +257,10 @@ impl DanescuTracker {
         }
         let t0 = now();
         self.cues.begin(rgba)?;
+        let mut disparity = 0.0;
         if let Some(stereo) = self.stereo.as_mut() {
             self.right_ready = false;
-            stereo.process(&self.right, &mut self.cues)?;
+            disparity = stereo.process(&self.right, &mut self.cues)?;
         }
         self.cues.finish()?;
         let (travelled_m, turned_rad) = match self.motion.take() {
@@ -286,6 +287,7 @@ impl DanescuTracker {
             },
             times: StageTimes {
                 preprocess: now() - t0,
+                disparity,
                 ..StageTimes::default()
             },
         });
@@ -489,6 +491,10 @@ impl Tracker for DanescuTracker {
         self.frame = None;
         self.motion = None;
         self.last_time = None;
+    }
+
+    fn is_stereo(&self) -> bool {
+        self.stereo.is_some()
     }
 
     fn set_right(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {

@@ -111,9 +111,39 @@ fn mono_follows_curves_and_width_changes() {
     assert!(w < 0.08 && wl > 0.002, "width-change: W_0 {w} W_l {wl}");
 }
 
-/// The estimate the browser test `danescu_mono_runs_in_the_browser_with_the_native_result`
-/// (tests/web.rs) must reproduce bit for bit.
+/// The estimates the browser tests `danescu_mono_runs_in_the_browser_with_the_native_result`
+/// and `danescu_stereo_...` (tests/web.rs) must reproduce bit for bit.
 const CROSS_TARGET_OFFSET_BITS: u64 = 0xbfe3_d196_9700_a70e;
+const CROSS_TARGET_STEREO_PITCH_BITS: u64 = 0x3fb0_b6da_ff9a_97e1;
+
+#[test]
+fn stereo_same_result_as_the_browser_build() {
+    // highway-curve seed 1 at 320x240, 300 particles, seed 2, five stereo frames.
+    let mut scene = Scene::new(
+        scenario("highway-curve").unwrap(),
+        default_camera(320, 240).unwrap(),
+        1,
+    )
+    .unwrap();
+    let c = config(320, 240, r#", "particles": 300"#);
+    let c = TrackerConfig { seed: 2, ..c };
+    let mut tracker = super::super::create(ID_STEREO, &c).unwrap();
+    let (mut left, mut right) = (vec![0; 320 * 240 * 4], vec![0; 320 * 240 * 4]);
+    let mut last = None;
+    for f in 0..5 {
+        scene.render(f, Eye::Left, &mut left, None).unwrap();
+        scene.render(f, Eye::Right, &mut right, None).unwrap();
+        tracker.set_right(&right, 320, 240).unwrap();
+        last = Some(tracker.step(&left, 320, 240).unwrap());
+    }
+    let alpha = last.unwrap().state["danescu.alpha"];
+    assert_eq!(
+        alpha.to_bits(),
+        CROSS_TARGET_STEREO_PITCH_BITS,
+        "{:#x} ({alpha})",
+        alpha.to_bits()
+    );
+}
 
 #[test]
 fn same_result_as_the_browser_build() {
