@@ -1,10 +1,11 @@
-//! danescu-mono on the simulator: per scenario, over several seeds at 640x480 with the
-//! simulator's ego motion, the RMSE of the lateral offset, yaw, horizontal curvature, lane width
-//! W_0 (inner edges) and the mean absolute error of the marking widths W_L, W_R, the valid
-//! rate and the median ms/frame (indicative: the runs share the machine). Each scenario runs
-//! twice: with the marking-width model and the gradient cue (the paper's new approach) and
-//! without (`marking_widths: false`, its previous approach, Fig. 10).
-//! `cargo run --release --example danescu_mono_sweep -- [SEEDS] [FRAMES] [SCENARIO...]`
+//! danescu-mono or danescu-stereo on the simulator: per scenario, over several seeds at 640x480
+//! with the simulator's ego motion, the RMSE of the lateral offset, yaw, horizontal curvature,
+//! lane width W_0 (inner edges), pitch and height offset Y_0, the mean absolute error of the
+//! marking widths W_L, W_R, the valid rate and the median ms/frame (indicative: the runs share
+//! the machine). Each scenario runs twice: with the marking-width model and the gradient cue
+//! (the paper's new approach) and without (`marking_widths: false`, its previous approach,
+//! Fig. 10).
+//! `cargo run --release --example danescu_sweep -- [ID] [SEEDS] [FRAMES] [SCENARIO...]`
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
 use lanepf::trackers::{create, EgoMotion, TrackerConfig};
@@ -16,6 +17,8 @@ struct Sums {
     psi: f64,
     ch: f64,
     w0: f64,
+    alpha: f64,
+    y0: f64,
     marks: f64,
     marks_n: f64,
     valid: f64,
@@ -24,10 +27,14 @@ struct Sums {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let seeds: u64 = args.get(1).map_or(Ok(3), |s| s.parse())?;
-    let frames: u32 = args.get(2).map_or(Ok(150), |s| s.parse())?;
-    let names: Vec<String> = if args.len() > 3 {
-        args[3..].to_vec()
+    let id = args
+        .get(1)
+        .map_or("danescu-mono", String::as_str)
+        .to_string();
+    let seeds: u64 = args.get(2).map_or(Ok(3), |s| s.parse())?;
+    let frames: u32 = args.get(3).map_or(Ok(150), |s| s.parse())?;
+    let names: Vec<String> = if args.len() > 4 {
+        args[4..].to_vec()
     } else {
         [
             "highway-straight",
@@ -56,10 +63,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let config = TrackerConfig::from_json_str(&format!(
                     r#"{{"camera": {cam}, "seed": {seed}, "marking_widths": {marking_widths}}}"#
                 ))?;
-                let mut tracker = create("danescu-mono", &config)?;
+                let mut tracker = create(&id, &config)?;
                 let mut rgba = vec![0; 640 * 480 * 4];
+                let mut right = vec![0; 640 * 480 * 4];
                 for f in 0..frames {
                     let pose = scene.render(f, Eye::Left, &mut rgba, None)?;
+                    if tracker.is_stereo() {
+                        scene.render(f, Eye::Right, &mut right, None)?;
+                        tracker.set_right(&right, 640, 480)?;
+                    }
                     tracker.set_ego_motion(EgoMotion {
                         t_s: pose.t,
                         speed_mps: pose.speed,
@@ -78,6 +90,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     s.psi += sq("danescu.psi");
                     s.ch += sq("danescu.ch");
                     s.w0 += sq("danescu.w0");
+                    s.alpha += sq("danescu.alpha");
+                    s.y0 += sq("danescu.y0");
                     for k in ["danescu.wl_mark", "danescu.wr_mark"] {
                         s.marks += (t.state[k] - e.state[k]).abs();
                         s.marks_n += 1.0;
@@ -88,7 +102,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s.ms.sort_by(f64::total_cmp);
             let r = |x: f64| (x / s.n).sqrt();
             println!(
-                "| {name} | {} | {:.3} | {:.4} | {:.5} | {:.3} | {:.3} | {:.1} % | {:.1} |",
+                "| {name} | {} | {:.3} | {:.4} | {:.5} | {:.3} | {:.1} | {:.1} | {:.3} | {:.1} % | {:.1} |",
                 if marking_widths {
                     "marking widths + gradient"
                 } else {
@@ -98,6 +112,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 r(s.psi),
                 r(s.ch),
                 r(s.w0),
+                1e3 * r(s.alpha),
+                1e2 * r(s.y0),
                 s.marks / s.marks_n,
                 100.0 * s.valid / s.n,
                 s.ms[s.ms.len() / 2],
