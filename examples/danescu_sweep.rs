@@ -50,11 +50,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let camera = default_camera(640, 480)?;
     let cam = serde_json::to_string(&camera.to_file())?;
     println!(
-        "{seeds} seeds x {frames} frames, N = 500, 640x480, first 30 frames of each run skipped"
+        "{id}: {seeds} seeds x {frames} frames, N = 500, 640x480, first 30 frames of each run skipped"
     );
     println!();
-    println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | W_L, W_R MAE (m) | valid | ms/frame (median) |");
-    println!("|---|---|---|---|---|---|---|---|---|");
+    println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | pitch RMSE (mrad) | Y_0 RMSE (cm) | W_L, W_R MAE (m) | valid | ms/frame (median) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for name in &names {
         for marking_widths in [true, false] {
             let mut s = Sums::default();
