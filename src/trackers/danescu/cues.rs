@@ -225,9 +225,14 @@ impl ImageCues {
 
     #[inline]
     fn pixel(&self, u: f64, v: f64) -> Option<(usize, usize)> {
-        let (u, v) = ((u + 0.5).floor(), (v + 0.5).floor() - self.top as f64);
-        (u >= 0.0 && v >= 0.0 && u < self.width as f64 && v < (self.height - self.top) as f64)
-            .then_some((u as usize, v as usize))
+        // Nearest pixel; truncation is the floor for the non-negative values kept (and NaN
+        // fails the comparisons).
+        let (a, b) = (u + 0.5, v + 0.5 - self.top as f64);
+        if !(a >= 0.0 && b >= 0.0) {
+            return None;
+        }
+        let (u, v) = (a as usize, b as usize);
+        (u < self.width && v < self.height - self.top).then_some((u, v))
     }
 
     #[inline]

@@ -29,6 +29,15 @@ use crate::math;
 use crate::vision::{Density, DisparityConfig, StereoMatcher, EDGE};
 use nalgebra::{Matrix3, Vector3};
 
+/// A triangulated pixel: its column, its row in the road region, its distance ahead and height.
+#[derive(Debug, Clone, Copy)]
+struct Point {
+    u: u32,
+    row: u32,
+    x: f64,
+    z: f64,
+}
+
 /// The stereo executors and the last frame's stereo results.
 #[derive(Debug, Clone)]
 pub struct StereoCues {
@@ -39,6 +48,7 @@ pub struct StereoCues {
     right_gray: Image<u8>,
     matcher: StereoMatcher,
     density: Density,
+    points: Vec<Point>,
     histogram: Vec<u32>,
     bin: f64,
     range: f64,
@@ -86,6 +96,7 @@ impl StereoCues {
             right_gray: Image::new(w, h)?,
             matcher,
             density: Density::new(config.density)?,
+            points: Vec::with_capacity(w * h),
             histogram: vec![0; bins],
             bin: config.pitch_bin_rad,
             range: config.pitch_range_rad,
@@ -142,25 +153,31 @@ impl StereoCues {
             self.matcher.compute(&left, &self.right_gray.view(), top)?;
         }
         let matching = super::super::now() - t0;
-        // Preliminary pitch: the fullest slope bin.
-        self.histogram.fill(0);
-        let bins = self.histogram.len();
+        // The 3-D points of the road region, triangulated once.
+        self.points.clear();
         for v in top..h {
             for u in 0..w {
                 let d = self.matcher.disparity().get(u, v);
                 if d <= 0.0 {
                     continue;
                 }
-                let Some([x, _, z]) = self.point(u, v, d) else {
-                    continue;
-                };
-                if x < self.near || x > self.far {
-                    continue;
+                if let Some([x, _, z]) = self.point(u, v, d) {
+                    self.points.push(Point {
+                        u: u as u32,
+                        row: (v - top) as u32,
+                        x,
+                        z,
+                    });
                 }
-                let k = ((z / x + self.range) / self.bin).round();
-                if k >= 0.0 && (k as usize) < bins {
-                    self.histogram[k as usize] += 1;
-                }
+            }
+        }
+        // Preliminary pitch: the fullest slope bin.
+        self.histogram.fill(0);
+        let bins = self.histogram.len();
+        for p in self.points.iter().filter(|p| p.x >= self.near && p.x <= self.far) {
+            let k = ((p.z / p.x + self.range) / self.bin).round();
+            if k >= 0.0 && (k as usize) < bins {
+                self.histogram[k as usize] += 1;
             }
         }
         let best = (0..bins)
@@ -171,30 +188,16 @@ impl StereoCues {
         // Road points: density, and the road-edge selection.
         self.density.clear();
         self.road_points = 0;
-        let region_rows = h - top;
         let dz_max = self.density.config().cols as f64 * self.density.config().dz_m;
-        for r in 0..region_rows {
-            let v = r + top;
-            for u in 0..w {
-                let d = self.matcher.disparity().get(u, v);
-                if d <= 0.0 {
-                    continue;
+        let edges = cues.edges_mut();
+        for p in &self.points {
+            if (p.z - slope * p.x).abs() <= self.tolerance {
+                self.road_points += 1;
+                if p.x < dz_max {
+                    self.density.add(p.x, p.z);
                 }
-                let Some([x, _, z]) = self.point(u, v, d) else {
-                    continue;
-                };
-                let on_road = (z - slope * x).abs() <= self.tolerance;
-                if on_road {
-                    self.road_points += 1;
-                    if x < dz_max {
-                        self.density.add(x, z);
-                    }
-                } else {
-                    let e = cues.edges_mut();
-                    if e.get(u, r) == EDGE {
-                        e.set(u, r, 0);
-                    }
-                }
+            } else if edges.get(p.u as usize, p.row as usize) == EDGE {
+                edges.set(p.u as usize, p.row as usize, 0);
             }
         }
         self.density.finish()?;
