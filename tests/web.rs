@@ -254,6 +254,14 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     assert!(tracker.step(&rgba, 320, 240).is_ok());
 }
 
+/// `lateral_offset_m` of an estimate.
+fn lateral_offset(estimate: &JsValue) -> f64 {
+    js_sys::Reflect::get(estimate, &"lateral_offset_m".into())
+        .unwrap()
+        .as_f64()
+        .unwrap()
+}
+
 /// Runs tracker `id` with `options` (plus the scene's camera) over five frames of
 /// highway-curve (seed 1, 320x240), once by `step` and once in per-step mode, checking the
 /// order of its `steps` steps; returns the scene, its camera, the whole-step tracker and both last estimates.
@@ -295,12 +303,7 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
     // highway-curve seed 1 at 320x240, 400 particles, seed 2, five frames, also step by step.
     let (mut scene, camera, mut tracker, last, last_stepped) =
         track_five_frames_both_ways("lee-cpf", r#"{"particles": 400, "seed": 2}"#, 7);
-    let offset = |v: &JsValue| {
-        js_sys::Reflect::get(v, &"lateral_offset_m".into())
-            .unwrap()
-            .as_f64()
-            .unwrap()
-    };
+    let offset = lateral_offset;
     let o = offset(&last);
     assert_eq!(o.to_bits(), 0x3faf_ad71_da16_c37b, "{o}");
     assert_eq!(offset(&last_stepped).to_bits(), o.to_bits());
@@ -374,12 +377,7 @@ fn danescu_mono_runs_in_the_browser_with_the_native_result() {
     // 320x240, 300 particles, seed 2, five frames, also step by step.
     let (mut scene, camera, mut tracker, last, last_stepped) =
         track_five_frames_both_ways("danescu-mono", r#"{"particles": 300, "seed": 2}"#, 4);
-    let offset = |v: &JsValue| {
-        js_sys::Reflect::get(v, &"lateral_offset_m".into())
-            .unwrap()
-            .as_f64()
-            .unwrap()
-    };
+    let offset = lateral_offset;
     let o = offset(&last);
     assert_eq!(o.to_bits(), 0xbfe3_d196_9700_a70e, "{o}");
     assert_eq!(offset(&last_stepped).to_bits(), o.to_bits());
