@@ -404,7 +404,7 @@ impl DanescuTracker {
                 |x| -lane.marking_centre_x(right, x),
                 |x, y| lc.project(-y, x),
                 1.0,
-                self.config.far_m * 2.0,
+                self.config.far_m,
                 self.camera.width(),
                 self.camera.height(),
             );

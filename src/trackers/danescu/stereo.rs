@@ -174,7 +174,11 @@ impl StereoCues {
         // Preliminary pitch: the fullest slope bin.
         self.histogram.fill(0);
         let bins = self.histogram.len();
-        for p in self.points.iter().filter(|p| p.x >= self.near && p.x <= self.far) {
+        for p in self
+            .points
+            .iter()
+            .filter(|p| p.x >= self.near && p.x <= self.far)
+        {
             let k = ((p.z / p.x + self.range) / self.bin).round();
             if k >= 0.0 && (k as usize) < bins {
                 self.histogram[k as usize] += 1;
