@@ -47,7 +47,9 @@ function heat(v) {
  */
 export function drawLayer(ctx, layer) {
   const canvas = ctx.canvas;
-  if (layer.kind === 'grid') {
+  // A grid on the road and a plane (e.g. Danescu's lateral density image) are both heat maps
+  // with row 0 at the bottom.
+  if (layer.kind === 'grid' || layer.kind === 'plane') {
     const { width, height, values } = layer;
     if (canvas.width !== width || canvas.height !== height) {
       canvas.width = width;
@@ -56,7 +58,7 @@ export function drawLayer(ctx, layer) {
     const max = values.reduce((a, v) => Math.max(a, v), 0) || 1;
     const img = new ImageData(width, height);
     for (let r = 0; r < height; r++) {
-      // Grid row 0 is nearest the car: draw it at the bottom.
+      // Row 0 (nearest the car, or lowest) is drawn at the bottom.
       const out = (height - 1 - r) * width;
       for (let c = 0; c < width; c++) {
         const [red, green, blue] = heat(values[r * width + c] / max);

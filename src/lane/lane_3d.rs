@@ -4,7 +4,7 @@
 //! The paper's frame: X lateral (to the right), Y vertical (up), Z ahead, origin on the road
 //! under the camera. With the lateral offset X_CW, the yaw psi and the horizontal curvature
 //! C_H, the lane centre is X_C(Z) = X_CW + psi Z + C_H Z^2 / 2 (the clothoid of the authors'
-//! earlier model, their ref. [8], to second order), and
+//! earlier model, their ref. \[8\], to second order), and
 //!
 //! ```text
 //! W(Z)      = W_0 + W_l Z                                   (eq. 1)

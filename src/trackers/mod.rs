@@ -184,6 +184,39 @@ pub enum Layer {
         /// One value per cell.
         values: Vec<f32>,
     },
+    /// Values on a plane other than the road, row 0 at the bottom of the axes.
+    Plane {
+        /// What the values are.
+        name: String,
+        /// Columns.
+        width: usize,
+        /// Rows.
+        height: usize,
+        /// Where the rows and columns are.
+        #[serde(flatten)]
+        axes: PlaneAxes,
+        /// One value per cell.
+        values: Vec<f32>,
+    },
+}
+
+/// A layer of values on a plane other than the road (e.g. Danescu's lateral density image):
+/// column c is at `x0 + (c + 0.5) dx` on the x axis, row r at `y0 + (r + 0.5) dy` on the y axis;
+/// `values[r * width + c]`. Part of [`Layer::Plane`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct PlaneAxes {
+    /// The x axis, e.g. `Z (m, ahead)`.
+    pub x_axis: String,
+    /// Start of column 0.
+    pub x0: f64,
+    /// Column size.
+    pub dx: f64,
+    /// The y axis, e.g. `Y (m, up)`.
+    pub y_axis: String,
+    /// Start of row 0.
+    pub y0: f64,
+    /// Row size.
+    pub dy: f64,
 }
 
 /// Time spent per stage of one frame, milliseconds.
@@ -531,6 +564,7 @@ mod tests {
                         "{id}: {found:?}"
                     );
                 }
+                Layer::Plane { .. } => panic!("{id}: the main layer must be on the road"),
             }
         }
     }

@@ -5,7 +5,7 @@
 //! `cols` cells of `dy_m` (height) by `dz_m` (distance): cell (r, c) with c = Z / dZ (eq. 7)
 //! and r = Y / dY + rows / 2 (eq. 8), so heights from -rows dY / 2 to +rows dY / 2 (the paper:
 //! 200 x 300 cells of 1 cm x 10 cm). Instead of a plain count per cell, each point adds a
-//! triangular kernel (the paper's ref. [12]): 11 x 11 cells, 6 at the centre and one less per
+//! triangular kernel (the paper's ref. \[12\]): 11 x 11 cells, 6 at the centre and one less per
 //! ring, 1 on the outer ring,
 //!
 //! ```text

@@ -1,5 +1,5 @@
 //! The horizontal gradient with a variable-width kernel (Danescu & Nedevschi 2011, Sec. VI-A c,
-//! after their ref. [9]).
+//! after their ref. \[9\]).
 //!
 //! Each row v has its own kernel half-width k(v): half the width in pixels of a lane marking
 //! of `marking_width_m` on the flat road at that row's distance, between 1 and

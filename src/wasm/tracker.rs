@@ -56,8 +56,9 @@ impl JsTracker {
     /// start, step, values } | { kind: 'grid', name, width, height, x0, y0, cell, values }]`
     /// (adachi-mmpf: the vote and noise histograms; lee-cpf: the likelihood map D and the DLD
     /// candidates; liu-ppf: the measurement pixels and the top view; danescu-mono: the marking
-    /// and road edges; grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres
-    /// left).
+    /// and road edges; danescu-stereo: those and `{ kind: 'plane', name, width, height, x_axis,
+    /// x0, dx, y_axis, y0, dy, values }` for the 3-D density image and its column maxima;
+    /// grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres left).
     pub fn layers(&self) -> Result<JsValue, JsError> {
         super::to_js_value(&self.inner.layers())
     }

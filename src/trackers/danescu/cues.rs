@@ -5,7 +5,7 @@
 //!
 //! - **HG**: [`crate::vision::HGradient`], the marking's width on the road setting each row's
 //!   kernel.
-//! - **Markings** (the paper's ref. [9] extracts them from this same gradient): on each row, a
+//! - **Markings** (the paper's ref. \[9\] extracts them from this same gradient): on each row, a
 //!   dark-to-light run of the gradient (g > c) followed by a light-to-dark run (g < -c) whose
 //!   extremes are between the smallest and largest marking width apart at that row's distance
 //!   is a marking; both of its edges are marked. Curbs, which the paper adds from the

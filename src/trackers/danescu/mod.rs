@@ -532,7 +532,8 @@ impl Tracker for DanescuTracker {
     }
 
     /// The marking and road-edge cues seen on the road: exp(-DT^2 / 2) of DT^S and DT^E
-    /// sampled on a 0.1 m grid from `near_m` to `far_m` and +-6 m (1 on an edge pixel).
+    /// sampled on a 0.1 m grid from `near_m` to `far_m` and +-6 m (1 on an edge pixel); for
+    /// danescu-stereo also the density image and its column maxima on the lateral plane.
     fn layers(&self) -> Vec<Layer> {
         const CELL: f64 = 0.1;
         const HALF_WIDTH_M: f64 = 6.0;
@@ -564,14 +565,47 @@ impl Tracker for DanescuTracker {
                 values,
             }
         };
-        vec![
+        let mut layers = vec![
             grid("marking edges: exp(-DT^S^2 / 2)", &|u, v| {
                 self.cues.marking_distance(u, v)
             }),
             grid("road edges: exp(-DT^E^2 / 2)", &|u, v| {
                 self.cues.edge_distance(u, v)
             }),
-        ]
+        ];
+        if let Some(stereo) = &self.stereo {
+            let density = stereo.density();
+            let c = density.config();
+            let axes = super::PlaneAxes {
+                x_axis: "Z (m, ahead)".into(),
+                x0: -c.dz_m / 2.0,
+                dx: c.dz_m,
+                y_axis: "Y (m, up, calibrated road frame)".into(),
+                y0: -((c.rows / 2) as f64 + 0.5) * c.dy_m,
+                dy: c.dy_m,
+            };
+            let plane = |name: &str, values: Vec<f32>| Layer::Plane {
+                name: name.to_string(),
+                width: c.cols,
+                height: c.rows,
+                axes: axes.clone(),
+                values,
+            };
+            layers.push(plane(
+                "3-D point density, triangular filter (Sec. VI-B)",
+                density.density().data().to_vec(),
+            ));
+            layers.push(plane(
+                "density column maxima (the road profile DT^D measures from)",
+                density
+                    .edges()
+                    .data()
+                    .iter()
+                    .map(|&e| f32::from(e))
+                    .collect(),
+            ));
+        }
+        layers
     }
 
     fn step_names(&self) -> &'static [&'static str] {

@@ -3,7 +3,7 @@
 //! each particle mapped into image space (and into the discrete 3-D space) and compared with
 //! the cues, the likelihoods multiplied, degenerate lanes given weight zero.
 //!
-//! **Drift** (ours; the paper defers to its ref. [8]): over a frame the car travels s = v dt
+//! **Drift** (ours; the paper defers to its ref. \[8\]): over a frame the car travels s = v dt
 //! and turns by omega dt (yaw rate omega, positive to the left). The lane ahead is then seen
 //! from s metres further along: X_CW <- X_C(s) = X_CW + psi s + C_H s^2 / 2,
 //! psi <- psi + C_H s + omega dt (the car turning left makes the lane head to the right),

@@ -6,7 +6,7 @@
 //!    block matching), searched up to the disparity of the nearest visible road point.
 //! 2. **3-D points**: each valid pixel triangulated through the rig and expressed in the road
 //!    frame of the calibrated camera (x ahead, z up).
-//! 3. **Preliminary pitch** (Sec. IV; the authors' ref. [8] detects it per frame from the
+//! 3. **Preliminary pitch** (Sec. IV; the authors' ref. \[8\] detects it per frame from the
 //!    lateral projection of the points): a histogram of the slopes z / x of the points between
 //!    the blind spot and D_3D, in bins of `pitch_bin_rad` over +- `pitch_range_rad`; the
 //!    fullest bin is the road plane's apparent tilt m, the pitch change of the car. (Obstacles

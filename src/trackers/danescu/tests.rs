@@ -323,6 +323,29 @@ fn the_density_cue_is_least_at_the_true_vertical_profile() {
         // The preliminary pitch is the slope of a line through the origin (Sec. IV: it ignores
         // Y_0), so a height offset tilts it by about Y_0 over the distance of the bulk of the
         // points (4-5 m here).
+        // The stereo layers show the same profile: at Z = 10 m the density's column maximum
+        // is within 2 cm of the true road height.
+        let layers = tracker.layers();
+        let Some(crate::trackers::Layer::Plane {
+            width,
+            height,
+            axes,
+            values,
+            ..
+        }) = layers.last()
+        else {
+            panic!("no plane layer");
+        };
+        let col = ((10.0 - axes.x0) / axes.dx) as usize;
+        let want = lane.road_height(camera.pitch(), 10.0);
+        let rows: Vec<f64> = (0..*height)
+            .filter(|&r| values[r * width + col] > 0.0)
+            .map(|r| axes.y0 + (r as f64 + 0.5) * axes.dy)
+            .collect();
+        assert!(
+            rows.iter().any(|y| (y - want).abs() < 0.02),
+            "frame {f}: maxima at {rows:?}, road at {want}"
+        );
         let change = lane.alpha - camera.pitch();
         assert!(
             (stereo.pitch_change() - change).abs() < 0.003 + lane.y0.abs() / 4.0,
