@@ -299,3 +299,20 @@ fn track_runs_a_tracker_over_synthetic_frames_and_eval_scores_it() {
     std::fs::remove_dir_all(&out).unwrap();
     std::fs::remove_dir_all(&small).unwrap();
 }
+
+#[test]
+fn a_closed_output_pipe_ends_quietly() {
+    // `lanepf synth --list | head -0`: the reader is gone before lanepf writes; it must not
+    // panic (println! would) and it exits successfully.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(env!("CARGO_BIN_EXE_lanepf"))
+        .args(["synth", "--list"])
+        .stdout(writer)
+        .stderr(std::process::Stdio::piped())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(out.status.success(), "{stderr}");
+}

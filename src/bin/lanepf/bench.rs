@@ -121,13 +121,12 @@ pub fn run(args: Args) -> Result<()> {
             });
         }
     }
+    let mut text = String::new();
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&rows).map_err(|e| Error::Config(e.to_string()))?
-        );
+        text = serde_json::to_string_pretty(&rows).map_err(|e| Error::Config(e.to_string()))?;
+        text.push('\n');
     } else {
-        println!(
+        text += &format!(
             "{:18} {:>10} {:>9} {:>9} {:>11} {:>10} {:>9} {:>9} {:>10} {:>10}",
             "tracker",
             "size",
@@ -140,9 +139,10 @@ pub fn run(args: Args) -> Result<()> {
             "resample",
             "estimate"
         );
+        text.push('\n');
         for r in rows {
             let s = r.stages_ms;
-            println!(
+            text += &format!(
                 "{:18} {:>10} {:>9.2} {:>9.2} {:>11.2} {:>10.2} {:>9.2} {:>9.2} {:>10.2} {:>10.2}",
                 r.tracker,
                 format!("{}x{}", r.width, r.height),
@@ -155,7 +155,8 @@ pub fn run(args: Args) -> Result<()> {
                 s.resample,
                 s.estimate
             );
+            text.push('\n');
         }
     }
-    Ok(())
+    super::out(&text)
 }

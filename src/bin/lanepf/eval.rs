@@ -37,9 +37,9 @@ pub fn run(args: Args) -> Result<()> {
     if args.json {
         let text =
             serde_json::to_string_pretty(&report).map_err(|e| Error::Config(e.to_string()))?;
-        println!("{text}");
+        super::out(&format!("{text}\n"))?;
     } else {
-        print!("{report}");
+        super::out(&report.to_string())?;
     }
     Ok(())
 }

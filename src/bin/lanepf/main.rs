@@ -40,6 +40,23 @@ enum Command {
     Bench(bench::Args),
 }
 
+/// Writes `text` to standard output. A closed pipe (`lanepf eval ... | head`) ends the output
+/// quietly instead of panicking as `println!` does; other write errors are reported.
+pub(crate) fn out(text: &str) -> lanepf::Result<()> {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(lanepf::Error::Io {
+            path: "standard output".into(),
+            reason: e.to_string(),
+        }),
+        _ => Ok(()),
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {

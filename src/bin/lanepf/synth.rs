@@ -57,10 +57,11 @@ fn io_error(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
 /// Runs the command.
 pub fn run(args: Args) -> Result<()> {
     if args.list {
-        for (name, about) in SCENARIOS {
-            println!("{name:18} {about}");
-        }
-        return Ok(());
+        let list: String = SCENARIOS
+            .iter()
+            .map(|(name, about)| format!("{name:18} {about}\n"))
+            .collect();
+        return super::out(&list);
     }
     let (Some(name), Some(out)) = (args.scenario, args.out) else {
         return Err(Error::Config("--scenario and --out are required".into()));
