@@ -131,6 +131,9 @@ pub struct DanescuTracker {
     initial: Initial,
     diffusion: [f64; 11],
     mbsas: Mbsas<11>,
+    /// Whether `mbsas`'s labels belong to the particles as they are now (not after a
+    /// resampling that reordered them).
+    labels_current: bool,
     motion: Option<EgoMotion>,
     last_time: Option<f64>,
     first: bool,
@@ -145,6 +148,12 @@ impl DanescuTracker {
     /// Camera, particle-count and option errors, named; for the stereo tracker, a camera
     /// without `baseline_m`.
     pub fn new(config: &TrackerConfig, id: &'static str) -> Result<Self> {
+        if id != ID_MONO && id != ID_STEREO {
+            return Err(Error::UnknownTracker {
+                id: id.to_string(),
+                available: format!("{ID_MONO}, {ID_STEREO}"),
+            });
+        }
         let camera = config.validate()?;
         let danescu = DanescuConfig::from_options(&config.options, id)?;
         let cues = ImageCues::new(&camera, &danescu)?;
@@ -201,6 +210,7 @@ impl DanescuTracker {
             initial,
             diffusion,
             mbsas,
+            labels_current: false,
             motion: None,
             last_time: None,
             first: true,
@@ -312,6 +322,7 @@ impl DanescuTracker {
                 if !frame.first {
                     self.filter.resample();
                     self.filter.inject(&self.initial);
+                    self.labels_current = false;
                 }
                 frame.times.resample += now() - t;
             }
@@ -349,6 +360,7 @@ impl DanescuTracker {
         let f = |l: &Lane3d| l.to_array();
         self.mbsas
             .cluster(states, first, &f, &|a, b| (a[5] - b[5]).abs());
+        self.labels_current = true;
         let resampled = (states.len() - first).max(1);
         let best_count = self.mbsas.counts().iter().copied().max().unwrap_or(0);
         let lane = self
@@ -450,9 +462,14 @@ impl DanescuTracker {
         }
     }
 
-    /// The particles with their weights and cluster labels (`usize::MAX` for none).
+    /// The particles with their weights and cluster labels (`usize::MAX` for none: an
+    /// initialisation particle, or a frame between resampling and the estimate step).
     pub fn particle_states(&self) -> impl Iterator<Item = (&Lane3d, f64, usize)> + '_ {
-        let labels = self.mbsas.labels();
+        let labels: &[usize] = if self.labels_current {
+            self.mbsas.labels()
+        } else {
+            &[]
+        };
         self.filter
             .states()
             .iter()
@@ -486,6 +503,7 @@ impl Tracker for DanescuTracker {
 
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
+        self.labels_current = false;
         self.right_ready = false;
         self.first = true;
         self.frame = None;
@@ -512,7 +530,8 @@ impl Tracker for DanescuTracker {
     }
 
     /// 13 numbers per particle: the 11 parameters in `Lane3d::NAMES` order, the normalised
-    /// weight, and the MBSAS cluster (-1 for an initialisation particle).
+    /// weight, and the MBSAS cluster (-1 for an initialisation particle, and for all of them
+    /// between the resampling and the estimate of a frame in per-step mode).
     fn particles(&self) -> Vec<f32> {
         let mut out = Vec::with_capacity(self.filter.len() * 13);
         for (s, w, label) in self.particle_states() {

@@ -430,4 +430,38 @@ fn stereo_input_errors_are_clear() {
         .to_string();
     assert!(e.contains("baseline_m"), "{e}");
     assert!(DanescuTracker::new(&c, ID_MONO).is_ok());
+    let e = DanescuTracker::new(&c, "danescu-3d")
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains(ID_STEREO), "{e}");
+}
+
+#[test]
+fn cluster_labels_follow_the_particles_through_a_frame() {
+    let (w, h) = (320, 240);
+    let mut scene = Scene::new(
+        scenario("highway-straight").unwrap(),
+        default_camera(w, h).unwrap(),
+        1,
+    )
+    .unwrap();
+    let mut t = DanescuTracker::new(&config(w, h, r#", "particles": 200"#), ID_MONO).unwrap();
+    let mut rgba = vec![0; w * h * 4];
+    let label_count =
+        |t: &DanescuTracker| t.particles().chunks(13).filter(|p| p[12] >= 0.0).count();
+    assert_eq!(label_count(&t), 0, "nothing clustered yet");
+    for f in 0..2 {
+        scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+        t.begin(&rgba, w, h).unwrap();
+        t.advance_step(); // resample (from the second frame)
+        if f > 0 {
+            assert_eq!(label_count(&t), 0, "labels of the old order are withdrawn");
+        }
+        while t.advance_step().is_none() {}
+        // After the estimate: the resampled particles carry their clusters (all of them
+        // from the second frame on; the R initialisation particles none).
+        let injected = t.filter.injected();
+        assert_eq!(label_count(&t), 200 - injected, "frame {f}");
+    }
 }
