@@ -304,8 +304,10 @@ fn track_runs_a_tracker_over_synthetic_frames_and_eval_scores_it() {
 fn a_closed_output_pipe_ends_quietly() {
     // `lanepf synth --list | head -0`: the reader is gone before lanepf writes; it must not
     // panic (println! would) and it exits successfully.
-    let (reader, writer) = std::io::pipe().unwrap();
-    drop(reader);
+    let writer = {
+        let (_reader, writer) = std::io::pipe().unwrap();
+        writer // the reader is closed at the end of this block
+    };
     let out = Command::new(env!("CARGO_BIN_EXE_lanepf"))
         .args(["synth", "--list"])
         .stdout(writer)
