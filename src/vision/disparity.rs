@@ -139,7 +139,8 @@ pub struct StereoMatcher {
     height: usize,
     /// u32 words per census string.
     words: usize,
-    /// Elements per pixel in the cost rows: D + 1 rounded up to a multiple of 16.
+    /// Elements per pixel in the cost rows: D + 1 rounded up to a multiple of 8 (one 128-bit
+    /// vector of u16).
     stride: usize,
     /// Census of the left and right images, word-planar: word k of pixel (u, v) at
     /// `[k * W * H + v * W + u]`.
@@ -185,7 +186,7 @@ impl StereoMatcher {
         let r = config.window_radius;
         let bits = (2 * c + 1) * (2 * c + 1) - 1;
         let words = bits.div_ceil(32);
-        let stride = (config.max_disparity + 1).div_ceil(16) * 16;
+        let stride = (config.max_disparity + 1).div_ceil(8) * 8;
         let n = width * height;
         Ok(Self {
             config,
