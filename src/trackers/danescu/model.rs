@@ -223,7 +223,6 @@ impl Measurement {
         let inset = self.config.negative_offset_m;
         let mut sums = [0.0f64; 6];
         let mut n = 0.0;
-        let mut gradient = 0.0;
         let mut support = [0.0f64; 2];
         let near = self.config.valid_distance_px;
         for &z in &self.distances {
@@ -263,7 +262,7 @@ impl Measurement {
             sums[5] += hg(x_li) + hg(x_ro);
             n += 2.0;
         }
-        gradient += (sums[4] / n + sums[5] / n) / 2.0; // eq. 11
+        let gradient = (sums[4] / n + sums[5] / n) / 2.0; // eq. 11
         let density = density.map(|d| self.density_distance(lane, d));
         Distances {
             edge: [sums[0] / n, sums[1] / n],
