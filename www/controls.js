@@ -1,47 +1,123 @@
-// The controls: play/pause, single step, tracker list and overlay toggles.
+// The controls: source, tracker and camera pickers, playback, teaching steps, overlay toggles,
+// export. They hold no tracking state; main.js reacts to their callbacks.
+
+const byId = (doc, id) => doc.getElementById(id);
 
 export class Controls {
   constructor(doc = document) {
-    this.play = doc.getElementById('play');
-    this.step = doc.getElementById('step');
-    this.tracker = doc.getElementById('tracker');
-    this.source = doc.getElementById('source');
-    this.showTruth = doc.getElementById('show-truth');
-    this.showCues = doc.getElementById('show-cues');
-    this.status = doc.getElementById('status');
-    this.timing = doc.getElementById('timing');
-    this.version = doc.getElementById('version');
+    for (const [key, id] of Object.entries({
+      play: 'play', step: 'step', stepStage: 'step-stage', nextStage: 'next-stage',
+      restart: 'restart', progress: 'progress', tracker: 'tracker', source: 'source',
+      file: 'file', cameraFile: 'camera-file', showTruth: 'show-truth',
+      showParticles: 'show-particles', showTop: 'show-top', showCues: 'show-cues',
+      exportJsonl: 'export-jsonl', exportCsv: 'export-csv', status: 'status', timing: 'timing',
+      version: 'version', dropZone: 'drop-zone',
+    })) {
+      this[key] = byId(doc, id);
+    }
     this.paused = false;
     this.onStep = () => {};
+    this.onStepStage = () => {};
+    this.onRestart = () => {};
     this.onSource = () => {};
+    this.onFiles = () => {};
+    this.onCameraFile = () => {};
     this.onTracker = () => {};
+    this.onExport = () => {};
+    this.lastSource = this.source.value;
     this.tracker.addEventListener('change', () => this.onTracker(this.tracker.value));
-    this.source.addEventListener('change', () => this.onSource(this.source.value));
+    this.source.addEventListener('change', () => {
+      if (this.source.value === 'file') {
+        // Picking files is its own step; until then the old source stays selected.
+        this.source.value = this.lastSource;
+        this.file.click();
+        return;
+      }
+      this.lastSource = this.source.value;
+      this.onSource(this.source.value);
+    });
+    this.file.addEventListener('change', () => {
+      if (this.file.files.length) this.onFiles([...this.file.files]);
+      this.file.value = '';
+    });
+    this.cameraFile.addEventListener('change', () => {
+      if (this.cameraFile.files.length) this.onCameraFile(this.cameraFile.files[0]);
+    });
     this.play.addEventListener('click', () => this.setPaused(!this.paused));
     this.step.addEventListener('click', () => this.onStep());
+    this.stepStage.addEventListener('click', () => this.onStepStage());
+    this.restart.addEventListener('click', () => this.onRestart());
+    this.exportJsonl.addEventListener('click', () => this.onExport('jsonl'));
+    this.exportCsv.addEventListener('click', () => this.onExport('csv'));
+    // Drag and drop of videos or images onto the views.
+    this.dropZone.addEventListener('dragover', (e) => {
+      e.preventDefault();
+      this.dropZone.classList.add('dropping');
+    });
+    this.dropZone.addEventListener('dragleave', () => this.dropZone.classList.remove('dropping'));
+    this.dropZone.addEventListener('drop', (e) => {
+      e.preventDefault();
+      this.dropZone.classList.remove('dropping');
+      if (e.dataTransfer?.files.length) this.onFiles([...e.dataTransfer.files]);
+    });
+    // Keyboard: space plays or pauses, "." steps a frame, "," steps a stage.
+    doc.addEventListener('keydown', (e) => {
+      if (e.target.closest?.('input, select, textarea') || e.ctrlKey || e.metaKey || e.altKey) return;
+      if (e.key === ' ') {
+        e.preventDefault();
+        this.setPaused(!this.paused);
+      } else if (e.key === '.' && !this.step.disabled) {
+        this.onStep();
+      } else if (e.key === ',' && !this.stepStage.disabled) {
+        this.onStepStage();
+      }
+    });
   }
 
   setPaused(paused) {
     this.paused = paused;
     this.play.textContent = paused ? 'Play' : 'Pause';
     this.step.disabled = !paused;
+    this.updateStageButton();
   }
 
-  /** Fills the tracker list; while no tracker exists it says so. */
+  /** The per-step button works while paused, for a tracker with a per-step mode. */
+  setStepNames(names) {
+    this.stepNames = names ?? [];
+    this.updateStageButton();
+  }
+
+  updateStageButton(next = null) {
+    const can = this.paused && this.stepNames?.length > 0;
+    this.stepStage.disabled = !can;
+    if (!this.stepNames?.length) {
+      this.nextStage.textContent = '';
+    } else {
+      const name = next === null ? 'start of a frame (read the image, compute its cues)' : this.stepNames[next];
+      this.nextStage.textContent = `next: ${name}`;
+    }
+  }
+
+  /** Shows progress in [0, 1], or hides the bar for a source without an end (null). */
+  setProgress(value) {
+    this.progress.hidden = !(value >= 0);
+    if (value >= 0) this.progress.value = value;
+  }
+
+  setExportable(yes) {
+    this.exportJsonl.disabled = !yes;
+    this.exportCsv.disabled = !yes;
+  }
+
+  /** Fills the tracker list: "no tracker" and then every registered id. */
   setTrackers(ids) {
     this.tracker.replaceChildren();
-    if (ids.length === 0) {
-      const o = new Option('no tracker built yet', '');
-      this.tracker.add(o);
-      this.tracker.disabled = true;
-      return;
-    }
-    this.tracker.add(new Option('no tracker (ground truth only)', ''));
+    this.tracker.add(new Option('no tracker (frames only)', ''));
     for (const id of ids) this.tracker.add(new Option(id, id));
     this.tracker.disabled = false;
   }
 
-  /** Adds the simulator's scenarios after the test road. */
+  /** Adds the simulator's scenarios after the built-in sources. */
   setScenarios(list) {
     for (const { name, description } of list) {
       const o = new Option(`Scene: ${name}`, name);
@@ -50,8 +126,18 @@ export class Controls {
     }
   }
 
+  /** Selects a source option, adding it (e.g. an uploaded file's name) when missing. */
+  showSource(value, label) {
+    if (![...this.source.options].some((o) => o.value === value)) {
+      this.source.add(new Option(label, value), this.source.options[3]);
+    }
+    this.source.value = value;
+    this.lastSource = value;
+  }
+
   say(text, isError = false) {
     this.status.textContent = text;
-    document.body.dataset.state = isError ? 'error' : document.body.dataset.state;
+    if (isError) document.body.dataset.state = 'error';
+    else if (document.body.dataset.state === 'error') document.body.dataset.state = 'running';
   }
 }

@@ -1,44 +1,229 @@
-// The demo page: wires the worker, a frame source, the renderer and the controls together.
-// One frame at a time: ask the source for a frame, draw it, draw the overlays, repeat.
+// The demo page: wires a frame source, the tracking worker, the renderer and the controls.
+// One frame at a time: take the next frame from the source, send its pixels to the worker
+// (transferred, not copied), draw what comes back. Every action runs in one queue, so clicks
+// never interleave with a frame in flight.
 import { WorkerClient } from './worker-client.js';
 import { SceneSource, TestRoadSource } from './source.js';
+import { VideoSource, ImageSource, WebcamSource } from './media-source.js';
+import { CLIP, loadClipCamera, scaleCamera, readCameraFile } from './camera-presets.js';
 import { Controls } from './controls.js';
-import { drawFrame, drawBoundaries, drawLayer } from './render.js';
+import { drawFrame, drawBoundaries, drawHypotheses, drawTopView, drawLayer } from './render.js';
+import { toJsonLines, toCsv, download } from './export.js';
+
+/** Particles drawn per frame (spread over the cloud). */
+const DRAWN_PARTICLES = 80;
 
 const controls = new Controls();
 const ctx = document.getElementById('view').getContext('2d');
+const topCtx = document.getElementById('top').getContext('2d');
 const cues = document.getElementById('cues').getContext('2d');
 const client = new WorkerClient();
 // Read by the end-to-end tests and handy in the console.
-const demo = (window.lanepfDemo = { frames: 0, lastTruth: null, lastFrame: null });
+const demo = (window.lanepfDemo = {
+  frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
+  lastHypotheses: null, results: [], ended: false, source: null,
+});
 
-function draw(frame) {
+const state = {
+  source: null,
+  sourceName: '',
+  trackerId: '',
+  camera: null,
+  importedCamera: null,
+  inFrame: null, // the frame being stepped through in per-step mode
+};
+
+let queue = Promise.resolve();
+/** Runs `fn` after everything queued before it; errors pause the page and are shown. */
+function run(fn) {
+  queue = queue.then(fn).catch((err) => {
+    controls.setPaused(true);
+    controls.say(err.message, true);
+  });
+  return queue;
+}
+
+const want = () => ({
+  hypotheses: controls.showParticles.checked ? DRAWN_PARTICLES : 0,
+  layers: controls.showCues.checked,
+  top: controls.showTop.checked,
+});
+
+function draw(frame, result) {
   drawFrame(ctx, frame.rgba, frame.width, frame.height);
-  if (controls.showTruth.checked && frame.truth) {
-    drawBoundaries(ctx, frame.truth.boundaries, { dashed: true, width: 2 });
-  }
-  if (frame.estimate) drawBoundaries(ctx, frame.estimate.boundaries, { width: 4 });
-  // The tracker's first layer (its main cue: Adachi's votes, Lee's map, Liu's pixels).
-  const layer = frame.layers?.[0];
+  const estimate = result?.estimate ?? null;
+  const hypotheses = controls.showParticles.checked ? result?.hypotheses : null;
+  const truth = controls.showTruth.checked ? frame.truth : null;
+  drawHypotheses(ctx, hypotheses);
+  if (truth) drawBoundaries(ctx, truth.boundaries, { dashed: true, width: 2 });
+  if (estimate) drawBoundaries(ctx, estimate.boundaries, { width: 4 });
+  const top = controls.showTop.checked ? result?.top : null;
+  document.getElementById('top-figure').hidden = !top;
+  if (top) drawTopView(topCtx, top, { truth, estimate, hypotheses });
+  const layer = result?.layers?.[0];
   document.getElementById('cues-figure').hidden = !layer;
   if (layer) {
     drawLayer(cues, layer);
     document.getElementById('cues-caption').textContent = layer.name;
   }
-  demo.lastLayer = layer ?? null;
-  demo.lastEstimate = frame.estimate;
+  Object.assign(demo, {
+    lastLayer: layer ?? null,
+    lastHypotheses: result?.hypotheses ?? null,
+    lastEstimate: estimate,
+    lastTruth: frame.truth ?? null,
+    lastFrame: { index: frame.index, name: frame.name, width: frame.width, height: frame.height },
+  });
   demo.frames += 1;
-  demo.lastTruth = frame.truth;
-  demo.lastFrame = { index: frame.index, width: frame.width, height: frame.height };
-  let text = `frame ${frame.index} · render ${frame.ms.toFixed(1)} ms`;
-  if (frame.estimate) {
-    text += ` · track ${frame.trackMs.toFixed(1)} ms`;
+  let text = `frame ${frame.name}`;
+  if (frame.ms) text += ` · render ${frame.ms.toFixed(1)} ms`;
+  if (estimate) {
+    text += ` · track ${result.trackMs.toFixed(1)} ms`;
+    if (!estimate.valid) text += ' · not valid';
     if (frame.truth) {
-      const err = Math.abs(frame.estimate.lateral_offset_m - frame.truth.lateral_offset_m);
+      const err = Math.abs(estimate.lateral_offset_m - frame.truth.lateral_offset_m);
       text += ` · offset error ${(100 * err).toFixed(0)} cm`;
     }
   }
   controls.timing.textContent = text;
+  controls.setProgress(state.source?.progress ?? null);
+}
+
+function record(frame, result) {
+  if (!result?.estimate) return;
+  demo.results.push({ ...result.estimate, frame: frame.name, ms: result.trackMs });
+  controls.setExportable(true);
+}
+
+/** Sends a frame's pixels to the worker; the pixels come back with the answer (or the error). */
+async function toWorker(type, frame, extra = {}) {
+  const payload = { rgba: frame.rgba, width: frame.width, height: frame.height, want: want(), ...extra };
+  try {
+    const result = await client.request(type, payload, [frame.rgba.buffer]);
+    frame.rgba = result.rgba;
+    return result;
+  } catch (err) {
+    if (err.rgba) {
+      frame.rgba = err.rgba;
+      draw(frame, null);
+    }
+    throw err;
+  }
+}
+
+/** The next frame, or null at the end of the source (which pauses the page). */
+async function nextFrame() {
+  const frame = await state.source.next();
+  if (!frame) {
+    demo.ended = true;
+    controls.setPaused(true);
+    controls.setProgress(1);
+    controls.say(`End of ${state.source.label}: ${demo.results.length} frames tracked. Restart to run it again.`);
+  }
+  return frame;
+}
+
+/** One whole frame (finishing a frame left half-stepped first). */
+async function stepFrame() {
+  if (state.inFrame) {
+    await finishStepping();
+    return;
+  }
+  const frame = await nextFrame();
+  if (!frame) return;
+  const result = await toWorker('track', frame, { motion: frame.motion });
+  record(frame, result);
+  draw(frame, result);
+}
+
+/** Per-step (teaching) mode: the first click starts a frame, each next click runs one step. */
+async function stepStage() {
+  let frame = state.inFrame;
+  if (!frame) {
+    frame = await nextFrame();
+    if (!frame) return;
+    const result = await toWorker('beginFrame', frame, { motion: frame.motion });
+    state.inFrame = frame;
+    draw(frame, result);
+    controls.updateStageButton(result.nextStep);
+    return;
+  }
+  const result = await toWorker('advance', frame);
+  draw(frame, result);
+  if (result.estimate) {
+    record(frame, result);
+    state.inFrame = null;
+    controls.updateStageButton(null);
+  } else {
+    controls.updateStageButton(result.nextStep);
+  }
+  controls.say(`${state.trackerId}: ran “${controls.stepNames[result.done]}”`);
+}
+
+async function finishStepping() {
+  while (state.inFrame) await stepStage();
+}
+
+async function openTracker() {
+  state.inFrame = null;
+  const info = await client.request('openTracker', { trackerId: state.trackerId, camera: state.camera });
+  controls.setStepNames(info.stepNames);
+  Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
+  demo.results = [];
+  controls.setExportable(false);
+}
+
+/** The camera for media without one: an imported file (rescaled), else the clip's, rescaled. */
+async function cameraFor(source) {
+  const { width, height } = source.size;
+  if (source.camera) return { camera: scaleCamera(source.camera, width, height), note: '' };
+  if (state.importedCamera) {
+    return { camera: scaleCamera(state.importedCamera, width, height), note: ' · camera: your file' };
+  }
+  const clip = await loadClipCamera();
+  return {
+    camera: scaleCamera(clip, width, height),
+    note: ' · camera assumed: the Udacity clip’s, scaled (import a camera.json for yours)',
+  };
+}
+
+async function openSource(next, name) {
+  await next.open();
+  state.source?.close();
+  state.source = next;
+  state.sourceName = name;
+  demo.ended = false;
+  demo.source = name;
+  let note = '';
+  if (next.size) {
+    ({ camera: state.camera, note } = await cameraFor(next));
+    await client.request('dropRight');
+  } else {
+    state.camera = next.camera;
+  }
+  await openTracker();
+  controls.say(next.label + note);
+  controls.setProgress(next.progress ?? null);
+}
+
+async function sourceFor(value, scenarios) {
+  if (value === 'clip') {
+    return new VideoSource({ url: CLIP.url, name: CLIP.name, fps: CLIP.fps, camera: await loadClipCamera() });
+  }
+  if (value === 'webcam') return new WebcamSource();
+  if (value === 'test-road') return new TestRoadSource(client);
+  const scene = scenarios.find((s) => s.name === value);
+  if (!scene) throw new Error(`unknown source ${value}`);
+  return new SceneSource(client, scene.name, scene.description);
+}
+
+function filesSource(files) {
+  const videos = files.filter((f) => f.type.startsWith('video/') || /\.(mp4|webm|mov|mkv|ogv)$/i.test(f.name));
+  if (videos.length > 1) throw new Error('Drop one video at a time (or a set of images).');
+  if (videos.length === 1) {
+    if (files.length > 1) throw new Error('Drop either one video or a set of images, not both.');
+    return new VideoSource({ file: videos[0], name: videos[0].name });
+  }
+  return new ImageSource(files);
 }
 
 async function main() {
@@ -46,39 +231,58 @@ async function main() {
   controls.version.textContent = `lanepf ${version}`;
   controls.setTrackers(trackers);
   controls.setScenarios(scenarios);
-  let source = null;
-  // The tracker is rebuilt for each source (it needs the source's camera).
-  const openTracker = (id) => client.request('openTracker', { trackerId: id, camera: source.camera });
-  const open = async (value) => {
-    const scene = scenarios.find((s) => s.name === value);
-    const next = scene ? new SceneSource(client, scene.name, scene.description) : new TestRoadSource(client);
-    await next.open();
-    source = next;
-    controls.say(source.label);
-    await openTracker(controls.tracker.value);
+  const params = new URLSearchParams(location.search);
+  const first = params.get('source') ?? 'clip';
+  state.trackerId = params.get('tracker') ?? 'lee-cpf';
+  controls.tracker.value = state.trackerId;
+  controls.source.value = first;
+  controls.lastSource = first;
+  await openSource(await sourceFor(first, scenarios), first);
+
+  controls.onSource = (value) => run(async () => openSource(await sourceFor(value, scenarios), value));
+  controls.onFiles = (files) => run(async () => {
+    const name = files.length === 1 ? files[0].name : `${files.length} files`;
+    await openSource(filesSource(files), name);
+    controls.showSource('file:last', `Your file: ${name}`);
+  });
+  controls.onCameraFile = (file) => run(async () => {
+    state.importedCamera = await readCameraFile(file);
+    if (state.source?.size && !state.source.camera) {
+      state.camera = scaleCamera(state.importedCamera, state.source.size.width, state.source.size.height);
+      await openTracker();
+    }
+    controls.say(`Camera “${file.name}” will be used for your videos, images and the webcam.`);
+  });
+  controls.onTracker = (id) => run(async () => {
+    state.trackerId = id;
+    await openTracker();
+  });
+  controls.onStep = () => run(stepFrame);
+  controls.onStepStage = () => run(stepStage);
+  controls.onRestart = () => run(async () => {
+    state.source.restart();
+    await client.request('reset');
+    state.inFrame = null;
+    demo.results = [];
+    demo.ended = false;
+    controls.setExportable(false);
+    controls.updateStageButton(null);
+    controls.say(state.source.label);
+  });
+  controls.onExport = (format) => {
+    const base = `lanepf-${state.trackerId || 'frames'}-${state.sourceName.replace(/[^\w.-]+/g, '_')}`;
+    if (format === 'jsonl') download(`${base}.jsonl`, toJsonLines(demo.results), 'application/x-ndjson');
+    else download(`${base}.csv`, toCsv(demo.results), 'text/csv');
   };
-  await open(controls.source.value);
-  controls.onSource = (value) => open(value).catch((err) => controls.say(err.message, true));
-  controls.onTracker = (id) => openTracker(id).catch((err) => controls.say(err.message, true));
   document.body.dataset.state = 'running';
 
   let busy = false;
-  const advance = async () => {
-    if (busy) return;
-    busy = true;
-    try {
-      draw(await source.next({ layers: controls.showCues.checked }));
-    } catch (err) {
-      document.body.dataset.state = 'error';
-      controls.say(err.message, true);
-      controls.setPaused(true);
-    } finally {
+  const loop = async () => {
+    if (!controls.paused && !busy) {
+      busy = true;
+      await run(stepFrame);
       busy = false;
     }
-  };
-  controls.onStep = advance;
-  const loop = async () => {
-    if (!controls.paused) await advance();
     requestAnimationFrame(loop);
   };
   requestAnimationFrame(loop);

@@ -1,4 +1,5 @@
-// Drawing on the canvas: frames, lane boundaries (one colour per role) and labels.
+// Drawing on the canvas: frames, lane boundaries (one colour per role), the particle cloud,
+// the top view and the trackers' cue layers.
 
 export const ROLE_COLOURS = {
   'ego-left': '#ffd54f',
@@ -32,6 +33,50 @@ export function drawBoundaries(ctx, boundaries, { dashed = false, width = 3 } = 
     ctx.stroke();
   }
   ctx.restore();
+}
+
+/**
+ * Draws the particle cloud (Tracker.hypotheses()): each particle's boundaries as a thin line
+ * whose opacity grows with its weight relative to the heaviest drawn: image polylines, or the
+ * road polylines through `map` (road point -> canvas point) when it is given.
+ */
+export function drawHypotheses(ctx, hypotheses, map = null) {
+  if (!hypotheses?.length) return;
+  const top = hypotheses.reduce((a, h) => Math.max(a, h.weight), 0) || 1;
+  ctx.save();
+  ctx.lineWidth = 1;
+  for (const h of hypotheses) {
+    ctx.globalAlpha = 0.06 + 0.5 * (h.weight / top);
+    for (const b of h.boundaries) {
+      const pts = map ? b.road_points.map(map) : b.points;
+      if (pts.length < 2) continue;
+      ctx.strokeStyle = ROLE_COLOURS[b.role] ?? '#ffffff';
+      ctx.beginPath();
+      ctx.moveTo(pts[0][0], pts[0][1]);
+      for (const [x, y] of pts.slice(1)) ctx.lineTo(x, y);
+      ctx.stroke();
+    }
+  }
+  ctx.restore();
+}
+
+/**
+ * Draws the top view (the worker's inverse perspective mapping of the frame: rows far to near,
+ * columns left to right) with boundaries and particles on it from their road points.
+ */
+export function drawTopView(ctx, top, { truth = null, estimate = null, hypotheses = null } = {}) {
+  const canvas = ctx.canvas;
+  if (canvas.width !== top.cols || canvas.height !== top.rows) {
+    canvas.width = top.cols;
+    canvas.height = top.rows;
+  }
+  ctx.putImageData(new ImageData(top.rgba, top.cols, top.rows), 0, 0);
+  // Road point [x ahead, y left] -> canvas [column, row].
+  const map = ([x, y]) => [(top.yHalf - y) / top.cell, (top.xMax - x) / top.cell];
+  const asImage = (boundaries) => boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }));
+  drawHypotheses(ctx, hypotheses, map);
+  if (truth) drawBoundaries(ctx, asImage(truth.boundaries), { dashed: true, width: 2 });
+  if (estimate) drawBoundaries(ctx, asImage(estimate.boundaries), { width: 3 });
 }
 
 /** Heat colour of a value in [0, 1]: red grows linearly, then yellow and white show the top. */

@@ -1,6 +1,6 @@
-// Frame sources. Each source yields frames { rgba, width, height, truth? } on demand.
-// The synthetic test road and the simulator's scenes are rendered inside the worker by the
-// wasm module.
+// The synthetic frame sources: the test road and the simulator's named scenes, rendered inside
+// the worker by the wasm module. Each yields frames { rgba, width, height, truth, motion, name,
+// index } on demand (see media-source.js for video, images and the webcam).
 
 /** The camera of the synthetic sources (the Caltech Lanes camera: 640x480, 2.18 m, 14 deg down). */
 export const DEFAULT_CAMERA = {
@@ -21,15 +21,22 @@ export class TestRoadSource {
     return this.client.request('openTestRoad', { camera: this.camera, options: this.options });
   }
 
-  /** Renders the next frame; `extra` goes to the worker (e.g. { layers: true }). */
-  async next(extra = {}) {
-    const frame = await this.client.request('renderFrame', { ...extra, index: this.index });
+  restart() {
+    this.index = 0;
+  }
+
+  /** Renders the next frame (the test road goes on for ever). */
+  async next() {
+    const frame = await this.client.request('renderFrame', { index: this.index });
     frame.index = this.index++;
+    frame.name = `${frame.index}`;
     return frame;
   }
+
+  close() {}
 }
 
-/** A named scenario of the simulator (curves, lane changes, night, ...), looped. */
+/** A named scenario of the simulator (curves, lane changes, night, ...). */
 export class SceneSource {
   constructor(client, name, description, options = { width: 640, height: 480, seed: 1 }) {
     this.client = client;
@@ -37,6 +44,7 @@ export class SceneSource {
     this.options = options;
     this.index = 0;
     this.frames = 1;
+    this.progress = 0;
     this.label = `Synthetic scene “${name}”: ${description}`;
   }
 
@@ -47,10 +55,20 @@ export class SceneSource {
     return info;
   }
 
-  async next(extra = {}) {
-    const frame = await this.client.request('renderFrame', { ...extra, index: this.index });
-    frame.index = this.index;
-    this.index = (this.index + 1) % this.frames;
+  restart() {
+    this.index = 0;
+    this.progress = 0;
+  }
+
+  /** Renders the next frame; null after the scenario's last one. */
+  async next() {
+    if (this.index >= this.frames) return null;
+    const frame = await this.client.request('renderFrame', { index: this.index });
+    frame.index = this.index++;
+    frame.name = `${frame.index}`;
+    this.progress = this.index / this.frames;
     return frame;
   }
+
+  close() {}
 }

@@ -7,11 +7,12 @@ export class WorkerClient {
     this.pending = new Map();
     this.nextId = 1;
     this.worker.onmessage = (e) => {
-      const { id, ok, result, error } = e.data;
+      const { id, ok, result, error, rgba } = e.data;
       const p = this.pending.get(id);
       if (!p) return;
       this.pending.delete(id);
-      ok ? p.resolve(result) : p.reject(new Error(error));
+      // A failed request hands transferred pixels back on the Error (`err.rgba`).
+      ok ? p.resolve(result) : p.reject(Object.assign(new Error(error), { rgba }));
     };
     this.worker.onerror = (e) => {
       const err = new Error(`worker failed: ${e.message ?? 'unknown error'}`);

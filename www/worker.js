@@ -1,12 +1,84 @@
 // The Web Worker that owns the WebAssembly module: it renders synthetic frames (the test road
-// or a named simulator scenario) and runs the chosen tracker on them, so the page's main
-// thread only draws.
-// Protocol: { id, type, ...payload } (payload keys must not be `id` or `type`) -> { id, ok: true, result } | { id, ok: false, error }.
-import init, { version, trackerIds, scenarios, Scene, TestRoad, Tracker } from '../pkg/web/lanepf.js';
+// or a named simulator scenario), runs the chosen tracker on frames from any source, and draws
+// nothing, so the page's main thread never waits on the filter.
+// Protocol: { id, type, ...payload } (payload keys must not be `id` or `type`) ->
+// { id, ok: true, result } | { id, ok: false, error }. Frames travel as transferred buffers.
+import init, { version, trackerIds, scenarios, Camera, Scene, TestRoad, Tracker } from '../pkg/web/lanepf.js';
 
 const ready = init();
 let road = null;
 let tracker = null;
+// The right image of the scene's current frame, for a stereo tracker.
+let right = null;
+// Top view: road cells 0.1 m, 40 m ahead, +-8 m; LUT of camera pixel indices (-1: not seen).
+const TOP = { xMin: 2, xMax: 42, yHalf: 8, cell: 0.1 };
+let topLut = null;
+
+function buildTopLut(cameraConfig) {
+  const camera = new Camera(cameraConfig);
+  const rows = Math.round((TOP.xMax - TOP.xMin) / TOP.cell);
+  const cols = Math.round((2 * TOP.yHalf) / TOP.cell);
+  const lut = new Int32Array(rows * cols).fill(-1);
+  const { width, height } = camera;
+  for (let r = 0; r < rows; r++) {
+    const x = TOP.xMax - (r + 0.5) * TOP.cell;
+    for (let c = 0; c < cols; c++) {
+      const y = TOP.yHalf - (c + 0.5) * TOP.cell;
+      let uv = null;
+      try {
+        uv = camera.projectRoad(x, y);
+      } catch {
+        uv = null;
+      }
+      if (!uv || uv.length < 2) continue;
+      const u = Math.round(uv[0]);
+      const v = Math.round(uv[1]);
+      if (u >= 0 && u < width && v >= 0 && v < height) lut[r * cols + c] = v * width + u;
+    }
+  }
+  camera.free();
+  return { lut, rows, cols, width, height };
+}
+
+function topView(rgba, width, height) {
+  if (!topLut || topLut.width !== width || topLut.height !== height) return null;
+  const { lut, rows, cols } = topLut;
+  const out = new Uint8ClampedArray(rows * cols * 4);
+  for (let i = 0; i < lut.length; i++) {
+    const p = lut[i];
+    if (p < 0) continue;
+    out[4 * i] = rgba[4 * p];
+    out[4 * i + 1] = rgba[4 * p + 1];
+    out[4 * i + 2] = rgba[4 * p + 2];
+    out[4 * i + 3] = 255;
+  }
+  return { rgba: out, rows, cols, ...TOP };
+}
+
+function requireTracker() {
+  if (!tracker) throw new Error('choose a tracker first');
+  return tracker;
+}
+
+function feedTracker(t, { motion }) {
+  // A stereo tracker gets the scene's right camera; without one its step throws an Error
+  // saying that danescu-stereo needs a right image.
+  if (t.isStereo && right) t.setRight(right.rgba, right.width, right.height);
+  if (motion && [motion.t_s, motion.speed_mps, motion.yaw_rate].every(Number.isFinite)) {
+    t.setEgoMotion(motion);
+  }
+}
+
+/** What the page draws besides the estimate: the particles, cues and top view on request. */
+function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = false }) {
+  return {
+    hypotheses: hypotheses > 0 ? t.hypotheses(hypotheses) : null,
+    layers: layers ? t.layers() : null,
+    top: top ? topView(rgba, width, height) : null,
+    stepNames: t.stepNames(),
+    nextStep: t.nextStep ?? null,
+  };
+}
 
 const handlers = {
   async hello() {
@@ -24,43 +96,74 @@ const handlers = {
     road = new Scene(name, options ?? {});
     return { width: road.width, height: road.height, frames: road.frames, camera: road.camera() };
   },
+  /** Builds the tracker (null id: none) for a camera; the top view follows the camera. */
   async openTracker({ trackerId, camera, options }) {
     tracker?.free();
     tracker = null;
-    if (!trackerId) return { trackerId: null };
+    topLut = buildTopLut(camera);
+    if (!trackerId) return { trackerId: null, stepNames: [] };
     tracker = new Tracker(trackerId, { ...(options ?? {}), camera });
-    return { trackerId: tracker.id };
+    return { trackerId: tracker.id, stepNames: tracker.stepNames(), isStereo: tracker.isStereo };
   },
-  // `layers`: also return the tracker's cue pictures (Tracker.layers()) after the step.
-  async renderFrame({ index, layers: withLayers = false }) {
-    if (!road) throw new Error('no source is open: call openTestRoad or openScene first');
+  /** Renders frame `index` of the open synthetic source with its truth and ego motion. */
+  async renderFrame({ index }) {
+    if (!road) throw new Error('no synthetic source is open');
     const t0 = performance.now();
     const rgba = road.render(index);
     const ms = performance.now() - t0;
+    right = tracker?.isStereo && road.renderRight
+      ? { rgba: road.renderRight(index), width: road.width, height: road.height }
+      : null;
     const truth = road.truth(index);
-    let estimate = null;
-    let trackMs = 0;
-    let layers = null;
-    if (tracker) {
-      // A stereo tracker gets the scene's right camera (the test road has none: its step
-      // then throws an Error saying so); every tracker gets the car's motion from the truth
-      // (only the Danescu trackers use it).
-      if (tracker.isStereo && road.renderRight) {
-        tracker.setRight(road.renderRight(index), road.width, road.height);
-      }
-      const s = truth?.state;
-      if (s && Number.isFinite(s.t) && Number.isFinite(s.speed_mps) && Number.isFinite(s.yaw_rate)) {
-        tracker.setEgoMotion({ t_s: s.t, speed_mps: s.speed_mps, yaw_rate: s.yaw_rate });
-      }
-      const t1 = performance.now();
-      estimate = tracker.step(rgba, road.width, road.height);
-      trackMs = performance.now() - t1;
-      if (withLayers) layers = tracker.layers();
-    }
+    const s = truth?.state;
+    const motion = s ? { t_s: s.t, speed_mps: s.speed_mps, yaw_rate: s.yaw_rate } : null;
     return {
-      result: { rgba, width: road.width, height: road.height, truth, ms, estimate, trackMs, layers },
+      result: { rgba, width: road.width, height: road.height, truth, motion, ms },
       transfer: [rgba.buffer],
     };
+  },
+  /** Forgets any right image (a frame from a one-camera source). */
+  async dropRight() {
+    right = null;
+    return null;
+  },
+  /** One whole frame through the tracker; the pixels come back with the result. */
+  async track({ rgba, width, height, motion, want }) {
+    if (!tracker) {
+      const top = want?.top ? topView(rgba, width, height) : null;
+      return { result: { rgba, estimate: null, trackMs: 0, top }, transfer: [rgba.buffer] };
+    }
+    feedTracker(tracker, { motion });
+    const t0 = performance.now();
+    const estimate = tracker.step(rgba, width, height);
+    const trackMs = performance.now() - t0;
+    return {
+      result: { rgba, estimate, trackMs, ...extras(tracker, rgba, width, height, want ?? {}) },
+      transfer: [rgba.buffer],
+    };
+  },
+  /** Starts a frame in per-step (teaching) mode; `advance` then runs one step per call. */
+  async beginFrame({ rgba, width, height, motion, want }) {
+    const t = requireTracker();
+    if (t.stepNames().length === 0) throw new Error(`${t.id} has no per-step mode`);
+    feedTracker(t, { motion });
+    t.beginFrame(rgba, width, height);
+    return { result: { rgba, ...extras(t, rgba, width, height, want ?? {}) }, transfer: [rgba.buffer] };
+  },
+  async advance({ rgba, width, height, want }) {
+    const t = requireTracker();
+    const done = t.nextStep;
+    const t0 = performance.now();
+    const estimate = t.advance();
+    const trackMs = performance.now() - t0;
+    return {
+      result: { rgba, estimate, trackMs, done, ...extras(t, rgba, width, height, want ?? {}) },
+      transfer: [rgba.buffer],
+    };
+  },
+  async reset() {
+    tracker?.reset();
+    return null;
   },
 };
 
@@ -74,6 +177,9 @@ self.onmessage = async (e) => {
     if (out && out.transfer) self.postMessage({ id, ok: true, result: out.result }, out.transfer);
     else self.postMessage({ id, ok: true, result: out });
   } catch (err) {
-    self.postMessage({ id, ok: false, error: err?.message ?? String(err) });
+    // Hand the pixels back even on failure, so the page can still draw the frame.
+    const rgba = payload?.rgba;
+    const transfer = rgba?.buffer && rgba.buffer.byteLength ? [rgba.buffer] : [];
+    self.postMessage({ id, ok: false, error: err?.message ?? String(err), rgba }, transfer);
   }
 };

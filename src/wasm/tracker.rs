@@ -63,6 +63,14 @@ impl JsTracker {
         super::to_js_value(&self.inner.layers())
     }
 
+    /// At most `max` particles spread over the cloud, each drawn as the boundaries it stands
+    /// for: `[{ weight, group, boundaries: [{ role, points, road_points }] }]` (weight: the
+    /// normalised weight; group: adachi-mmpf the model r, lee-cpf the stage, danescu-* the
+    /// MBSAS cluster or -1, liu-ppf 0). For drawing the cloud without knowing each model.
+    pub fn hypotheses(&self, max: usize) -> Result<JsValue, JsError> {
+        super::to_js_value(&self.inner.hypotheses(max))
+    }
+
     /// Numbers per particle in `particles()`.
     #[wasm_bindgen(getter, js_name = particleStride)]
     pub fn particle_stride(&self) -> usize {

@@ -21,7 +21,7 @@ pub mod likelihood;
 pub mod motion;
 pub mod votes;
 
-use super::{now, Layer, StageTimes, Tracker, TrackerConfig};
+use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
@@ -334,8 +334,8 @@ impl AdachiTracker {
         }
     }
 
-    /// The estimate as the shared output type.
-    pub fn to_lane_estimate(&self, e: &AdachiEstimate) -> LaneEstimate {
+    /// The boundaries model `r` (1..4) has at lane position `q` and width `w` (eq. 1).
+    fn boundaries(&self, r: usize, q: f64, w: f64) -> Vec<Boundary> {
         let roles = [
             Role::EgoLeft,
             Role::EgoRight,
@@ -344,10 +344,10 @@ impl AdachiTracker {
         ];
         let mut boundaries = Vec::new();
         for l in 0..4 {
-            if !COEFFICIENTS[e.r - 1][l] {
+            if !COEFFICIENTS[r - 1][l] {
                 continue;
             }
-            let y = -(e.q + OFFSETS[l] * e.w / 2.0);
+            let y = -(q + OFFSETS[l] * w / 2.0);
             let (points, road_points) = sample_road_curve(
                 |_| y,
                 |x, y| self.camera.road_to_pixel(x, y),
@@ -362,6 +362,12 @@ impl AdachiTracker {
                 road_points,
             });
         }
+        boundaries
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &AdachiEstimate) -> LaneEstimate {
+        let boundaries = self.boundaries(e.r, e.q, e.w);
         let state = [
             ("adachi.q", e.q),
             ("adachi.w", e.w),
@@ -421,6 +427,22 @@ impl Tracker for AdachiTracker {
 
     fn particle_stride(&self) -> usize {
         4
+    }
+
+    /// Group: the particle's model r.
+    fn hypotheses(&self, max: usize) -> Vec<Hypothesis> {
+        let states = self.filter.states();
+        let weights = self.filter.weights();
+        spread_indices(states.len(), max)
+            .map(|i| {
+                let p = &states[i];
+                Hypothesis {
+                    weight: weights[i],
+                    group: p.model as i32 + 1,
+                    boundaries: self.boundaries(p.model + 1, p.state.q, p.state.w),
+                }
+            })
+            .collect()
     }
 
     fn step_names(&self) -> &'static [&'static str] {

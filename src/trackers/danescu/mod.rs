@@ -35,7 +35,9 @@ pub mod cues;
 pub mod model;
 pub mod stereo;
 
-use super::{now, EgoMotion, Layer, StageTimes, Tracker, TrackerConfig};
+use super::{
+    now, spread_indices, EgoMotion, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig,
+};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
@@ -406,9 +408,8 @@ impl DanescuTracker {
         e
     }
 
-    /// The estimate as the shared output type.
-    pub fn to_lane_estimate(&self, e: &DanescuEstimate) -> LaneEstimate {
-        let lane = &e.lane;
+    /// The marking centres of `lane` as image and road polylines (eqs. 1-4).
+    fn boundaries(&self, lane: &Lane3d) -> Vec<Boundary> {
         let lc = LaneCamera::new(&self.camera, lane);
         let mut boundaries = Vec::new();
         for (role, right) in [(Role::EgoLeft, false), (Role::EgoRight, true)] {
@@ -426,6 +427,13 @@ impl DanescuTracker {
                 road_points,
             });
         }
+        boundaries
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &DanescuEstimate) -> LaneEstimate {
+        let lane = &e.lane;
+        let boundaries = self.boundaries(lane);
         let mut state: std::collections::BTreeMap<String, f64> = Lane3d::NAMES
             .iter()
             .zip(lane.to_array())
@@ -548,6 +556,21 @@ impl Tracker for DanescuTracker {
 
     fn particle_stride(&self) -> usize {
         13
+    }
+
+    /// Group: the MBSAS cluster, -1 for none.
+    fn hypotheses(&self, max: usize) -> Vec<Hypothesis> {
+        let states: Vec<(&Lane3d, f64, usize)> = self.particle_states().collect();
+        spread_indices(states.len(), max)
+            .map(|i| {
+                let (lane, weight, label) = states[i];
+                Hypothesis {
+                    weight,
+                    group: i32::try_from(label).unwrap_or(-1),
+                    boundaries: self.boundaries(lane),
+                }
+            })
+            .collect()
     }
 
     /// The marking and road-edge cues seen on the road: exp(-DT^2 / 2) of DT^S and DT^E

@@ -39,7 +39,7 @@ pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
 
-use super::{now, Layer, StageTimes, Tracker, TrackerConfig};
+use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
@@ -619,9 +619,8 @@ impl LeeTracker {
         None
     }
 
-    /// The estimate as the shared output type.
-    pub fn to_lane_estimate(&self, e: &LeeEstimate) -> LaneEstimate {
-        let s = e.state;
+    /// The ego boundaries of lane state `s` (eqs. 27-28).
+    fn boundaries(&self, s: &LaneState) -> Vec<Boundary> {
         let curve = Curve::new(s.c, s.delta, self.config.spiral_length_m);
         let mut boundaries = Vec::new();
         for (role, sign) in [(Role::EgoLeft, 1.0), (Role::EgoRight, -1.0)] {
@@ -639,6 +638,14 @@ impl LeeTracker {
                 road_points,
             });
         }
+        boundaries
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &LeeEstimate) -> LaneEstimate {
+        let s = e.state;
+        let curve = Curve::new(s.c, s.delta, self.config.spiral_length_m);
+        let boundaries = self.boundaries(&s);
         let r = e.raw;
         let state = [
             ("lee.psi", s.psi),
@@ -743,6 +750,21 @@ impl Tracker for LeeTracker {
 
     fn particle_stride(&self) -> usize {
         8
+    }
+
+    /// Group: the stage (1 or 2; 0 for a single-stage variant).
+    fn hypotheses(&self, max: usize) -> Vec<Hypothesis> {
+        let states = self.particle_states();
+        spread_indices(states.len(), max)
+            .map(|i| {
+                let (stage, s, weight) = &states[i];
+                Hypothesis {
+                    weight: *weight,
+                    group: i32::from(*stage),
+                    boundaries: self.boundaries(s),
+                }
+            })
+            .collect()
     }
 
     fn step_names(&self) -> &'static [&'static str] {

@@ -30,7 +30,7 @@ pub mod exp_table;
 pub mod kernels;
 pub mod model;
 
-use super::{now, Layer, StageTimes, Tracker, TrackerConfig};
+use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{FilterConfig, Injection, ParticleFilter, ResamplePolicy, Resampler};
@@ -351,9 +351,10 @@ impl LiuTracker {
         v.y_left_m - (b.x_at(r) + 0.5) * s
     }
 
-    /// The estimate as the shared output type.
-    pub fn to_lane_estimate(&self, e: &LiuEstimate) -> LaneEstimate {
-        let at_car: Vec<f64> = e.boundaries.iter().map(|b| self.road_y(b, 0.0)).collect();
+    /// The boundaries nearest the car (left to right on the top view) and their roles: the
+    /// first one right of the car is the ego lane's right boundary.
+    fn roles(&self, boundaries: &[LinearParabolic]) -> Vec<(usize, Role)> {
+        let at_car: Vec<f64> = boundaries.iter().map(|b| self.road_y(b, 0.0)).collect();
         // Boundaries are ordered left to right; find the first one right of the car.
         let right = at_car
             .iter()
@@ -372,24 +373,36 @@ impl LiuTracker {
         if right + 1 < at_car.len() {
             roles.push((right + 1, Role::RightAdjacent));
         }
+        roles
+    }
+
+    /// Boundary `b` of the top view as image and road polylines.
+    fn boundary(&self, b: &LinearParabolic, role: Role) -> Boundary {
+        let (points, road_points) = sample_road_curve(
+            |x| self.road_y(b, x),
+            |x, y| self.camera.road_to_pixel(x, y),
+            1.0,
+            self.config.top_view.x_max_m,
+            self.camera.width(),
+            self.camera.height(),
+        );
+        Boundary {
+            role,
+            points,
+            road_points,
+        }
+    }
+
+    /// The estimate as the shared output type.
+    pub fn to_lane_estimate(&self, e: &LiuEstimate) -> LaneEstimate {
+        let at_car: Vec<f64> = e.boundaries.iter().map(|b| self.road_y(b, 0.0)).collect();
+        let roles = self.roles(&e.boundaries);
         let v = &self.config.top_view;
         let mut boundaries = Vec::new();
         let mut state = std::collections::BTreeMap::new();
         for &(k, role) in &roles {
             let b = &e.boundaries[k];
-            let (points, road_points) = sample_road_curve(
-                |x| self.road_y(b, x),
-                |x, y| self.camera.road_to_pixel(x, y),
-                1.0,
-                v.x_max_m,
-                self.camera.width(),
-                self.camera.height(),
-            );
-            boundaries.push(Boundary {
-                role,
-                points,
-                road_points,
-            });
+            boundaries.push(self.boundary(b, role));
             let name = role.as_str();
             state.insert(format!("liu.{name}.rho"), b.rho);
             state.insert(format!("liu.{name}.theta"), b.theta);
@@ -462,6 +475,29 @@ impl Tracker for LiuTracker {
 
     fn particle_stride(&self) -> usize {
         3 * self.model.boundaries() + 1
+    }
+
+    /// Group: 0 (one cloud).
+    fn hypotheses(&self, max: usize) -> Vec<Hypothesis> {
+        let n = self.model.boundaries();
+        let states = self.filter.states();
+        let weights = self.filter.weights();
+        spread_indices(states.len(), max)
+            .map(|i| {
+                let bs: Vec<LinearParabolic> = (0..n)
+                    .map(|k| self.model.boundary(&states[i], k))
+                    .collect();
+                Hypothesis {
+                    weight: weights[i],
+                    group: 0,
+                    boundaries: self
+                        .roles(&bs)
+                        .into_iter()
+                        .map(|(k, role)| self.boundary(&bs[k], role))
+                        .collect(),
+                }
+            })
+            .collect()
     }
 
     fn step_names(&self) -> &'static [&'static str] {

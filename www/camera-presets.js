@@ -1,0 +1,53 @@
+// The camera a tracker gets for a source: the bundled clip's own calibration, a camera file the
+// user imports, or, for other media, the clip's camera scaled to the frame size (a guess that
+// a dash cam sees about as much as the Udacity one; the status line says so).
+
+export const CLIP = {
+  url: 'clips/udacity-project-640x360.webm',
+  camera: 'clips/udacity-project-640x360.camera.json',
+  name: 'Udacity project_video.mp4, 0-12 s',
+  fps: 25,
+};
+
+let clipCamera = null;
+
+/** The bundled clip's camera (fetched once from the page's own files). */
+export async function loadClipCamera() {
+  if (!clipCamera) {
+    const res = await fetch(CLIP.camera);
+    if (!res.ok) throw new Error(`cannot load ${CLIP.camera}: HTTP ${res.status}`);
+    clipCamera = await res.json();
+  }
+  return clipCamera;
+}
+
+/** `camera` rescaled to width x height (intrinsics scale with the image; pose is kept). */
+export function scaleCamera(camera, width, height) {
+  const sx = width / camera.width;
+  const sy = height / camera.height;
+  return {
+    ...camera,
+    width,
+    height,
+    fx: camera.fx * sx,
+    fy: camera.fy * sy,
+    cx: (camera.cx + 0.5) * sx - 0.5,
+    cy: (camera.cy + 0.5) * sy - 0.5,
+  };
+}
+
+/** Reads a camera.json file; throws an Error a person can act on. */
+export async function readCameraFile(file) {
+  let value;
+  try {
+    value = JSON.parse(await file.text());
+  } catch (err) {
+    throw new Error(`“${file.name}” is not JSON: ${err.message}`);
+  }
+  for (const key of ['width', 'height', 'fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg']) {
+    if (!Number.isFinite(value?.[key])) {
+      throw new Error(`“${file.name}” is not a camera file: “${key}” is missing or not a number`);
+    }
+  }
+  return value;
+}

@@ -1,0 +1,224 @@
+// Frame sources from media the browser decodes: a video (the bundled clip or a file of the
+// user's), still images, the webcam. Each yields frames { rgba, width, height, name } in order,
+// and null at the end. Frames are read from a canvas the size the tracker works at.
+
+/** Largest frame width handed to a tracker; wider media are scaled down (aspect kept). */
+export const MAX_WIDTH = 960;
+
+function workSize(width, height) {
+  if (!(width > 0 && height > 0)) throw new Error('the media reports no picture size');
+  const s = Math.min(1, MAX_WIDTH / width);
+  return { width: Math.round(width * s), height: Math.round(height * s) };
+}
+
+class Grabber {
+  constructor(width, height) {
+    this.canvas = new OffscreenCanvas(width, height);
+    this.ctx = this.canvas.getContext('2d', { willReadFrequently: true });
+    this.width = width;
+    this.height = height;
+  }
+
+  grab(image) {
+    this.ctx.drawImage(image, 0, 0, this.width, this.height);
+    return this.ctx.getImageData(0, 0, this.width, this.height).data;
+  }
+}
+
+/** Waits for `ok` on `target`; rejects on `bad` or after `ms` milliseconds. */
+function once(target, ok, bad, ms, what) {
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => { done(); reject(new Error(`${what}: timed out`)); }, ms);
+    const onOk = () => { done(); resolve(); };
+    const onBad = () => { done(); reject(new Error(what)); };
+    function done() {
+      clearTimeout(timer);
+      target.removeEventListener(ok, onOk);
+      if (bad) target.removeEventListener(bad, onBad);
+    }
+    target.addEventListener(ok, onOk);
+    if (bad) target.addEventListener(bad, onBad);
+  });
+}
+
+const MEDIA_ERRORS = {
+  1: 'loading was aborted',
+  2: 'a network error stopped the download',
+  3: 'the file is corrupt or uses a feature this browser cannot decode',
+  4: 'this browser cannot play this format',
+};
+
+/**
+ * A video processed offline, frame by frame in order: seek to the next frame's time, wait for
+ * it to be decoded, read it. Faster or slower than real time as the tracker allows; `fps` is
+ * the stepping rate (the clip's own rate when known).
+ */
+export class VideoSource {
+  constructor({ url, file = null, name, fps = 30, camera = null }) {
+    this.file = file;
+    this.url = url ?? URL.createObjectURL(file);
+    this.name = name;
+    this.fps = fps;
+    this.camera = camera;
+    this.index = 0;
+    this.progress = 0;
+    this.label = `Video “${name}”`;
+  }
+
+  async open() {
+    const video = document.createElement('video');
+    video.muted = true;
+    video.playsInline = true;
+    video.preload = 'auto';
+    video.src = this.url;
+    try {
+      await once(video, 'loadeddata', 'error', 15000, 'the video did not load');
+    } catch (err) {
+      const why = MEDIA_ERRORS[video.error?.code] ?? err.message;
+      throw new Error(`Cannot open “${this.name}”: ${why}. Try an H.264 MP4 or a VP9 WebM.`);
+    }
+    if (!(video.duration > 0) || !Number.isFinite(video.duration)) {
+      throw new Error(`Cannot open “${this.name}”: it has no known duration (a live stream?).`);
+    }
+    this.video = video;
+    this.size = workSize(video.videoWidth, video.videoHeight);
+    this.grabber = new Grabber(this.size.width, this.size.height);
+    this.frames = Math.max(1, Math.floor(video.duration * this.fps));
+    this.label = `Video “${this.name}”: ${video.videoWidth}x${video.videoHeight}, `
+      + `${video.duration.toFixed(1)} s, read at ${this.fps} frames/s`
+      + (this.size.width !== video.videoWidth ? `, tracked at ${this.size.width}x${this.size.height}` : '');
+  }
+
+  restart() {
+    this.index = 0;
+    this.progress = 0;
+  }
+
+  async next() {
+    if (this.index >= this.frames) return null;
+    const video = this.video;
+    // The middle of frame `index`, so rounding never lands on its neighbour.
+    const t = Math.min((this.index + 0.5) / this.fps, video.duration - 1e-3);
+    if (Math.abs(video.currentTime - t) > 1e-6) {
+      const seeked = once(video, 'seeked', 'error', 10000, `cannot decode “${this.name}” at ${t.toFixed(2)} s`);
+      video.currentTime = t;
+      await seeked;
+    }
+    const rgba = this.grabber.grab(video);
+    const index = this.index++;
+    this.progress = this.index / this.frames;
+    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index };
+  }
+
+  close() {
+    this.video?.removeAttribute('src');
+    this.video?.load();
+    if (this.file) URL.revokeObjectURL(this.url);
+  }
+}
+
+/** Still images (one or a sequence, in file-name order), each a frame. */
+export class ImageSource {
+  constructor(files, camera = null) {
+    this.files = [...files].sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
+    this.camera = camera;
+    this.index = 0;
+    this.progress = 0;
+    const n = this.files.length;
+    this.label = n === 1 ? `Image “${this.files[0].name}”` : `${n} images, “${this.files[0].name}” first`;
+  }
+
+  async decode(file) {
+    try {
+      return await createImageBitmap(file);
+    } catch {
+      throw new Error(`Cannot decode “${file.name}”: not an image this browser reads (JPEG, PNG, WebP).`);
+    }
+  }
+
+  async open() {
+    const first = await this.decode(this.files[0]);
+    this.size = workSize(first.width, first.height);
+    this.first = first;
+    this.grabber = new Grabber(this.size.width, this.size.height);
+  }
+
+  restart() {
+    this.index = 0;
+    this.progress = 0;
+  }
+
+  async next() {
+    if (this.index >= this.files.length) return null;
+    const file = this.files[this.index];
+    const bitmap = this.index === 0 && this.first ? this.first : await this.decode(file);
+    const expected = workSize(bitmap.width, bitmap.height);
+    if (expected.width !== this.size.width || expected.height !== this.size.height) {
+      throw new Error(`“${file.name}” is ${bitmap.width}x${bitmap.height}; a sequence must keep `
+        + `the size of its first image (${this.files[0].name})`);
+    }
+    const rgba = this.grabber.grab(bitmap);
+    if (bitmap !== this.first) bitmap.close();
+    const index = this.index++;
+    this.progress = this.index / this.files.length;
+    return { rgba, width: this.size.width, height: this.size.height, name: file.name, index };
+  }
+
+  close() {
+    this.first?.close();
+  }
+}
+
+/** The webcam, live: each frame is whatever the camera shows when the tracker is ready. */
+export class WebcamSource {
+  constructor(camera = null) {
+    this.camera = camera;
+    this.index = 0;
+    this.progress = null;
+    this.label = 'Webcam';
+  }
+
+  async open() {
+    if (!navigator.mediaDevices?.getUserMedia) {
+      throw new Error('This browser offers no camera access here (it needs https or localhost).');
+    }
+    try {
+      this.stream = await navigator.mediaDevices.getUserMedia({
+        video: { width: { ideal: 640 }, height: { ideal: 480 } }, audio: false,
+      });
+    } catch (err) {
+      if (err.name === 'NotAllowedError' || err.name === 'SecurityError') {
+        throw new Error('Camera permission was refused. Allow the camera for this page and choose Webcam again.');
+      }
+      if (err.name === 'NotFoundError' || err.name === 'OverconstrainedError') {
+        throw new Error('No camera was found on this device.');
+      }
+      throw new Error(`The camera could not be started: ${err.message}`);
+    }
+    const video = document.createElement('video');
+    video.muted = true;
+    video.playsInline = true;
+    video.srcObject = this.stream;
+    await video.play();
+    if (!video.videoWidth) await once(video, 'resize', null, 5000, 'the camera sent no picture');
+    this.video = video;
+    this.size = workSize(video.videoWidth, video.videoHeight);
+    this.grabber = new Grabber(this.size.width, this.size.height);
+    const track = this.stream.getVideoTracks()[0];
+    this.label = `Webcam “${track?.label || 'camera'}”: ${video.videoWidth}x${video.videoHeight}`;
+  }
+
+  restart() {
+    this.index = 0;
+  }
+
+  async next() {
+    const rgba = this.grabber.grab(this.video);
+    const index = this.index++;
+    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index };
+  }
+
+  close() {
+    for (const t of this.stream?.getTracks() ?? []) t.stop();
+  }
+}
