@@ -100,8 +100,9 @@ export class Controls {
 
   /** Shows progress in [0, 1], or hides the bar for a source without an end (null). */
   setProgress(value) {
-    this.progress.hidden = !(value >= 0);
-    if (value >= 0) this.progress.value = value;
+    const known = typeof value === 'number' && value >= 0;
+    this.progress.hidden = !known;
+    if (known) this.progress.value = value;
   }
 
   setExportable(yes) {

@@ -21,7 +21,7 @@ const client = new WorkerClient();
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
-  lastHypotheses: null, results: [], ended: false, source: null,
+  lastHypotheses: null, lastRgba: null, results: [], offsetErrors: [], ended: false, source: null,
 });
 
 const state = {
@@ -50,6 +50,8 @@ const want = () => ({
 });
 
 function draw(frame, result) {
+  // Frames flow again after an error: back to the source's description.
+  if (document.body.dataset.state === 'error') controls.say(state.source.label);
   drawFrame(ctx, frame.rgba, frame.width, frame.height);
   const estimate = result?.estimate ?? null;
   const hypotheses = controls.showParticles.checked ? result?.hypotheses : null;
@@ -72,6 +74,7 @@ function draw(frame, result) {
     lastEstimate: estimate,
     lastTruth: frame.truth ?? null,
     lastFrame: { index: frame.index, name: frame.name, width: frame.width, height: frame.height },
+    lastRgba: frame.rgba,
   });
   demo.frames += 1;
   let text = `frame ${frame.name}`;
@@ -91,6 +94,9 @@ function draw(frame, result) {
 function record(frame, result) {
   if (!result?.estimate) return;
   demo.results.push({ ...result.estimate, frame: frame.name, ms: result.trackMs });
+  if (frame.truth) {
+    demo.offsetErrors.push(Math.abs(result.estimate.lateral_offset_m - frame.truth.lateral_offset_m));
+  }
   controls.setExportable(true);
 }
 
@@ -169,6 +175,7 @@ async function openTracker() {
   controls.setStepNames(info.stepNames);
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
   demo.results = [];
+  demo.offsetErrors = [];
   controls.setExportable(false);
 }
 
@@ -264,6 +271,7 @@ async function main() {
     await client.request('reset');
     state.inFrame = null;
     demo.results = [];
+    demo.offsetErrors = [];
     demo.ended = false;
     controls.setExportable(false);
     controls.updateStageButton(null);

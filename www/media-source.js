@@ -41,6 +41,49 @@ function once(target, ok, bad, ms, what) {
   });
 }
 
+/**
+ * The video's frame rate, measured: play it muted for a few frames and take the shortest
+ * interval between the media times of presented frames (requestVideoFrameCallback). Null when
+ * the browser lacks that callback or the video does not play.
+ */
+async function measureFps(video) {
+  if (!('requestVideoFrameCallback' in video)) return null;
+  const times = [];
+  const measured = new Promise((resolve) => {
+    const onFrame = (_, meta) => {
+      times.push(meta.mediaTime);
+      if (times.length < 8) video.requestVideoFrameCallback(onFrame);
+      else resolve();
+    };
+    video.requestVideoFrameCallback(onFrame);
+  });
+  try {
+    await video.play();
+    await Promise.race([measured, new Promise((r) => setTimeout(r, 2000))]);
+  } catch {
+    return null;
+  } finally {
+    video.pause();
+  }
+  let best = Infinity;
+  for (let i = 1; i < times.length; i++) {
+    const dt = times[i] - times[i - 1];
+    if (dt > 1e-3) best = Math.min(best, dt);
+  }
+  // Common rates are whole or NTSC (x/1.001) numbers; keep two decimals.
+  return Number.isFinite(best) ? Math.round(100 / best) / 100 : null;
+}
+
+/** A MediaRecorder file reports an infinite duration until the browser has seen its end. */
+async function knownDuration(video) {
+  if (Number.isFinite(video.duration)) return video.duration;
+  const changed = once(video, 'durationchange', 'error', 10000, 'the video has no known duration');
+  video.currentTime = 1e101;
+  await changed;
+  video.currentTime = 0;
+  return video.duration;
+}
+
 const MEDIA_ERRORS = {
   1: 'loading was aborted',
   2: 'a network error stopped the download',
@@ -51,10 +94,10 @@ const MEDIA_ERRORS = {
 /**
  * A video processed offline, frame by frame in order: seek to the next frame's time, wait for
  * it to be decoded, read it. Faster or slower than real time as the tracker allows; `fps` is
- * the stepping rate (the clip's own rate when known).
+ * the stepping rate: the video's own, given or measured.
  */
 export class VideoSource {
-  constructor({ url, file = null, name, fps = 30, camera = null }) {
+  constructor({ url, file = null, name, fps = null, camera = null }) {
     this.file = file;
     this.url = url ?? URL.createObjectURL(file);
     this.name = name;
@@ -77,15 +120,22 @@ export class VideoSource {
       const why = MEDIA_ERRORS[video.error?.code] ?? err.message;
       throw new Error(`Cannot open “${this.name}”: ${why}. Try an H.264 MP4 or a VP9 WebM.`);
     }
-    if (!(video.duration > 0) || !Number.isFinite(video.duration)) {
+    const duration = await knownDuration(video).catch(() => NaN);
+    if (!(duration > 0) || !Number.isFinite(duration)) {
       throw new Error(`Cannot open “${this.name}”: it has no known duration (a live stream?).`);
+    }
+    // Unknown rate: measure it; failing that, read 30 frames per second.
+    this.fpsNote = '';
+    if (!this.fps) {
+      this.fps = (await measureFps(video)) ?? 30;
+      this.fpsNote = ' (measured)';
     }
     this.video = video;
     this.size = workSize(video.videoWidth, video.videoHeight);
     this.grabber = new Grabber(this.size.width, this.size.height);
     this.frames = Math.max(1, Math.floor(video.duration * this.fps));
     this.label = `Video “${this.name}”: ${video.videoWidth}x${video.videoHeight}, `
-      + `${video.duration.toFixed(1)} s, read at ${this.fps} frames/s`
+      + `${video.duration.toFixed(1)} s, read at ${this.fps} frames/s${this.fpsNote}`
       + (this.size.width !== video.videoWidth ? `, tracked at ${this.size.width}x${this.size.height}` : '');
   }
 

@@ -9,11 +9,13 @@ const ARGS = [
   '--disable-component-update', '--disable-sync', '--disable-quic', '--no-first-run',
 ];
 
-/** Starts the server and the browser; returns { base, browser, close }. */
-export async function start() {
+/** Starts the server and the browser (with `extraArgs`); returns { base, browser, close }. */
+export async function start(extraArgs = []) {
   const server = await serve(0);
   const base = `http://127.0.0.1:${server.address().port}`;
-  const browser = await chromium.launch({ executablePath: CHROMIUM, headless: true, args: ARGS });
+  const browser = await chromium.launch({
+    executablePath: CHROMIUM, headless: true, args: [...ARGS, ...extraArgs],
+  });
   return {
     base,
     browser,
@@ -25,8 +27,8 @@ export async function start() {
 }
 
 /** Opens `url` in a new page that records page errors and console errors. */
-export async function open(browser, url) {
-  const page = await browser.newPage();
+export async function open(browser, url, contextOptions = {}) {
+  const page = await browser.newPage(contextOptions);
   const errors = [];
   page.on('pageerror', (e) => errors.push(`pageerror: ${e.message}`));
   page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });

@@ -4,34 +4,13 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
 import { start, open } from './browser.mjs';
+import { readCanvas, lum, peak, countColour, xAt } from './pixels.mjs';
 
 const env = await start();
 test.after(() => env.close());
 
-/** Reads the canvas as { width, height, data: number[] } inside the page. */
-const readCanvas = (page) => page.evaluate(() => {
-  const c = document.getElementById('view');
-  const d = c.getContext('2d').getImageData(0, 0, c.width, c.height);
-  return { width: d.width, height: d.height, data: Array.from(d.data) };
-});
-
-const lum = (img, x, y) => {
-  const i = 4 * (Math.round(y) * img.width + Math.round(x));
-  return 0.299 * img.data[i] + 0.587 * img.data[i + 1] + 0.114 * img.data[i + 2];
-};
-
-/** Brightest luma within +-r px horizontally of (x, y). */
-const peak = (img, x, y, r) => {
-  let best = 0;
-  for (let dx = -r; dx <= r; dx++) {
-    const xx = Math.round(x) + dx;
-    if (xx >= 0 && xx < img.width) best = Math.max(best, lum(img, xx, y));
-  }
-  return best;
-};
-
 test('demo draws the synthetic road with markings where the ground truth says', async () => {
-  const { page, errors } = await open(env.browser, `${env.base}/`);
+  const { page, errors } = await open(env.browser, `${env.base}/?source=test-road&tracker=`);
   await page.waitForFunction(() => document.body.dataset.state === 'running'
     && window.lanepfDemo.frames >= 3, null, { timeout: 30000 });
   assert.match(await page.textContent('#version'), /^lanepf \d+\.\d+\.\d+/);
@@ -73,11 +52,7 @@ test('demo draws the synthetic road with markings where the ground truth says', 
   await page.click('#step');
   await page.waitForFunction((n) => window.lanepfDemo.frames > n, n2);
   const withOverlay = await readCanvas(page);
-  let yellow = 0;
-  for (let i = 0; i < withOverlay.data.length; i += 4) {
-    const [r, g, b] = [withOverlay.data[i], withOverlay.data[i + 1], withOverlay.data[i + 2]];
-    if (r === 0xff && g === 0xd5 && b === 0x4f) yellow++;
-  }
+  const yellow = countColour(withOverlay, [0xff, 0xd5, 0x4f]);
   assert.ok(yellow > 100, `ego-left overlay drawn (${yellow} px)`);
 
   mkdirSync('test-results', { recursive: true });
@@ -87,7 +62,7 @@ test('demo draws the synthetic road with markings where the ground truth says', 
 });
 
 test('demo switches to a simulator scenario and draws it under its ground truth', async () => {
-  const { page, errors } = await open(env.browser, `${env.base}/`);
+  const { page, errors } = await open(env.browser, `${env.base}/?tracker=`);
   await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
   const names = await page.$$eval('#source option', (os) => os.map((o) => o.value));
   assert.ok(names.includes('highway-curve') && names.includes('urban') && names.length >= 13, names.join());
@@ -134,13 +109,6 @@ test('demo runs the adachi-mmpf tracker in the worker and draws its lanes on the
   // The estimated ego-left boundary lies on the true one: mean |dx| over shared rows < 20 px.
   const est = estimate.boundaries.find((b) => b.role === 'ego-left').points;
   const tru = truth.boundaries.find((b) => b.role === 'ego-left').points;
-  const xAt = (pts, y) => {
-    for (let i = 1; i < pts.length; i++) {
-      const [[x0, y0], [x1, y1]] = [pts[i - 1], pts[i]];
-      if ((y0 - y) * (y1 - y) <= 0 && y0 !== y1) return x0 + (x1 - x0) * (y - y0) / (y1 - y0);
-    }
-    return null;
-  };
   const diffs = est.map(([, y]) => [xAt(est, y), xAt(tru, y)]).filter(([a, b]) => a !== null && b !== null)
     .map(([a, b]) => Math.abs(a - b));
   assert.ok(diffs.length > 10, `${diffs.length} shared rows`);
