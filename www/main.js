@@ -21,7 +21,7 @@ const client = new WorkerClient();
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
-  lastHypotheses: null, lastRgba: null, results: [], offsetErrors: [], ended: false, source: null,
+  lastHypotheses: null, lastRgba: null, results: [], offsetErrors: [], ended: false, source: null, pending: 0,
 });
 
 const state = {
@@ -36,9 +36,12 @@ const state = {
 let queue = Promise.resolve();
 /** Runs `fn` after everything queued before it; errors pause the page and are shown. */
 function run(fn) {
+  demo.pending += 1;
   queue = queue.then(fn).catch((err) => {
     controls.setPaused(true);
     controls.say(err.message, true);
+  }).finally(() => {
+    demo.pending -= 1;
   });
   return queue;
 }

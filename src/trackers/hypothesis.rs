@@ -30,7 +30,10 @@ mod tests {
 
     #[test]
     fn spread_indices_cover_the_cloud_without_repeats() {
-        assert_eq!(spread_indices(5, 10).collect::<Vec<_>>(), vec![0, 1, 2, 3, 4]);
+        assert_eq!(
+            spread_indices(5, 10).collect::<Vec<_>>(),
+            vec![0, 1, 2, 3, 4]
+        );
         let picked: Vec<usize> = spread_indices(1000, 100).collect();
         assert_eq!(picked.len(), 100);
         assert!(picked.windows(2).all(|w| w[1] == w[0] + 10));

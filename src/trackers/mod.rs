@@ -510,10 +510,15 @@ mod tests {
             let expected = at_10m(&estimate.boundaries).unwrap();
             let (mut sum, mut total, mut lo, mut hi) = (0.0, 0.0, f64::MAX, f64::MIN);
             for h in &drawn {
-                assert!(h.weight.is_finite() && (0.0..=1.0).contains(&h.weight), "{id}");
+                assert!(
+                    h.weight.is_finite() && (0.0..=1.0).contains(&h.weight),
+                    "{id}"
+                );
                 for b in &h.boundaries {
-                    assert!(b.points.iter().all(|p| (0.0..=319.0).contains(&p[0])
-                        && (0.0..=239.0).contains(&p[1])));
+                    assert!(b
+                        .points
+                        .iter()
+                        .all(|p| (0.0..=319.0).contains(&p[0]) && (0.0..=239.0).contains(&p[1])));
                 }
                 if let Some(y) = at_10m(&h.boundaries) {
                     sum += h.weight * y;
@@ -525,7 +530,10 @@ mod tests {
             // (Not for liu-ppf-nokernel, the paper's weak baseline: its cloud holds several
             // boundaries at once, 0.7-3.6 m left, so the roles differ between its particles.)
             let mean = sum / total;
-            assert!(*id == liu::ID_NOKERNEL || (mean - expected).abs() < 0.25, "{id}: cloud {mean} vs estimate {expected}");
+            assert!(
+                *id == liu::ID_NOKERNEL || (mean - expected).abs() < 0.25,
+                "{id}: cloud {mean} vs estimate {expected}"
+            );
             assert!(hi - lo > 0.005, "{id}: every drawn particle at {lo}");
         }
     }

@@ -484,9 +484,8 @@ impl Tracker for LiuTracker {
         let weights = self.filter.weights();
         spread_indices(states.len(), max)
             .map(|i| {
-                let bs: Vec<LinearParabolic> = (0..n)
-                    .map(|k| self.model.boundary(&states[i], k))
-                    .collect();
+                let bs: Vec<LinearParabolic> =
+                    (0..n).map(|k| self.model.boundary(&states[i], k)).collect();
                 Hypothesis {
                     weight: weights[i],
                     group: 0,
