@@ -10,6 +10,7 @@ export class Controls {
       restart: 'restart', progress: 'progress', tracker: 'tracker', source: 'source',
       file: 'file', cameraFile: 'camera-file', showTruth: 'show-truth',
       showParticles: 'show-particles', showTop: 'show-top', showCues: 'show-cues',
+      showPlots: 'show-plots', departure: 'departure',
       exportJsonl: 'export-jsonl', exportCsv: 'export-csv', status: 'status', timing: 'timing',
       version: 'version', dropZone: 'drop-zone',
     })) {

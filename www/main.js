@@ -9,6 +9,8 @@ import { CLIP, loadClipCamera, scaleCamera, readCameraFile } from './camera-pres
 import { Controls } from './controls.js';
 import { drawFrame, drawBoundaries, drawHypotheses, drawTopView, drawLayer } from './render.js';
 import { toJsonLines, toCsv, download } from './export.js';
+import { Plots } from './plots.js';
+import { Departure } from './departure.js';
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
@@ -18,6 +20,8 @@ const ctx = document.getElementById('view').getContext('2d');
 const topCtx = document.getElementById('top').getContext('2d');
 const cues = document.getElementById('cues').getContext('2d');
 const client = new WorkerClient();
+const plots = new Plots(document.getElementById('plots'));
+const departure = new Departure();
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
@@ -96,6 +100,12 @@ function draw(frame, result) {
 
 function record(frame, result) {
   if (!result?.estimate) return;
+  plots.push(result.estimate, frame.truth, result);
+  document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+  const t = frame.motion?.t_s ?? frame.t ?? null;
+  const status = departure.update(result.estimate, t, frame.motion?.speed_mps ?? null);
+  controls.departure.textContent = status?.text ?? '';
+  controls.departure.classList.toggle('warn', !!status?.warn);
   demo.results.push({ ...result.estimate, frame: frame.name, ms: result.trackMs });
   if (frame.truth) {
     demo.offsetErrors.push(Math.abs(result.estimate.lateral_offset_m - frame.truth.lateral_offset_m));
@@ -179,6 +189,8 @@ async function openTracker() {
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
   demo.results = [];
   demo.offsetErrors = [];
+  plots.clear();
+  departure.reset();
   controls.setExportable(false);
 }
 
@@ -276,6 +288,8 @@ async function main() {
     demo.results = [];
     demo.offsetErrors = [];
     demo.ended = false;
+    plots.clear();
+    departure.reset();
     controls.setExportable(false);
     controls.updateStageButton(null);
     controls.say(state.source.label);
@@ -285,6 +299,9 @@ async function main() {
     if (format === 'jsonl') download(`${base}.jsonl`, toJsonLines(demo.results), 'application/x-ndjson');
     else download(`${base}.csv`, toCsv(demo.results), 'text/csv');
   };
+  controls.showPlots.addEventListener('change', () => {
+    document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+  });
   document.body.dataset.state = 'running';
 
   let busy = false;

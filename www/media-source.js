@@ -157,7 +157,7 @@ export class VideoSource {
     const rgba = this.grabber.grab(video);
     const index = this.index++;
     this.progress = this.index / this.frames;
-    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index };
+    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index, t };
   }
 
   close() {
@@ -265,7 +265,8 @@ export class WebcamSource {
   async next() {
     const rgba = this.grabber.grab(this.video);
     const index = this.index++;
-    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index };
+    const t = performance.now() / 1000;
+    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index, t };
   }
 
   close() {

@@ -40,3 +40,13 @@ export const xAt = (pts, y) => {
   }
   return null;
 };
+
+/** Number of pixels within `tol` of [r, g, b] in every channel (antialiased lines). */
+export const countNear = (img, [r, g, b], tol) => {
+  let n = 0;
+  for (let i = 0; i < img.data.length; i += 4) {
+    if (Math.abs(img.data[i] - r) <= tol && Math.abs(img.data[i + 1] - g) <= tol
+      && Math.abs(img.data[i + 2] - b) <= tol) n++;
+  }
+  return n;
+};

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { mkdirSync, statSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { start, open } from './browser.mjs';
-import { readCanvas, lum, peak, countColour } from './pixels.mjs';
+import { readCanvas, lum, peak, countColour, countNear } from './pixels.mjs';
 
 const CLIP = fileURLToPath(new URL('../../www/clips/udacity-project-640x360.webm', import.meta.url));
 const env = await start(['--use-fake-device-for-media-stream', '--use-fake-ui-for-media-stream']);
@@ -54,6 +54,8 @@ test('the page opens on the bundled Udacity clip and draws the tracked lane on i
   const cloud = await page.evaluate(() => window.lanepfDemo.lastHypotheses);
   assert.ok(cloud.length > 10 && cloud.every((h) => h.boundaries.length >= 1), 'particles drawn');
   assert.equal(await page.isVisible('#top'), true, 'the top view is shown');
+  const plots = await readCanvas(page, 'plots');
+  assert.ok(countNear(plots, [0x4f, 0xc3, 0xf7], 40) > 300, 'the plots draw the estimate over time');
   await page.screenshot({ path: 'test-results/clip.png', fullPage: true });
   assert.deepEqual(errors, []);
   await page.close();

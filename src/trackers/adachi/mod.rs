@@ -102,6 +102,8 @@ pub struct AdachiEstimate {
     pub change: i8,
     /// Number of edge votes.
     pub votes: usize,
+    /// Effective sample size after the frame's weighing.
+    pub ess: f64,
 }
 
 impl AdachiTracker {
@@ -331,6 +333,7 @@ impl AdachiTracker {
             probabilities: self.probabilities,
             change,
             votes,
+            ess: self.filter.ess(),
         }
     }
 
@@ -378,6 +381,7 @@ impl AdachiTracker {
             ("adachi.p4", e.probabilities[3]),
             ("adachi.change", e.change as f64),
             ("adachi.votes", e.votes as f64),
+            ("adachi.ess", e.ess),
         ]
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))

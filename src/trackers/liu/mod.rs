@@ -89,6 +89,8 @@ pub struct LiuEstimate {
     pub boundaries: Vec<LinearParabolic>,
     /// Fraction of near rows with a mask pixel within 1 pixel of each boundary.
     pub support: Vec<f64>,
+    /// Effective sample size after the second partition's weighing.
+    pub ess: f64,
 }
 
 /// The Liu tracker (either variant).
@@ -310,6 +312,7 @@ impl LiuTracker {
         LiuEstimate {
             boundaries,
             support,
+            ess: self.filter.ess(),
         }
     }
 
@@ -425,6 +428,7 @@ impl LiuTracker {
             "liu.mask_pixels".to_string(),
             self.descriptors.count() as f64,
         );
+        state.insert("liu.ess".to_string(), e.ess);
         LaneEstimate {
             frame: String::new(),
             valid,

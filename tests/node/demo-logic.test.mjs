@@ -1,0 +1,62 @@
+// The demo's pure logic, without a browser: lane-departure status, export formats, camera
+// scaling.
+import test from 'node:test';
+import assert from 'node:assert/strict';
+import { Departure, CAR_HALF_WIDTH_M } from '../../www/departure.js';
+import { toJsonLines, toCsv, CSV_COLUMNS } from '../../www/export.js';
+import { scaleCamera } from '../../www/camera-presets.js';
+
+const lane = (q, psi = 0, valid = true) => ({
+  valid, lateral_offset_m: q, heading_rad: psi, lane_width_m: 3.6, curvature_per_m: 0,
+});
+
+test('departure: distances to the lines from the offset and the car width', () => {
+  const d = new Departure();
+  const s = d.update(lane(0.3), 0, 0);
+  const toLeft = 1.8 - 0.3 - CAR_HALF_WIDTH_M;
+  const toRight = 1.8 + 0.3 - CAR_HALF_WIDTH_M;
+  assert.match(s.text, new RegExp(`${toLeft.toFixed(2)} m to the left line, ${toRight.toFixed(2)} m to the right`));
+  assert.equal(s.warn, false);
+  assert.deepEqual(d.update(lane(1.0), 0.04, 0), { text: 'crossing the left line', warn: true });
+  assert.equal(d.update(lane(0, 0, false), 0.08, 0), null, 'nothing for an invalid estimate');
+});
+
+test('departure: time to line crossing from the speed and heading, else from the offset rate', () => {
+  const d = new Departure();
+  // Lane heading +0.02 rad (lane turns left of the car): the car drifts right at v sin(psi).
+  const s = d.update(lane(0, 0.02), 0, 25);
+  const tlc = (1.8 - CAR_HALF_WIDTH_M) / (25 * Math.sin(0.02));
+  assert.match(s.text, new RegExp(`${tlc.toFixed(1)} s to the right line`));
+  assert.equal(s.warn, tlc < 1);
+  // Without a speed: offset 0 -> 0.5 m left in 1 s is 0.5 m/s; 0.4 m left to go is 0.8 s.
+  const e = new Departure();
+  e.update(lane(0), 10, null);
+  const w = e.update(lane(0.5), 11, null);
+  assert.match(w.text, /0\.8 s to the left line/);
+  assert.equal(w.warn, true);
+});
+
+test('export: JSON lines round-trip and CSV quotes what needs quoting', () => {
+  const rows = [
+    { frame: 'a,b.png', valid: true, lateral_offset_m: 0.1, heading_rad: 0, curvature_per_m: 0, lane_width_m: 3.5, ms: 2, boundaries: [] },
+    { frame: '2', valid: false, lateral_offset_m: -0.2, heading_rad: 0.01, curvature_per_m: 1e-3, lane_width_m: 3.6, ms: 3, boundaries: [] },
+  ];
+  const lines = toJsonLines(rows).split('\n');
+  assert.equal(lines.pop(), '');
+  assert.deepEqual(lines.map((l) => JSON.parse(l)), rows);
+  const csv = toCsv(rows).trim().split('\n');
+  assert.equal(csv[0], CSV_COLUMNS.join(','));
+  assert.equal(csv[1], '"a,b.png",true,0.1,0,0,3.5,2');
+  assert.equal(csv[2], '2,false,-0.2,0.01,0.001,3.6,3');
+});
+
+test('camera scaling keeps the field of view and maps pixel centres', () => {
+  const c = { width: 1280, height: 720, fx: 1156, fy: 1151, cx: 671.5, cy: 389.5, height_m: 1.4, pitch_deg: 0 };
+  const s = scaleCamera(c, 640, 360);
+  assert.equal(s.fx, 578);
+  assert.equal(s.fy, 575.5);
+  assert.equal(s.cx, 335.5);
+  assert.equal(s.cy, 194.5);
+  assert.equal(s.height_m, 1.4);
+  assert.equal(Math.atan(c.width / 2 / c.fx), Math.atan(s.width / 2 / s.fx));
+});

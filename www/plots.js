@@ -1,0 +1,99 @@
+// Live plots of the estimate over the last frames: one strip per quantity, the estimate as a
+// line, the ground truth (when the source has one) dashed, the latest value written beside.
+
+const RAD_TO_DEG = 180 / Math.PI;
+const ESS_KEYS = ['lee.ess2', 'danescu.ess', 'adachi.ess', 'liu.ess', 'lee.ess1'];
+
+/** The quantities plotted: name, unit, value of an estimate (or truth), and of a result. */
+export const SERIES = [
+  { name: 'lateral offset', unit: 'm', of: (e) => e.lateral_offset_m },
+  { name: 'heading', unit: 'deg', of: (e) => e.heading_rad * RAD_TO_DEG },
+  { name: 'curvature', unit: '1/km', of: (e) => e.curvature_per_m * 1000 },
+  { name: 'lane width', unit: 'm', of: (e) => e.lane_width_m },
+  { name: 'ESS', unit: 'particles', of: (e) => e.state?.[ESS_KEYS.find((k) => k in (e.state ?? {}))], truth: false },
+  { name: 'time', unit: 'ms/frame', of: (e, r) => r?.trackMs, truth: false },
+];
+
+export class Plots {
+  constructor(canvas, length = 300) {
+    this.canvas = canvas;
+    this.ctx = canvas.getContext('2d');
+    this.length = length;
+    this.clear();
+  }
+
+  clear() {
+    this.points = SERIES.map(() => []);
+    this.truth = SERIES.map(() => []);
+    this.draw();
+  }
+
+  /** Adds a frame's estimate (and truth, when known). */
+  push(estimate, truth, result) {
+    SERIES.forEach((s, k) => {
+      const v = estimate ? s.of(estimate, result) : null;
+      const t = truth && s.truth !== false ? s.of(truth) : null;
+      this.points[k].push(Number.isFinite(v) ? v : null);
+      this.truth[k].push(Number.isFinite(t) ? t : null);
+      if (this.points[k].length > this.length) {
+        this.points[k].shift();
+        this.truth[k].shift();
+      }
+    });
+    this.draw();
+  }
+
+  draw() {
+    const { ctx, canvas } = this;
+    const strip = canvas.height / SERIES.length;
+    const left = 150;
+    const w = canvas.width - left - 8;
+    ctx.fillStyle = '#0b0e11';
+    ctx.fillRect(0, 0, canvas.width, canvas.height);
+    ctx.font = '12px system-ui, sans-serif';
+    SERIES.forEach((s, k) => {
+      const top = k * strip;
+      const values = [...this.points[k], ...this.truth[k]].filter((v) => v !== null);
+      let lo = Math.min(...values);
+      let hi = Math.max(...values);
+      if (!values.length) [lo, hi] = [0, 1];
+      if (hi - lo < 1e-9) [lo, hi] = [lo - 0.5, hi + 0.5];
+      const pad = 0.1 * (hi - lo);
+      // Counts and times never go below zero: no padding under a zero floor.
+      [lo, hi] = [lo >= 0 && lo - pad < 0 ? 0 : lo - pad, hi + pad];
+      const y = (v) => top + strip - 4 - ((v - lo) / (hi - lo)) * (strip - 8);
+      const x = (i) => left + (i / Math.max(1, this.length - 1)) * w;
+      ctx.strokeStyle = '#222a31';
+      ctx.beginPath();
+      ctx.moveTo(0, top + strip - 0.5);
+      ctx.lineTo(canvas.width, top + strip - 0.5);
+      ctx.stroke();
+      const line = (series, colour, dash) => {
+        ctx.strokeStyle = colour;
+        ctx.setLineDash(dash);
+        ctx.beginPath();
+        let pen = false;
+        series.forEach((v, i) => {
+          if (v === null) {
+            pen = false;
+            return;
+          }
+          if (pen) ctx.lineTo(x(i), y(v));
+          else ctx.moveTo(x(i), y(v));
+          pen = true;
+        });
+        ctx.stroke();
+        ctx.setLineDash([]);
+      };
+      line(this.truth[k], '#8a949e', [4, 3]);
+      line(this.points[k], '#4fc3f7', []);
+      const last = this.points[k].filter((v) => v !== null).at(-1);
+      ctx.fillStyle = '#e6e9ec';
+      ctx.fillText(`${s.name} (${s.unit})`, 6, top + 16);
+      ctx.fillStyle = '#4fc3f7';
+      ctx.fillText(last === undefined ? '–' : last.toFixed(Math.abs(last) < 10 ? 3 : 1), 6, top + 32);
+      ctx.fillStyle = '#8a949e';
+      ctx.fillText(`${hi.toPrecision(3)} … ${lo.toPrecision(3)}`, 6, top + 48);
+    });
+  }
+}
