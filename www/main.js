@@ -11,6 +11,7 @@ import { drawFrame, drawBoundaries, drawHypotheses, drawTopView, drawLayer } fro
 import { toJsonLines, toCsv, download } from './export.js';
 import { Plots } from './plots.js';
 import { Departure } from './departure.js';
+import { ParamsPanel } from './params-panel.js';
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
@@ -22,6 +23,7 @@ const cues = document.getElementById('cues').getContext('2d');
 const client = new WorkerClient();
 const plots = new Plots(document.getElementById('plots'));
 const departure = new Departure();
+const panel = new ParamsPanel();
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
@@ -182,9 +184,14 @@ async function finishStepping() {
   while (state.inFrame) await stepStage();
 }
 
+/** Builds the chosen tracker for the current camera with the panel's options and seed. */
 async function openTracker() {
   state.inFrame = null;
-  const info = await client.request('openTracker', { trackerId: state.trackerId, camera: state.camera });
+  const trackerId = state.trackerId;
+  const defaults = trackerId ? await client.request('defaults', { trackerId }) : null;
+  panel.show(trackerId, defaults);
+  const options = { ...panel.changedOptions(), seed: panel.seedValue() };
+  const info = await client.request('openTracker', { trackerId, camera: state.camera, options });
   controls.setStepNames(info.stepNames);
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
   demo.results = [];
@@ -279,6 +286,7 @@ async function main() {
     state.trackerId = id;
     await openTracker();
   });
+  panel.onChange = () => run(openTracker);
   controls.onStep = () => run(stepFrame);
   controls.onStepStage = () => run(stepStage);
   controls.onRestart = () => run(async () => {

@@ -3,7 +3,9 @@
 // nothing, so the page's main thread never waits on the filter.
 // Protocol: { id, type, ...payload } (payload keys must not be `id` or `type`) ->
 // { id, ok: true, result } | { id, ok: false, error }. Frames travel as transferred buffers.
-import init, { version, trackerIds, scenarios, Camera, Scene, TestRoad, Tracker } from '../pkg/web/lanepf.js';
+import init, {
+  version, trackerIds, trackerDefaults, scenarios, Camera, Scene, TestRoad, Tracker,
+} from '../pkg/web/lanepf.js';
 
 const ready = init();
 let road = null;
@@ -83,6 +85,9 @@ function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = 
 const handlers = {
   async hello() {
     return { version: version(), trackers: trackerIds(), scenarios: scenarios() };
+  },
+  async defaults({ trackerId }) {
+    return trackerDefaults(trackerId);
   },
   async openTestRoad({ camera, options }) {
     road?.free();

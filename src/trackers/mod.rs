@@ -8,10 +8,12 @@
 
 pub mod adachi;
 pub mod danescu;
+mod defaults;
 mod hypothesis;
 pub mod lee;
 pub mod liu;
 
+pub use defaults::default_options;
 pub use hypothesis::{spread_indices, Hypothesis};
 
 use crate::camera::{Camera, CameraFile};

@@ -19,6 +19,13 @@ pub fn tracker_ids() -> Vec<String> {
         .collect()
 }
 
+/// Every option of tracker `id` with its default value, `particles` included (pass any of them
+/// in `new Tracker(id, { camera, ...options })`); throws for an unknown id.
+#[wasm_bindgen(js_name = trackerDefaults)]
+pub fn tracker_defaults(id: &str) -> Result<JsValue, JsError> {
+    super::to_js_value(&trackers::default_options(id).map_err(to_js)?)
+}
+
 #[wasm_bindgen(js_class = Tracker)]
 impl JsTracker {
     /// `new Tracker(id, { camera, particles?, seed?, ...options })`; throws an `Error` for an

@@ -105,3 +105,48 @@ test('a run exports as JSON lines in the track format and as CSV', async () => {
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('the teaching panel explains the tracker, its sliders rebuild it, and the seed makes runs repeat', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/?source=highway-straight&tracker=adachi-mmpf`);
+  await running(page);
+  assert.match(await page.textContent('#teach-title'), /Adachi/);
+  assert.match(await page.textContent('#teach-text'), /Table 1/);
+  const defaults = await page.evaluate(() => Object.fromEntries([...document.querySelectorAll('#params input')]
+    .map((i) => [i.name, i.type === 'checkbox' ? i.checked : Number(i.value)])));
+  assert.equal(defaults.particles, 500);
+  assert.equal(defaults.sigma_q_m, 0.08);
+  // Fewer particles: the tracker is rebuilt, and the drawn cloud is all of its 60 particles.
+  await page.click('#play');
+  await page.waitForFunction(() => window.lanepfDemo.pending === 0);
+  await page.$eval('#params input[name="particles"]', (i) => {
+    i.value = '60';
+    i.dispatchEvent(new Event('change'));
+  });
+  await page.waitForFunction(() => window.lanepfDemo.pending === 0 && window.lanepfDemo.frames === 0);
+  await page.click('#step');
+  await page.waitForFunction(() => window.lanepfDemo.frames === 1);
+  assert.equal(await page.evaluate(() => window.lanepfDemo.lastHypotheses.length), 60);
+
+  // The same seed from the same frame gives the same run; another seed another one.
+  const run = async (seed) => {
+    await page.fill('#seed', `${seed}`);
+    await page.$eval('#seed', (i) => i.dispatchEvent(new Event('change')));
+    await page.click('#restart');
+    await page.waitForFunction(() => window.lanepfDemo.pending === 0 && window.lanepfDemo.results.length === 0);
+    for (let k = 0; k < 5; k++) {
+      await page.click('#step');
+      await page.waitForFunction((k) => window.lanepfDemo.results.length === k + 1, k);
+    }
+    return page.evaluate(() => window.lanepfDemo.results.map((r) => r.lateral_offset_m));
+  };
+  const a = await run(7);
+  const b = await run(7);
+  const c = await run(8);
+  assert.deepEqual(a, b);
+  assert.notDeepEqual(a, c);
+  // Back to the paper's defaults.
+  await page.click('#params-reset');
+  await page.waitForFunction(() => document.querySelector('#params input[name="particles"]').value === '500');
+  assert.deepEqual(errors, []);
+  await page.close();
+});

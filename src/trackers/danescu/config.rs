@@ -8,10 +8,10 @@
 
 use crate::error::{require_finite, require_positive, Error, Result};
 use crate::vision::{CannyConfig, DensityConfig, DisparityConfig, HGradientConfig};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Every option of the Danescu trackers.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DanescuConfig {
     /// Share of each frame's particles drawn from the generic initialisation distribution

@@ -1,0 +1,98 @@
+// The teaching panel: the chosen tracker's paper in a few sentences, sliders for the parameters
+// the paper names, the seed, and a button back to the defaults. It calls `onChange(options,
+// seed)` when the person lets go of a slider.
+import { TRACKERS, getPath, setPath } from './explain.js';
+
+export class ParamsPanel {
+  constructor(doc = document) {
+    this.doc = doc;
+    this.section = doc.getElementById('teach');
+    this.title = doc.getElementById('teach-title');
+    this.text = doc.getElementById('teach-text');
+    this.form = doc.getElementById('params');
+    this.seed = doc.getElementById('seed');
+    this.reset = doc.getElementById('params-reset');
+    this.onChange = () => {};
+    this.defaults = {};
+    this.options = {};
+    this.form.addEventListener('submit', (e) => e.preventDefault());
+    this.seed.addEventListener('change', () => this.changed());
+    this.reset.addEventListener('click', () => {
+      this.options = {};
+      this.show(this.id, this.defaults);
+      this.changed();
+    });
+  }
+
+  /** The options that differ from the defaults (what the tracker is built with). */
+  changedOptions() {
+    return this.options;
+  }
+
+  seedValue() {
+    const v = Number(this.seed.value);
+    return Number.isSafeInteger(v) && v >= 0 ? v : 1;
+  }
+
+  changed() {
+    this.onChange(this.options, this.seedValue());
+  }
+
+  /** Shows tracker `id` (null: none) with its `defaults` (trackerDefaults(id)). */
+  show(id, defaults) {
+    this.id = id;
+    const info = id ? TRACKERS[id] : null;
+    this.section.hidden = !info;
+    if (!info) return;
+    if (this.defaultsId !== id) {
+      this.defaultsId = id;
+      this.options = {};
+    }
+    this.defaults = defaults;
+    this.title.textContent = info.title;
+    this.text.replaceChildren(...info.text.map((t) => Object.assign(this.doc.createElement('p'), { textContent: t })));
+    const current = { ...defaults, ...this.options };
+    this.form.replaceChildren(...info.params.map((p) => this.control(p, current)));
+  }
+
+  control(p, current) {
+    const label = this.doc.createElement('label');
+    const name = this.doc.createElement('span');
+    name.textContent = p.label;
+    const input = this.doc.createElement('input');
+    input.name = p.path;
+    const value = getPath(current, p.path);
+    const out = this.doc.createElement('output');
+    if (p.kind === 'bool') {
+      input.type = 'checkbox';
+      input.checked = !!value;
+      input.addEventListener('change', () => {
+        this.options = setPath({ ...this.defaults, ...this.options }, p.path, input.checked);
+        this.options = this.trim(this.options);
+        this.changed();
+      });
+      label.append(input, name);
+      return label;
+    }
+    input.type = 'range';
+    Object.assign(input, { min: p.min, max: p.max, step: p.step });
+    input.value = value;
+    out.textContent = `${value}`;
+    input.addEventListener('input', () => { out.textContent = input.value; });
+    input.addEventListener('change', () => {
+      this.options = this.trim(setPath({ ...this.defaults, ...this.options }, p.path, Number(input.value)));
+      this.changed();
+    });
+    label.append(name, input, out);
+    return label;
+  }
+
+  /** Keeps only the top-level options that differ from the defaults. */
+  trim(options) {
+    const out = {};
+    for (const [k, v] of Object.entries(options)) {
+      if (JSON.stringify(v) !== JSON.stringify(this.defaults[k])) out[k] = v;
+    }
+    return out;
+  }
+}
