@@ -51,3 +51,24 @@ export async function readCameraFile(file) {
   }
   return value;
 }
+
+/** The Caltech Lanes camera (640x480, 2.18 m, 14 deg down; also the simulator's default). */
+export const CALTECH = {
+  width: 640, height: 480, fx: 309.4362, fy: 344.2161, cx: 317.9034, cy: 256.5352,
+  height_m: 2.1798, pitch_deg: 14.0, yaw_deg: 0.0, roll_deg: 0.0,
+};
+
+/** Camera presets for the calibration panel: { key: { label, camera } }. */
+export async function loadPresets() {
+  const files = {
+    'udacity-640': ['Udacity clip (640x360)', CLIP.camera],
+    'udacity-1280': ['Udacity project video (1280x720)', 'clips/udacity-1280x720.camera.json'],
+    'udacity-960': ['Udacity 960x540 videos (assumed)', 'clips/udacity-960x540.camera.json'],
+  };
+  const presets = { caltech: { label: 'Caltech Lanes (640x480)', camera: CALTECH } };
+  for (const [key, [label, url]] of Object.entries(files)) {
+    const res = await fetch(url);
+    if (res.ok) presets[key] = { label, camera: await res.json() };
+  }
+  return presets;
+}

@@ -5,7 +5,8 @@
 import { WorkerClient } from './worker-client.js';
 import { SceneSource, TestRoadSource } from './source.js';
 import { VideoSource, ImageSource, WebcamSource } from './media-source.js';
-import { CLIP, loadClipCamera, scaleCamera, readCameraFile } from './camera-presets.js';
+import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from './camera-presets.js';
+import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
 import { drawFrame, drawBoundaries, drawHypotheses, drawTopView, drawLayer } from './render.js';
 import { toJsonLines, toCsv, download } from './export.js';
@@ -37,7 +38,10 @@ const state = {
   camera: null,
   importedCamera: null,
   inFrame: null, // the frame being stepped through in per-step mode
+  lastFrame: null, // the frame on the canvas and what the worker said about it
+  lastResult: null,
 };
+let calibration = null;
 
 let queue = Promise.resolve();
 /** Runs `fn` after everything queued before it; errors pause the page and are shown. */
@@ -58,9 +62,12 @@ const want = () => ({
   top: controls.showTop.checked,
 });
 
-function draw(frame, result) {
+/** Draws the frame and everything on it; `redraw`: the same frame again (no bookkeeping). */
+function draw(frame, result, redraw = false) {
   // Frames flow again after an error: back to the source's description.
-  if (document.body.dataset.state === 'error') controls.say(state.source.label);
+  if (!redraw && document.body.dataset.state === 'error') controls.say(state.source.label);
+  state.lastFrame = frame;
+  state.lastResult = result;
   drawFrame(ctx, frame.rgba, frame.width, frame.height);
   const estimate = result?.estimate ?? null;
   const hypotheses = controls.showParticles.checked ? result?.hypotheses : null;
@@ -68,6 +75,7 @@ function draw(frame, result) {
   drawHypotheses(ctx, hypotheses);
   if (truth) drawBoundaries(ctx, truth.boundaries, { dashed: true, width: 2 });
   if (estimate) drawBoundaries(ctx, estimate.boundaries, { width: 4 });
+  calibration?.draw(ctx, estimate);
   const top = controls.showTop.checked ? result?.top : null;
   document.getElementById('top-figure').hidden = !top;
   if (top) drawTopView(topCtx, top, { truth, estimate, hypotheses });
@@ -77,6 +85,7 @@ function draw(frame, result) {
     drawLayer(cues, layer);
     document.getElementById('cues-caption').textContent = layer.name;
   }
+  if (redraw) return;
   Object.assign(demo, {
     lastLayer: layer ?? null,
     lastHypotheses: result?.hypotheses ?? null,
@@ -129,6 +138,15 @@ async function toWorker(type, frame, extra = {}) {
     }
     throw err;
   }
+}
+
+/** Re-warps the frame on the canvas to the top view of the current camera. */
+async function refreshTopView() {
+  const frame = state.lastFrame;
+  if (!frame?.rgba?.length || !controls.showTop.checked) return;
+  const result = await toWorker('topView', frame);
+  state.lastResult = { ...(state.lastResult ?? {}), top: result.top };
+  draw(frame, state.lastResult, true);
 }
 
 /** The next frame, or null at the end of the source (which pauses the page). */
@@ -229,6 +247,12 @@ async function openSource(next, name) {
   } else {
     state.camera = next.camera;
   }
+  const saved = calibration.saved(name, state.camera.width, state.camera.height);
+  if (saved) {
+    state.camera = saved;
+    note = ' · camera: as you calibrated it for this source';
+  }
+  calibration.show(state.camera, name);
   await openTracker();
   controls.say(next.label + note);
   controls.setProgress(next.progress ?? null);
@@ -257,6 +281,18 @@ function filesSource(files) {
 
 async function main() {
   const { version, trackers, scenarios } = await client.request('hello');
+  calibration = new Calibration(document, document.getElementById('view'), await loadPresets());
+  demo.calibration = calibration;
+  calibration.onRedraw = () => {
+    if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
+  };
+  calibration.onApply = (camera) => run(async () => {
+    state.camera = camera;
+    await openTracker();
+    await refreshTopView();
+    controls.say(`Camera applied: pitch ${camera.pitch_deg.toFixed(2)}°, yaw ${camera.yaw_deg.toFixed(2)}°, `
+      + `height ${camera.height_m.toFixed(2)} m (remembered for this source).`);
+  });
   controls.version.textContent = `lanepf ${version}`;
   controls.setTrackers(trackers);
   controls.setScenarios(scenarios);
@@ -278,6 +314,7 @@ async function main() {
     state.importedCamera = await readCameraFile(file);
     if (state.source?.size && !state.source.camera) {
       state.camera = scaleCamera(state.importedCamera, state.source.size.width, state.source.size.height);
+      calibration.show(state.camera, state.sourceName);
       await openTracker();
     }
     controls.say(`Camera “${file.name}” will be used for your videos, images and the webcam.`);

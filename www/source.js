@@ -2,11 +2,10 @@
 // the worker by the wasm module. Each yields frames { rgba, width, height, truth, motion, name,
 // index } on demand (see media-source.js for video, images and the webcam).
 
-/** The camera of the synthetic sources (the Caltech Lanes camera: 640x480, 2.18 m, 14 deg down). */
-export const DEFAULT_CAMERA = {
-  width: 640, height: 480, fx: 309.4362, fy: 344.2161, cx: 317.9034, cy: 256.5352,
-  height_m: 2.1798, pitch_deg: 14.0, yaw_deg: 0.0, roll_deg: 0.0,
-};
+import { CALTECH } from './camera-presets.js';
+
+/** The camera of the synthetic test road (the Caltech Lanes camera). */
+export const DEFAULT_CAMERA = CALTECH;
 
 export class TestRoadSource {
   constructor(client, camera = DEFAULT_CAMERA, options = {}) {

@@ -166,6 +166,10 @@ const handlers = {
       transfer: [rgba.buffer],
     };
   },
+  /** The top view of a frame (after a camera change), with the pixels back. */
+  async topView({ rgba, width, height }) {
+    return { result: { rgba, top: topView(rgba, width, height) }, transfer: [rgba.buffer] };
+  },
   async reset() {
     tracker?.reset();
     return null;

@@ -1,0 +1,194 @@
+// The camera panel: presets, editable intrinsics and pose, a helper that estimates pitch, yaw
+// and height from two lane lines dragged over the frame, and per-source memory in
+// localStorage. It calls `onApply(camera)` with a complete camera object.
+import { intersect, poseFromVanishingPoint, heightFromLaneWidth } from './vanishing.js';
+import { scaleCamera } from './camera-presets.js';
+
+export const FIELDS = ['fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg', 'yaw_deg', 'roll_deg'];
+const STORE = 'lanepf.camera.';
+const HANDLE_PX = 9;
+
+export class Calibration {
+  constructor(doc, canvas, presets) {
+    this.doc = doc;
+    this.canvas = canvas;
+    this.presets = presets;
+    this.panel = doc.getElementById('calibration');
+    this.form = doc.getElementById('camera-fields');
+    this.preset = doc.getElementById('camera-preset');
+    this.helper = doc.getElementById('vp-helper');
+    this.laneWidth = doc.getElementById('vp-lane-width');
+    this.readout = doc.getElementById('vp-readout');
+    this.onApply = () => {};
+    this.onRedraw = () => {};
+    this.camera = null;
+    this.lines = null;
+    this.drag = null;
+    for (const name of FIELDS) {
+      const label = doc.createElement('label');
+      const input = Object.assign(doc.createElement('input'), { type: 'number', name, step: 'any' });
+      label.append(`${name} `, input);
+      this.form.append(label);
+    }
+    for (const [key, p] of Object.entries(presets)) this.preset.add(new Option(p.label, key));
+    this.form.addEventListener('submit', (e) => {
+      e.preventDefault();
+      this.apply(this.read());
+    });
+    doc.getElementById('camera-apply').addEventListener('click', () => this.apply(this.read()));
+    doc.getElementById('camera-preset-apply').addEventListener('click', () => {
+      const p = this.presets[this.preset.value];
+      if (p && this.camera) this.apply(scaleCamera(p.camera, this.camera.width, this.camera.height));
+    });
+    this.helper.addEventListener('change', () => {
+      this.lines = this.helper.checked ? this.lines : null;
+      this.onRedraw();
+    });
+    canvas.addEventListener('pointerdown', (e) => this.pointer(e, 'down'));
+    canvas.addEventListener('pointermove', (e) => this.pointer(e, 'move'));
+    canvas.addEventListener('pointerup', (e) => this.pointer(e, 'up'));
+  }
+
+  /** Shows `camera` in the fields (the camera the tracker now uses). */
+  show(camera, sourceName) {
+    this.camera = camera;
+    this.sourceName = sourceName;
+    for (const name of FIELDS) this.form.elements[name].value = +(camera[name] ?? 0).toFixed(4);
+    this.lines = null;
+  }
+
+  read() {
+    const out = { ...this.camera };
+    for (const name of FIELDS) {
+      const v = Number(this.form.elements[name].value);
+      if (!Number.isFinite(v)) throw new Error(`camera ${name}: not a number`);
+      out[name] = v;
+    }
+    return out;
+  }
+
+  apply(camera) {
+    this.show(camera, this.sourceName);
+    this.save(camera);
+    this.onApply(camera);
+  }
+
+  /** The camera saved for a source of this size, or null. */
+  saved(sourceName, width, height) {
+    try {
+      const c = JSON.parse(localStorage.getItem(STORE + sourceName) ?? 'null');
+      return c && c.width === width && c.height === height ? c : null;
+    } catch {
+      return null;
+    }
+  }
+
+  save(camera) {
+    try {
+      localStorage.setItem(STORE + this.sourceName, JSON.stringify(camera));
+    } catch {
+      // Private mode or full storage: the camera still applies, it is just not remembered.
+    }
+  }
+
+  active() {
+    return this.helper.checked;
+  }
+
+  /** Starts the two lines on the estimated ego boundaries, or on a generic lane. */
+  startLines(estimate, width, height) {
+    const pick = (role) => {
+      const pts = estimate?.boundaries.find((b) => b.role === role)?.points;
+      return pts && pts.length >= 4 ? [pts[0], pts[Math.floor(pts.length * 0.6)]] : null;
+    };
+    this.lines = [
+      pick('ego-left') ?? [[0.3 * width, 0.95 * height], [0.46 * width, 0.65 * height]],
+      pick('ego-right') ?? [[0.7 * width, 0.95 * height], [0.54 * width, 0.65 * height]],
+    ].map((l) => l.map((p) => [...p]));
+  }
+
+  /** Draws the lines, their handles and the vanishing point on the camera view. */
+  draw(ctx, estimate) {
+    if (!this.active()) return;
+    if (!this.lines) this.startLines(estimate, ctx.canvas.width, ctx.canvas.height);
+    ctx.save();
+    ctx.strokeStyle = '#ff5252';
+    ctx.fillStyle = '#ff5252';
+    ctx.lineWidth = 2;
+    const vp = intersect(...this.lines);
+    for (const [a, b] of this.lines) {
+      ctx.beginPath();
+      ctx.moveTo(a[0], a[1]);
+      ctx.lineTo(...(vp ?? b));
+      ctx.stroke();
+      for (const p of [a, b]) {
+        ctx.beginPath();
+        ctx.arc(p[0], p[1], HANDLE_PX / 2 + 1, 0, 2 * Math.PI);
+        ctx.fill();
+      }
+    }
+    if (vp) {
+      ctx.beginPath();
+      ctx.moveTo(0, vp[1]);
+      ctx.lineTo(ctx.canvas.width, vp[1]);
+      ctx.setLineDash([6, 6]);
+      ctx.stroke();
+    }
+    ctx.restore();
+    this.readout.textContent = this.describe(vp);
+  }
+
+  /** The pose the lines give, and a sentence about it. */
+  estimate() {
+    const vp = this.lines && intersect(...this.lines);
+    if (!vp || !this.camera) return null;
+    const pose = poseFromVanishingPoint(this.camera, vp);
+    // Height from the lines' spacing on the lowest row both reach.
+    const row = Math.min(Math.max(this.lines[0][0][1], this.lines[0][1][1]),
+      Math.max(this.lines[1][0][1], this.lines[1][1][1]));
+    const xOn = ([a, b]) => a[0] + ((b[0] - a[0]) * (row - a[1])) / (b[1] - a[1]);
+    const h = heightFromLaneWidth(this.camera, pose.pitch_deg, row, xOn(this.lines[0]),
+      xOn(this.lines[1]), Number(this.laneWidth.value));
+    return { vp, ...pose, height_m: h };
+  }
+
+  describe(vp) {
+    const e = this.estimate();
+    if (!vp || !e) return 'The two lines are parallel: drag them onto the lane markings.';
+    const h = e.height_m ? `, height ${e.height_m.toFixed(2)} m` : '';
+    return `vanishing point (${vp[0].toFixed(0)}, ${vp[1].toFixed(0)}): pitch ${e.pitch_deg.toFixed(2)}°, `
+      + `yaw ${e.yaw_deg.toFixed(2)}°${h}`;
+  }
+
+  /** Dragging a handle moves it; letting go applies the pose the lines give. */
+  pointer(e, kind) {
+    if (!this.active() || !this.lines) return;
+    const r = this.canvas.getBoundingClientRect();
+    const p = [(e.clientX - r.left) * (this.canvas.width / r.width), (e.clientY - r.top) * (this.canvas.height / r.height)];
+    if (kind === 'down') {
+      let best = null;
+      this.lines.forEach((line, i) => line.forEach((q, j) => {
+        const d = Math.hypot(q[0] - p[0], q[1] - p[1]);
+        if (d < 3 * HANDLE_PX && (!best || d < best.d)) best = { i, j, d };
+      }));
+      if (best) {
+        this.drag = best;
+        this.canvas.setPointerCapture(e.pointerId);
+        e.preventDefault();
+      }
+    } else if (kind === 'move' && this.drag) {
+      this.lines[this.drag.i][this.drag.j] = p;
+      this.onRedraw();
+    } else if (kind === 'up' && this.drag) {
+      this.drag = null;
+      const est = this.estimate();
+      if (est) {
+        const lines = this.lines;
+        this.apply({ ...this.read(), pitch_deg: est.pitch_deg, yaw_deg: est.yaw_deg,
+          ...(est.height_m ? { height_m: est.height_m } : {}) });
+        this.lines = lines;
+        this.onRedraw();
+      }
+    }
+  }
+}
