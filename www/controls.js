@@ -10,7 +10,8 @@ export class Controls {
       restart: 'restart', progress: 'progress', tracker: 'tracker', source: 'source',
       file: 'file', cameraFile: 'camera-file', showTruth: 'show-truth',
       showParticles: 'show-particles', showTop: 'show-top', showCues: 'show-cues',
-      showPlots: 'show-plots', departure: 'departure',
+      showPlots: 'show-plots', departure: 'departure', cueLayer: 'cue-layer',
+      colourGroups: 'colour-groups',
       exportJsonl: 'export-jsonl', exportCsv: 'export-csv', status: 'status', timing: 'timing',
       version: 'version', dropZone: 'drop-zone',
     })) {
@@ -109,6 +110,19 @@ export class Controls {
   setExportable(yes) {
     this.exportJsonl.disabled = !yes;
     this.exportCsv.disabled = !yes;
+  }
+
+  /** Lists the tracker's cue layers by name, keeping the choice when the names stay. */
+  setLayers(layers) {
+    const names = (layers ?? []).map((l) => l.name);
+    const old = [...this.cueLayer.options].map((o) => o.textContent);
+    if (names.join('\n') !== old.join('\n')) {
+      const chosen = this.cueLayer.value;
+      this.cueLayer.replaceChildren(...names.map((n, k) => new Option(n, `${k}`)));
+      if (chosen !== '' && Number(chosen) < names.length) this.cueLayer.value = chosen;
+    }
+    this.cueLayer.hidden = names.length < 2;
+    return Number(this.cueLayer.value) || 0;
   }
 
   /** Fills the tracker list: "no tracker" and then every registered id. */

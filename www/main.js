@@ -72,17 +72,21 @@ function draw(frame, result, redraw = false) {
   const estimate = result?.estimate ?? null;
   const hypotheses = controls.showParticles.checked ? result?.hypotheses : null;
   const truth = controls.showTruth.checked ? frame.truth : null;
-  drawHypotheses(ctx, hypotheses);
+  const byGroup = controls.colourGroups.checked;
+  drawHypotheses(ctx, hypotheses, null, byGroup);
   if (truth) drawBoundaries(ctx, truth.boundaries, { dashed: true, width: 2 });
   if (estimate) drawBoundaries(ctx, estimate.boundaries, { width: 4 });
   calibration?.draw(ctx, estimate);
   const top = controls.showTop.checked ? result?.top : null;
   document.getElementById('top-figure').hidden = !top;
-  if (top) drawTopView(topCtx, top, { truth, estimate, hypotheses });
-  const layer = result?.layers?.[0];
+  if (top) drawTopView(topCtx, top, { truth, estimate, hypotheses, byGroup });
+  const layers = controls.showCues.checked ? result?.layers : null;
+  const layer = layers?.[controls.setLayers(layers)];
   document.getElementById('cues-figure').hidden = !layer;
   if (layer) {
-    drawLayer(cues, layer);
+    const st = estimate?.state ?? {};
+    const probabilities = 'adachi.p1' in st ? [1, 2, 3, 4].map((r) => st[`adachi.p${r}`]) : null;
+    drawLayer(cues, layer, { hypotheses: result?.hypotheses, probabilities });
     document.getElementById('cues-caption').textContent = layer.name;
   }
   if (redraw) return;
@@ -344,6 +348,11 @@ async function main() {
     if (format === 'jsonl') download(`${base}.jsonl`, toJsonLines(demo.results), 'application/x-ndjson');
     else download(`${base}.csv`, toCsv(demo.results), 'text/csv');
   };
+  const redraw = () => {
+    if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
+  };
+  controls.cueLayer.addEventListener('change', redraw);
+  controls.colourGroups.addEventListener('change', redraw);
   controls.showPlots.addEventListener('change', () => {
     document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
   });

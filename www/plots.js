@@ -1,13 +1,15 @@
 // Live plots of the estimate over the last frames: one strip per quantity, the estimate as a
-// line, the ground truth (when the source has one) dashed, the latest value written beside.
+// line, the ground truth (when the source has one) dashed, lee-cpf's raw particle-filter output
+// before its Kalman smoother in orange, the latest value written beside.
 
 const RAD_TO_DEG = 180 / Math.PI;
 const ESS_KEYS = ['lee.ess2', 'danescu.ess', 'adachi.ess', 'liu.ess', 'lee.ess1'];
 
 /** The quantities plotted: name, unit, value of an estimate (or truth), and of a result. */
 export const SERIES = [
-  { name: 'lateral offset', unit: 'm', of: (e) => e.lateral_offset_m },
-  { name: 'heading', unit: 'deg', of: (e) => e.heading_rad * RAD_TO_DEG },
+  // lee-cpf: the raw cascade filter's output next to the Kalman-smoothed one.
+  { name: 'lateral offset', unit: 'm', of: (e) => e.lateral_offset_m, raw: (e) => -e.state?.['lee.raw.y0'] },
+  { name: 'heading', unit: 'deg', of: (e) => e.heading_rad * RAD_TO_DEG, raw: (e) => e.state?.['lee.raw.psi'] * RAD_TO_DEG },
   { name: 'curvature', unit: '1/km', of: (e) => e.curvature_per_m * 1000 },
   { name: 'lane width', unit: 'm', of: (e) => e.lane_width_m },
   { name: 'ESS', unit: 'particles', of: (e) => e.state?.[ESS_KEYS.find((k) => k in (e.state ?? {}))], truth: false },
@@ -25,6 +27,7 @@ export class Plots {
   clear() {
     this.points = SERIES.map(() => []);
     this.truth = SERIES.map(() => []);
+    this.raw = SERIES.map(() => []);
     this.draw();
   }
 
@@ -33,11 +36,14 @@ export class Plots {
     SERIES.forEach((s, k) => {
       const v = estimate ? s.of(estimate, result) : null;
       const t = truth && s.truth !== false ? s.of(truth) : null;
+      const raw = estimate && s.raw ? s.raw(estimate) : null;
       this.points[k].push(Number.isFinite(v) ? v : null);
       this.truth[k].push(Number.isFinite(t) ? t : null);
+      this.raw[k].push(Number.isFinite(raw) ? raw : null);
       if (this.points[k].length > this.length) {
         this.points[k].shift();
         this.truth[k].shift();
+        this.raw[k].shift();
       }
     });
     this.draw();
@@ -53,7 +59,7 @@ export class Plots {
     ctx.font = '12px system-ui, sans-serif';
     SERIES.forEach((s, k) => {
       const top = k * strip;
-      const values = [...this.points[k], ...this.truth[k]].filter((v) => v !== null);
+      const values = [...this.points[k], ...this.truth[k], ...this.raw[k]].filter((v) => v !== null);
       let lo = Math.min(...values);
       let hi = Math.max(...values);
       if (!values.length) [lo, hi] = [0, 1];
@@ -86,6 +92,7 @@ export class Plots {
         ctx.setLineDash([]);
       };
       line(this.truth[k], '#8a949e', [4, 3]);
+      line(this.raw[k], '#ff8a65', []);
       line(this.points[k], '#4fc3f7', []);
       const last = this.points[k].filter((v) => v !== null).at(-1);
       ctx.fillStyle = '#e6e9ec';

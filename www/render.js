@@ -35,12 +35,16 @@ export function drawBoundaries(ctx, boundaries, { dashed = false, width = 3 } = 
   ctx.restore();
 }
 
+/** Colours of particle groups (Adachi's models, Lee's stages, Danescu's clusters; -1 grey). */
+export const GROUP_COLOURS = ['#e0e0e0', '#ff8a65', '#4dd0e1', '#aed581', '#f06292', '#ffd54f', '#9575cd'];
+export const groupColour = (g) => (g < 0 ? '#757575' : GROUP_COLOURS[g % GROUP_COLOURS.length]);
+
 /**
  * Draws the particle cloud (Tracker.hypotheses()): each particle's boundaries as a thin line
  * whose opacity grows with its weight relative to the heaviest drawn: image polylines, or the
  * road polylines through `map` (road point -> canvas point) when it is given.
  */
-export function drawHypotheses(ctx, hypotheses, map = null) {
+export function drawHypotheses(ctx, hypotheses, map = null, byGroup = false) {
   if (!hypotheses?.length) return;
   const top = hypotheses.reduce((a, h) => Math.max(a, h.weight), 0) || 1;
   ctx.save();
@@ -50,7 +54,7 @@ export function drawHypotheses(ctx, hypotheses, map = null) {
     for (const b of h.boundaries) {
       const pts = map ? b.road_points.map(map) : b.points;
       if (pts.length < 2) continue;
-      ctx.strokeStyle = ROLE_COLOURS[b.role] ?? '#ffffff';
+      ctx.strokeStyle = byGroup ? groupColour(h.group) : (ROLE_COLOURS[b.role] ?? '#ffffff');
       ctx.beginPath();
       ctx.moveTo(pts[0][0], pts[0][1]);
       for (const [x, y] of pts.slice(1)) ctx.lineTo(x, y);
@@ -64,7 +68,7 @@ export function drawHypotheses(ctx, hypotheses, map = null) {
  * Draws the top view (the worker's inverse perspective mapping of the frame: rows far to near,
  * columns left to right) with boundaries and particles on it from their road points.
  */
-export function drawTopView(ctx, top, { truth = null, estimate = null, hypotheses = null } = {}) {
+export function drawTopView(ctx, top, { truth = null, estimate = null, hypotheses = null, byGroup = false } = {}) {
   const canvas = ctx.canvas;
   if (canvas.width !== top.cols || canvas.height !== top.rows) {
     canvas.width = top.cols;
@@ -74,7 +78,7 @@ export function drawTopView(ctx, top, { truth = null, estimate = null, hypothese
   // Road point [x ahead, y left] -> canvas [column, row].
   const map = ([x, y]) => [(top.yHalf - y) / top.cell, (top.xMax - x) / top.cell];
   const asImage = (boundaries) => boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }));
-  drawHypotheses(ctx, hypotheses, map);
+  drawHypotheses(ctx, hypotheses, map, byGroup);
   if (truth) drawBoundaries(ctx, asImage(truth.boundaries), { dashed: true, width: 2 });
   if (estimate) drawBoundaries(ctx, asImage(estimate.boundaries), { width: 3 });
 }
@@ -88,9 +92,10 @@ function heat(v) {
 /**
  * Draws one of a tracker's cue layers (Tracker.layers()): a `grid` on the road plane as a heat
  * map, far at the top and left on the left as seen from the car, or a `histogram` over a road
- * axis as bars. Values are scaled by the layer's largest.
+ * axis as bars, with the particles' boundaries as ticks and the groups' probabilities over a
+ * lateral axis. Values are scaled by the layer's largest.
  */
-export function drawLayer(ctx, layer) {
+export function drawLayer(ctx, layer, { hypotheses = null, probabilities = null } = {}) {
   const canvas = ctx.canvas;
   // A grid on the road and a plane (e.g. Danescu's lateral density image) are both heat maps
   // with row 0 at the bottom.
@@ -131,4 +136,31 @@ export function drawLayer(ctx, layer) {
     const h = (canvas.height - 10) * (v / max);
     ctx.fillRect(k * w, canvas.height - h, Math.max(1, w), h);
   });
+  // On a lateral axis (rho, positive right), the particles' boundaries as ticks above the
+  // bars, coloured by group, and the groups' probabilities (Adachi's P(r)).
+  if (hypotheses?.length && /^rho/.test(layer.axis ?? '')) {
+    const top = hypotheses.reduce((a, h) => Math.max(a, h.weight), 0) || 1;
+    for (const h of hypotheses) {
+      ctx.strokeStyle = groupColour(h.group);
+      ctx.globalAlpha = 0.2 + 0.8 * (h.weight / top);
+      for (const b of h.boundaries) {
+        const y = b.road_points?.[Math.floor(b.road_points.length / 2)]?.[1];
+        if (!Number.isFinite(y)) continue;
+        const x = ((-y - layer.start) / layer.step) * w;
+        ctx.beginPath();
+        ctx.moveTo(x, 2);
+        ctx.lineTo(x, 2 + 30 * (h.weight / top));
+        ctx.stroke();
+      }
+    }
+    ctx.globalAlpha = 1;
+  }
+  if (probabilities?.length) {
+    ctx.font = '12px system-ui, sans-serif';
+    probabilities.forEach((p, k) => {
+      ctx.fillStyle = groupColour(k + 1);
+      ctx.fillRect(8, 44 + 16 * k, 120 * p, 10);
+      ctx.fillText(`P(r=${k + 1}) ${p.toFixed(2)}`, 134, 53 + 16 * k);
+    });
+  }
 }
