@@ -9,10 +9,9 @@ const ARGS = [
   '--disable-component-update', '--disable-sync', '--disable-quic', '--no-first-run',
 ];
 
-/** Starts the server (the demo's www/ and pkg/, or the folder `root` alone at / when given)
- * and the browser; returns { base, browser, close }. */
-export async function start({ root } = {}) {
-  const server = await serve(0, root);
+/** Starts the server and the browser; returns { base, browser, close }. */
+export async function start() {
+  const server = await serve(0);
   const base = `http://127.0.0.1:${server.address().port}`;
   const browser = await chromium.launch({ executablePath: CHROMIUM, headless: true, args: ARGS });
   return {
