@@ -35,7 +35,7 @@ test-wasm:
 	$(WASM_TEST_ENV) cargo test --target wasm32-unknown-unknown --test web
 
 test-browser:
-	node --test tests/node/ tests/e2e/
+	node --test tests/node/ tests/e2e/ tests/npm/
 
 ## Criterion benchmarks (not part of `make test`).
 bench:
