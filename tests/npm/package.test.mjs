@@ -112,7 +112,8 @@ async function resultOf(root, page) {
     const requests = [];
     p.on('request', (r) => requests.push(r.url()));
     await p.goto(`${site.base}/${page}`);
-    await p.waitForFunction(() => window.result !== undefined, null, { timeout: 60_000 });
+    await p.waitForFunction(() => window.result !== undefined, null, { timeout: 60_000 })
+      .catch((e) => { throw new Error(`${page}: no result (${e.message}); page errors: ${errors.join('\n')}`); });
     const result = await p.evaluate(() => window.result);
     assert.deepEqual(errors, [], `${page}: page errors`);
     assert.ok(requests.every((u) => u.startsWith(site.base) || u.startsWith('data:')), `${page}: ${requests.join(', ')}`);
@@ -158,7 +159,8 @@ test('in a Vite app under the dev server (vite, no configuration)', { timeout: 9
       await new Promise((r) => setTimeout(r, 100));
     }
     const { page, errors } = await open(env.browser, `http://localhost:${port}/`);
-    await page.waitForFunction(() => window.result !== undefined, null, { timeout: 60_000 });
+    await page.waitForFunction(() => window.result !== undefined, null, { timeout: 60_000 })
+      .catch((e) => { throw new Error(`no result (${e.message}); page errors: ${errors.join('\n')}`); });
     const r = await page.evaluate(() => window.result);
     assertResult(r.main, 'vite dev main thread');
     assertResult(r.worker, 'vite dev worker');
