@@ -48,16 +48,23 @@ const npmInstall = (dir) => run('npm', ['install', '--no-audit', '--no-fund'], d
 assert.ok(existsSync(join(pkg, 'web', 'lanepf_bg.wasm')),
   'pkg/web/lanepf_bg.wasm is missing: run `make pkg` first');
 const tmp = mkdtempSync(join(tmpdir(), 'lanepf-npm-'));
-test.after(() => rmSync(tmp, { recursive: true, force: true }));
+const removeTmp = () => rmSync(tmp, { recursive: true, force: true });
+test.after(removeTmp);
 
-const packed = JSON.parse((await run('npm', ['pack', '--json', '--pack-destination', tmp], pkg)).stdout);
-const packedFiles = packed[0].files.map((f) => f.path);
-renameSync(join(tmp, packed[0].filename), join(tmp, 'lanepf.tgz'));
-for (const app of ['web', 'vite']) {
-  cpSync(join(fixtures, app), join(tmp, app), { recursive: true });
-  cpSync(join(fixtures, 'check.js'), join(tmp, app, 'check.js'));
+let packedFiles;
+try {
+  const packed = JSON.parse((await run('npm', ['pack', '--json', '--pack-destination', tmp], pkg)).stdout);
+  packedFiles = packed[0].files.map((f) => f.path);
+  renameSync(join(tmp, packed[0].filename), join(tmp, 'lanepf.tgz'));
+  for (const app of ['web', 'vite']) {
+    cpSync(join(fixtures, app), join(tmp, app), { recursive: true });
+    cpSync(join(fixtures, 'check.js'), join(tmp, app, 'check.js'));
+  }
+  await Promise.all([npmInstall(join(tmp, 'web')), npmInstall(join(tmp, 'vite'))]);
+} catch (e) {
+  removeTmp(); // the after hooks do not run when the set-up throws
+  throw e;
 }
-await Promise.all([npmInstall(join(tmp, 'web')), npmInstall(join(tmp, 'vite'))]);
 // One headless Chromium for every page (start() also serves the demo, which is not used here).
 // Every top-level await comes before the first test(): node:test would otherwise run the tests
 // declared so far, and the after hooks, while the module is still waiting.
