@@ -1,41 +1,106 @@
-// Times every tracker in headless Chromium (the wasm package, on the page's main thread):
-// renders FRAMES frames of a scenario with the package's own Scene, then steps each tracker
-// over them and prints the median and 95th percentile ms/frame of Tracker.step.
-// Usage (after `make pkg`): node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO]
+// Times every tracker in headless Chromium and natively on the same synthetic sequence, and
+// prints median and 95th-percentile ms/frame with the wasm/native ratio per tracker.
+//
+// Browser: www/bench.html (a Web Worker renders FRAMES frames of SCENARIO with seed 1, then steps
+// each tracker over them, the first 5 untimed, with the right frame for danescu-stereo and the
+// car's motion from the ground truth for all). Native: `lanepf bench --warmup 5 --motion`, the
+// same sequence, frames and timing (release build; `cargo run` builds it when needed). The native
+// bench knows only highway-curve, so for another scenario only the browser figures are printed.
+//
+// Usage (after `make pkg`; `make bench-browser` does both):
+//   node scripts/bench-browser.mjs [FRAMES=60] [WIDTH=640] [HEIGHT=480] [SCENARIO=highway-curve] [--no-native] [--json]
+import { spawnSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
 import { start, open } from '../tests/e2e/browser.mjs';
 
-const [frames = 60, width = 640, height = 480] = process.argv.slice(2, 5).map(Number);
-const scenario = process.argv[5] ?? 'highway-curve';
-const env = await start();
-try {
-  const { page, errors } = await open(env.browser, `${env.base}/index.html`);
-  const rows = await page.evaluate(async ({ frames, width, height, scenario }) => {
-    const m = await import('/pkg/web/lanepf.js');
-    await m.default();
-    const scene = new m.Scene(scenario, { width, height, seed: 1 });
-    const images = [];
-    const t0 = performance.now();
-    for (let f = 0; f < frames; f++) images.push(scene.render(f).slice());
-    const render = (performance.now() - t0) / frames;
-    const out = [['scene render', render, render]];
-    for (const id of m.trackerIds()) {
-      const tracker = new m.Tracker(id, { camera: scene.camera(), seed: 1 });
-      const ms = images.map((rgba) => {
-        const t = performance.now();
-        tracker.step(rgba, width, height);
-        return performance.now() - t;
-      }).slice(5).sort((a, b) => a - b);
-      out.push([id, ms[Math.floor(ms.length / 2)], ms[Math.floor(ms.length * 0.95)]]);
-      tracker.free();
-    }
-    return out;
-  }, { frames, width, height, scenario });
-  if (errors.length) throw new Error(errors.join('\n'));
-  console.log(`${scenario} ${width}x${height}, ${frames} frames (first 5 not timed), Chromium`);
-  console.log('tracker                 median ms   p95 ms');
-  for (const [id, median, p95] of rows) {
-    console.log(`${id.padEnd(22)} ${median.toFixed(2).padStart(10)} ${p95.toFixed(2).padStart(8)}`);
+const WARMUP = 5;
+const flags = process.argv.slice(2).filter((a) => a.startsWith('--'));
+const positional = process.argv.slice(2).filter((a) => !a.startsWith('--'));
+for (const f of flags) {
+  if (!['--no-native', '--json'].includes(f)) {
+    console.error(`unknown option ${f}; usage: node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO] [--no-native] [--json]`);
+    process.exit(2);
   }
-} finally {
-  await env.close();
+}
+const [frames = 60, width = 640, height = 480] = positional.slice(0, 3).map(Number);
+const scenario = positional[3] ?? 'highway-curve';
+for (const [name, v] of [['FRAMES', frames], ['WIDTH', width], ['HEIGHT', height]]) {
+  if (!Number.isInteger(v) || v <= 0) {
+    console.error(`${name} must be a positive whole number, got ${v}`);
+    process.exit(2);
+  }
+}
+if (frames <= WARMUP) {
+  console.error(`FRAMES must exceed the ${WARMUP} untimed frames, got ${frames}`);
+  process.exit(2);
+}
+
+/** The browser figures: window.lanepfBench of www/bench.html. */
+async function browserBench() {
+  const env = await start();
+  try {
+    const { page, errors } = await open(env.browser, 'about:blank');
+    const foreign = [];
+    page.on('request', (r) => {
+      if (!r.url().startsWith(env.base) && !r.url().startsWith('data:')) foreign.push(r.url());
+    });
+    const query = new URLSearchParams({ frames, width, height, scenario, seed: 1, warmup: WARMUP });
+    await page.goto(`${env.base}/bench.html?${query}`);
+    await page.waitForFunction(() => window.lanepfBench?.done, null, { timeout: 30 * 60_000, polling: 500 });
+    const bench = await page.evaluate(() => window.lanepfBench);
+    if (bench.error) throw new Error(`bench.html: ${bench.error}`);
+    if (errors.length) throw new Error(errors.join('\n'));
+    if (foreign.length) throw new Error(`bench.html made requests beyond its own files: ${foreign.join(', ')}`);
+    return bench;
+  } finally {
+    await env.close();
+  }
+}
+
+/** The native figures from `lanepf bench`, or null when not comparable / not wanted. */
+function nativeBench() {
+  if (flags.includes('--no-native')) return { rows: null, note: 'native bench skipped (--no-native)' };
+  if (scenario !== 'highway-curve') {
+    return { rows: null, note: `no native figures: \`lanepf bench\` runs highway-curve only, not ${scenario}` };
+  }
+  const repo = fileURLToPath(new URL('..', import.meta.url));
+  const args = ['run', '--release', '--quiet', '--bin', 'lanepf', '--', 'bench', '--frames', String(frames),
+    '--warmup', String(WARMUP), '--motion', '--width', String(width), '--height', String(height), '--json'];
+  console.error(`[bench-browser] native: cargo ${args.join(' ')}`);
+  const r = spawnSync('cargo', args, { cwd: repo, encoding: 'utf8', stdio: ['ignore', 'pipe', 'inherit'],
+    maxBuffer: 64 << 20 });
+  if (r.status !== 0) throw new Error(`the native bench failed (exit ${r.status ?? r.signal})`);
+  return { rows: JSON.parse(r.stdout), note: `native: lanepf bench --warmup ${WARMUP} --motion (release build)` };
+}
+
+console.error(`[bench-browser] Chromium: ${scenario} ${width}x${height}, ${frames} frames, first ${WARMUP} not timed`);
+const browser = await browserBench();
+const native = nativeBench();
+const byId = new Map((native.rows ?? []).map((r) => [r.tracker, r]));
+const rows = browser.rows.map((b) => {
+  const n = byId.get(b.tracker);
+  return {
+    tracker: b.tracker,
+    wasm_median_ms: b.median_ms,
+    wasm_p95_ms: b.p95_ms,
+    native_median_ms: n?.median_ms ?? null,
+    native_p95_ms: n?.p95_ms ?? null,
+    ratio_median: n ? b.median_ms / n.median_ms : null,
+  };
+});
+
+if (flags.includes('--json')) {
+  console.log(JSON.stringify({ scenario, width, height, frames, warmup: WARMUP, render_ms: browser.render_ms,
+    note: native.note, rows }, null, 2));
+} else {
+  const f = (v, w) => (v === null ? '-' : v.toFixed(2)).padStart(w);
+  console.log(`${scenario} ${width}x${height}, seed 1, ${frames} frames (first ${WARMUP} not timed); `
+    + `Chromium ${browser.version ? `lanepf ${browser.version}` : ''} in a Web Worker`);
+  console.log(native.note);
+  console.log('tracker            wasm median  wasm p95  native median  native p95  wasm/native');
+  for (const r of rows) {
+    console.log(`${r.tracker.padEnd(18)} ${f(r.wasm_median_ms, 11)} ${f(r.wasm_p95_ms, 9)} `
+      + `${f(r.native_median_ms, 14)} ${f(r.native_p95_ms, 11)} ${f(r.ratio_median, 12)}`);
+  }
+  console.log(`(scene rendering in the worker: ${browser.render_ms.toFixed(2)} ms/frame, not included)`);
 }

@@ -1,14 +1,16 @@
 // Static server for the lanepf demo: http://127.0.0.1:PORT/ serves www/, /pkg/ serves pkg/.
 // It honours HTTP Range requests (video seeking needs them), serves .wasm as application/wasm,
 // binds to 127.0.0.1 only, and refuses paths outside those two folders.
-//   node scripts/serve.mjs [--port 8080]
+// With a root folder it serves that folder alone at / instead (the npm package tests serve
+// their fixture apps so).
+//   node scripts/serve.mjs [--port 8080] [--root DIR]
 import { createServer } from 'node:http';
 import { createReadStream, promises as fs } from 'node:fs';
 import { extname, join, normalize, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
-const root = resolve(fileURLToPath(new URL('..', import.meta.url)));
-const mounts = [['/pkg/', join(root, 'pkg')], ['/', join(root, 'www')]];
+const repo = resolve(fileURLToPath(new URL('..', import.meta.url)));
+const demoMounts = [['/pkg/', join(repo, 'pkg')], ['/', join(repo, 'www')]];
 const types = {
   '.html': 'text/html; charset=utf-8', '.js': 'text/javascript; charset=utf-8',
   '.mjs': 'text/javascript; charset=utf-8', '.css': 'text/css; charset=utf-8',
@@ -18,8 +20,14 @@ const types = {
   '.md': 'text/plain; charset=utf-8',
 };
 
-/** Maps a URL path to a file inside one of the mounts, or null when it escapes them. */
-export function resolvePath(urlPath) {
+/** The mounts ([URL prefix, folder] pairs) of the demo, or of `root` alone at `/`. */
+function mountsFor(root) {
+  return root === undefined ? demoMounts : [['/', resolve(root)]];
+}
+
+/** Maps a URL path to a file inside one of the mounts (the demo's by default), or null when it
+ * escapes them. */
+export function resolvePath(urlPath, mounts = demoMounts) {
   let path;
   try { path = decodeURIComponent(urlPath.split('?')[0]); } catch { return null; }
   for (const [prefix, dir] of mounts) {
@@ -41,12 +49,12 @@ export function parseRange(header, size) {
   return start <= end && start < size ? { start, end } : 'bad';
 }
 
-async function handle(req, res) {
+async function handle(req, res, mounts) {
   if (req.method !== 'GET' && req.method !== 'HEAD') {
     res.writeHead(405, { Allow: 'GET, HEAD' }).end('method not allowed\n');
     return;
   }
-  let file = resolvePath(req.url);
+  let file = resolvePath(req.url, mounts);
   if (!file) { res.writeHead(403).end('forbidden\n'); return; }
   let stat;
   try {
@@ -70,11 +78,13 @@ async function handle(req, res) {
   createReadStream(file, { start, end }).on('error', () => res.destroy()).pipe(res);
 }
 
-/** Starts the server on 127.0.0.1; resolves to the http.Server once listening. */
-export function serve(port) {
+/** Starts the server on 127.0.0.1 (port 0: any free port); serves the demo (www/ and pkg/), or
+ * the folder `root` alone when given. Resolves to the http.Server once listening. */
+export function serve(port, root) {
+  const mounts = mountsFor(root);
   return new Promise((ok, fail) => {
     const server = createServer((req, res) => {
-      handle(req, res).catch(() => { if (!res.headersSent) res.writeHead(500); res.end(); });
+      handle(req, res, mounts).catch(() => { if (!res.headersSent) res.writeHead(500); res.end(); });
     });
     server.once('error', fail);
     server.listen(port, '127.0.0.1', () => ok(server));
@@ -82,10 +92,14 @@ export function serve(port) {
 }
 
 if (process.argv[1] && resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
-  const i = process.argv.indexOf('--port');
-  const port = Number(i > 0 ? process.argv[i + 1] : process.env.PORT ?? 8080);
-  serve(port).then(
-    (s) => console.log(`lanepf demo: http://127.0.0.1:${s.address().port}/  (Ctrl-C stops)`),
+  const arg = (name) => {
+    const i = process.argv.indexOf(name);
+    return i > 0 ? process.argv[i + 1] : undefined;
+  };
+  const port = Number(arg('--port') ?? process.env.PORT ?? 8080);
+  const root = arg('--root');
+  serve(port, root).then(
+    (s) => console.log(`lanepf ${root === undefined ? 'demo' : root}: http://127.0.0.1:${s.address().port}/  (Ctrl-C stops)`),
     (e) => { console.error(`cannot listen on 127.0.0.1:${port}: ${e.message}`); process.exit(1); },
   );
 }

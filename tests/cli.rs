@@ -143,6 +143,38 @@ fn errors_are_one_clear_line_and_a_failure_status() {
 }
 
 #[test]
+fn bench_leaves_warmup_frames_untimed_and_takes_the_motion() {
+    let (code, out, err) = lanepf(&[
+        "bench",
+        "--tracker",
+        "danescu-mono",
+        "--frames",
+        "3",
+        "--warmup",
+        "2",
+        "--motion",
+        "--width",
+        "160",
+        "--height",
+        "120",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let rows: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(rows.as_array().unwrap().len(), 1, "{out}");
+    assert_eq!(rows[0]["tracker"], "danescu-mono");
+    assert_eq!(
+        (rows[0]["frames"].as_u64(), rows[0]["warmup"].as_u64()),
+        (Some(3), Some(2))
+    );
+    assert!(rows[0]["median_ms"].as_f64().unwrap() > 0.0, "{out}");
+
+    let (code, _, err) = lanepf(&["bench", "--frames", "3", "--warmup", "3"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("--warmup"), "{err}");
+}
+
+#[test]
 fn eval_scores_ground_truth_as_perfect_and_a_shifted_copy_lower() {
     let out = temp("eval");
     let o = out.to_str().unwrap();

@@ -25,7 +25,9 @@ impl JsCamera {
     /// `new Camera({ width, height, fx, fy, cx, cy, height_m, pitch_deg, yaw_deg?, roll_deg?,
     /// k1?, k2?, p1?, p2?, k3?, baseline_m? })`; throws an `Error` naming any bad field.
     #[wasm_bindgen(constructor)]
-    pub fn new(config: JsValue) -> Result<JsCamera, JsError> {
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "CameraConfig")] config: JsValue,
+    ) -> Result<JsCamera, JsError> {
         Ok(JsCamera {
             inner: camera_from_js(&config)?,
         })
@@ -65,7 +67,7 @@ impl JsCamera {
     }
 
     /// The camera as a plain object in the `camera.json` format.
-    #[wasm_bindgen(js_name = toJSON)]
+    #[wasm_bindgen(js_name = toJSON, unchecked_return_type = "CameraConfig")]
     pub fn to_json(&self) -> Result<JsValue, JsError> {
         let text = serde_json::to_string(&self.inner.to_file())
             .map_err(|e| JsError::new(&format!("cannot serialise the camera: {e}")))?;

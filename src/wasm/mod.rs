@@ -9,6 +9,7 @@ mod error;
 mod scene;
 mod test_road;
 mod tracker;
+mod types;
 
 pub use camera::JsCamera;
 pub use error::to_js;

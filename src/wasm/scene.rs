@@ -13,7 +13,7 @@ pub struct JsScene {
 }
 
 /// The scenario names and descriptions: `[{ name, description }, ...]`.
-#[wasm_bindgen]
+#[wasm_bindgen(unchecked_return_type = "ScenarioInfo[]")]
 pub fn scenarios() -> Result<JsValue, JsError> {
     let list: Vec<serde_json::Value> = SCENARIOS
         .iter()
@@ -54,7 +54,10 @@ impl JsScene {
     /// `scenarios()`), rendered through `camera` (the `camera.json` format) or the default
     /// camera of `width` x `height` (640x480). Throws for an unknown name or bad options.
     #[wasm_bindgen(constructor)]
-    pub fn new(name: &str, options: JsValue) -> Result<JsScene, JsError> {
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "ScenarioName")] name: &str,
+        #[wasm_bindgen(unchecked_optional_param_type = "SceneOptions")] options: JsValue,
+    ) -> Result<JsScene, JsError> {
         let config = scenario(name).map_err(to_js)?;
         let seed = whole_number(&options, "seed", 1.0, 9.007_199_254_740_991e15)? as u64;
         let camera = match get(&options, "camera")? {
@@ -89,6 +92,7 @@ impl JsScene {
     }
 
     /// The camera, as a plain `camera.json` object (with the stereo baseline).
+    #[wasm_bindgen(unchecked_return_type = "CameraConfig")]
     pub fn camera(&self) -> Result<JsValue, JsError> {
         let mut file = self.scene.camera().to_file();
         file.baseline_m = Some(self.scene.baseline());
@@ -96,6 +100,7 @@ impl JsScene {
     }
 
     /// Renders frame `index` of the left camera: a new `Uint8ClampedArray` (width*height*4).
+    #[wasm_bindgen(unchecked_return_type = "Uint8ClampedArray<ArrayBuffer>")]
     pub fn render(&mut self, index: u32) -> Result<js_sys::Uint8ClampedArray, JsError> {
         self.scene
             .render(index, Eye::Left, &mut self.frame, None)
@@ -104,7 +109,7 @@ impl JsScene {
     }
 
     /// Renders frame `index` of the right camera of the stereo pair.
-    #[wasm_bindgen(js_name = renderRight)]
+    #[wasm_bindgen(js_name = renderRight, unchecked_return_type = "Uint8ClampedArray<ArrayBuffer>")]
     pub fn render_right(&mut self, index: u32) -> Result<js_sys::Uint8ClampedArray, JsError> {
         self.scene
             .render(index, Eye::Right, &mut self.frame, None)
@@ -114,6 +119,7 @@ impl JsScene {
 
     /// Exact ground truth of frame `index`: `{ frame, valid, boundaries: [{ role, points,
     /// road_points }], lateral_offset_m, heading_rad, curvature_per_m, lane_width_m, state }`.
+    #[wasm_bindgen(unchecked_return_type = "Truth")]
     pub fn truth(&self, index: u32) -> Result<JsValue, JsError> {
         super::to_js_value(&self.scene.truth(index))
     }

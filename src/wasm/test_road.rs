@@ -17,7 +17,10 @@ impl JsTestRoad {
     /// `new TestRoad(camera, { lane_width_m?, marking_width_m?, dash_length_m?, dash_period_m?,
     /// speed_mps?, fps?, sway_amplitude_m?, sway_period_s?, max_distance_m? })`.
     #[wasm_bindgen(constructor)]
-    pub fn new(camera: JsValue, options: JsValue) -> Result<JsTestRoad, JsError> {
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "CameraConfig")] camera: JsValue,
+        #[wasm_bindgen(unchecked_optional_param_type = "TestRoadOptions")] options: JsValue,
+    ) -> Result<JsTestRoad, JsError> {
         let camera = camera_from_js(&camera)?;
         let config: TestRoadConfig = if options.is_undefined() || options.is_null() {
             TestRoadConfig::default()
@@ -43,6 +46,7 @@ impl JsTestRoad {
 
     /// Renders frame `index` and returns a new `Uint8ClampedArray` (width*height*4, RGBA) that
     /// can go straight into `new ImageData(...)`.
+    #[wasm_bindgen(unchecked_return_type = "Uint8ClampedArray<ArrayBuffer>")]
     pub fn render(&mut self, index: u32) -> Result<js_sys::Uint8ClampedArray, JsError> {
         self.road.render(index, &mut self.frame).map_err(to_js)?;
         Ok(js_sys::Uint8ClampedArray::from(&self.frame[..]))
@@ -50,6 +54,7 @@ impl JsTestRoad {
 
     /// Ground truth of frame `index`: `{ valid, boundaries: [{ role, points, road_points }],
     /// lateral_offset_m, heading_rad, curvature_per_m, lane_width_m, ... }`.
+    #[wasm_bindgen(unchecked_return_type = "LaneEstimate")]
     pub fn truth(&self, index: u32) -> Result<JsValue, JsError> {
         super::to_js_value(&self.road.truth(index))
     }

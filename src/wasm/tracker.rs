@@ -11,7 +11,7 @@ pub struct JsTracker {
 }
 
 /// The ids `new Tracker(id, ...)` accepts.
-#[wasm_bindgen(js_name = trackerIds)]
+#[wasm_bindgen(js_name = trackerIds, unchecked_return_type = "TrackerId[]")]
 pub fn tracker_ids() -> Vec<String> {
     trackers::TRACKER_IDS
         .iter()
@@ -31,7 +31,10 @@ impl JsTracker {
     /// `new Tracker(id, { camera, particles?, seed?, ...options })`; throws an `Error` for an
     /// unknown id (listing the available ones) or a bad configuration.
     #[wasm_bindgen(constructor)]
-    pub fn new(id: &str, config: JsValue) -> Result<JsTracker, JsError> {
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: &str,
+        #[wasm_bindgen(unchecked_param_type = "TrackerConfig")] config: JsValue,
+    ) -> Result<JsTracker, JsError> {
         let config: TrackerConfig = from_js_object(&config, "tracker config")?;
         let inner = trackers::create(id, &config).map_err(to_js)?;
         Ok(JsTracker { inner })
@@ -44,7 +47,13 @@ impl JsTracker {
     }
 
     /// Processes one RGBA frame (`ImageData.data`) and returns the estimate.
-    pub fn step(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<JsValue, JsError> {
+    #[wasm_bindgen(unchecked_return_type = "LaneEstimate")]
+    pub fn step(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: &[u8],
+        width: usize,
+        height: usize,
+    ) -> Result<JsValue, JsError> {
         let estimate = self.inner.step(rgba, width, height).map_err(to_js)?;
         super::to_js_value(&estimate)
     }
@@ -66,6 +75,7 @@ impl JsTracker {
     /// and road edges; danescu-stereo: those and `{ kind: 'plane', name, width, height, x_axis,
     /// x0, dx, y_axis, y0, dy, values }` for the 3-D density image and its column maxima;
     /// grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres left).
+    #[wasm_bindgen(unchecked_return_type = "Layer[]")]
     pub fn layers(&self) -> Result<JsValue, JsError> {
         super::to_js_value(&self.inner.layers())
     }
@@ -89,7 +99,10 @@ impl JsTracker {
     /// danescu-stereo drift their particles by it; the other trackers ignore it. Throws for a
     /// missing field or a NaN or out-of-range value.
     #[wasm_bindgen(js_name = setEgoMotion)]
-    pub fn set_ego_motion(&mut self, motion: JsValue) -> Result<(), JsError> {
+    pub fn set_ego_motion(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "EgoMotion")] motion: JsValue,
+    ) -> Result<(), JsError> {
         let motion: trackers::EgoMotion = from_js_object(&motion, "ego motion")?;
         self.inner.set_ego_motion(motion).map_err(to_js)
     }
@@ -103,7 +116,12 @@ impl JsTracker {
     /// The right camera's RGBA frame for the next `step` / `beginFrame` of a stereo tracker
     /// (used once). Throws for a one-camera tracker or a frame of the wrong size.
     #[wasm_bindgen(js_name = setRight)]
-    pub fn set_right(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<(), JsError> {
+    pub fn set_right(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: &[u8],
+        width: usize,
+        height: usize,
+    ) -> Result<(), JsError> {
         self.inner.set_right(rgba, width, height).map_err(to_js)
     }
 
@@ -126,12 +144,18 @@ impl JsTracker {
     /// Starts a frame in per-step mode (computes its image cues); then call `advance()` once
     /// per step. Throws for a bad frame or a tracker without a per-step mode.
     #[wasm_bindgen(js_name = beginFrame)]
-    pub fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<(), JsError> {
+    pub fn begin_frame(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: &[u8],
+        width: usize,
+        height: usize,
+    ) -> Result<(), JsError> {
         self.inner.begin_frame(rgba, width, height).map_err(to_js)
     }
 
     /// Runs the next step; returns the estimate after the last step and `null` before it (read
     /// `particles()` in between to watch the cloud move). Throws when no frame is in progress.
+    #[wasm_bindgen(unchecked_return_type = "LaneEstimate | null")]
     pub fn advance(&mut self) -> Result<JsValue, JsError> {
         match self.inner.advance().map_err(to_js)? {
             Some(estimate) => super::to_js_value(&estimate),

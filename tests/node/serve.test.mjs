@@ -42,3 +42,35 @@ test('server answers ranges with 206 and wasm with application/wasm', async () =
     server.close();
   }
 });
+
+test('serve(port, root) serves that folder alone at /', async () => {
+  const { mkdtempSync, writeFileSync, mkdirSync, rmSync } = await import('node:fs');
+  const { tmpdir } = await import('node:os');
+  const { join } = await import('node:path');
+  const dir = mkdtempSync(join(tmpdir(), 'lanepf-serve-'));
+  mkdirSync(join(dir, 'sub'));
+  writeFileSync(join(dir, 'index.html'), '<p>root</p>');
+  writeFileSync(join(dir, 'sub', 'm.wasm'), Buffer.from([0, 97, 115, 109]));
+  const server = await serve(0, dir);
+  const base = `http://127.0.0.1:${server.address().port}`;
+  try {
+    assert.equal(await (await fetch(`${base}/`)).text(), '<p>root</p>');
+    const wasm = await fetch(`${base}/sub/m.wasm`);
+    assert.equal(wasm.headers.get('content-type'), 'application/wasm');
+    assert.equal((await wasm.arrayBuffer()).byteLength, 4);
+    // The demo's folders are not mounted, and nothing outside the root is reachable.
+    assert.equal((await fetch(`${base}/pkg/web/lanepf.js`)).status, 404);
+    // fetch would normalise `..` away; send the raw path.
+    const { get } = await import('node:http');
+    const status = await new Promise((ok, fail) => {
+      get({ host: '127.0.0.1', port: server.address().port, path: '/../etc/hostname' },
+        (res) => { res.resume(); ok(res.statusCode); }).on('error', fail);
+    });
+    assert.equal(status, 403);
+    assert.equal(resolvePath('/../x', [['/', dir]]), null);
+    assert.equal(resolvePath('/sub/m.wasm', [['/', dir]]), join(dir, 'sub', 'm.wasm'));
+  } finally {
+    server.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+});

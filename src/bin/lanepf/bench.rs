@@ -2,9 +2,12 @@
 //! at 640x480 and 1280x720 (or the given size): median and 95th-percentile ms per frame, and
 //! the mean split per stage (a stereo tracker's disparity is part of its preprocess time and
 //! also shown on its own; rendering the right frame is not timed, handing it over is).
+//! `--warmup N --motion` runs the sequence as the browser bench (`www/bench.html`) does: the
+//! first N frames stepped but not timed, and every tracker given the car's motion from the
+//! ground truth before each frame.
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
-use lanepf::trackers::{self, StageTimes, TrackerConfig, TRACKER_IDS};
+use lanepf::trackers::{self, EgoMotion, StageTimes, TrackerConfig, TRACKER_IDS};
 use lanepf::{Error, Result};
 use std::time::Instant;
 
@@ -17,6 +20,13 @@ pub struct Args {
     /// Frames per run.
     #[arg(long, default_value_t = 100)]
     frames: u32,
+    /// First frames of each run stepped but not timed (fewer than --frames).
+    #[arg(long, default_value_t = 0)]
+    warmup: u32,
+    /// Give every tracker the car's motion from the ground truth before each frame (as the demo
+    /// and the browser bench do; the Danescu trackers drift their particles by it).
+    #[arg(long)]
+    motion: bool,
     /// Only this width (with --height); default: 640x480 and 1280x720.
     #[arg(long, requires = "height")]
     width: Option<usize>,
@@ -35,6 +45,8 @@ struct Row {
     width: usize,
     height: usize,
     frames: u32,
+    /// Of `frames`, the first ones not timed.
+    warmup: u32,
     median_ms: f64,
     p95_ms: f64,
     stages_ms: StageTimes,
@@ -62,6 +74,13 @@ pub fn run(args: Args) -> Result<()> {
     if args.frames == 0 {
         return Err(Error::parameter("--frames", 0, "must be at least 1"));
     }
+    if args.warmup >= args.frames {
+        return Err(Error::parameter(
+            "--warmup",
+            args.warmup,
+            "must be below --frames (some frames must be timed)",
+        ));
+    }
     let sizes = match (args.width, args.height) {
         (Some(w), Some(h)) => vec![(w, h)],
         _ => vec![(640, 480), (1280, 720)],
@@ -87,12 +106,24 @@ pub fn run(args: Args) -> Result<()> {
                 if tracker.is_stereo() {
                     scene.render(i, Eye::Right, &mut right, None)?;
                 }
+                if args.motion {
+                    let state = scene.truth(i).state;
+                    tracker.set_ego_motion(EgoMotion {
+                        t_s: state["t"],
+                        speed_mps: state["speed_mps"],
+                        yaw_rate: state["yaw_rate"],
+                    })?;
+                }
                 let start = Instant::now();
                 if tracker.is_stereo() {
                     tracker.set_right(&right, w, h)?;
                 }
                 tracker.step(&frame, w, h)?;
-                times.push(start.elapsed().as_secs_f64() * 1e3);
+                let ms = start.elapsed().as_secs_f64() * 1e3;
+                if i < args.warmup {
+                    continue;
+                }
+                times.push(ms);
                 let s = tracker.stage_times();
                 stages.preprocess += s.preprocess;
                 stages.disparity += s.disparity;
@@ -108,6 +139,7 @@ pub fn run(args: Args) -> Result<()> {
                 width: w,
                 height: h,
                 frames: args.frames,
+                warmup: args.warmup,
                 median_ms: percentile(&times, 0.5),
                 p95_ms: percentile(&times, 0.95),
                 stages_ms: StageTimes {

@@ -1,0 +1,58 @@
+// The benchmark's worker: renders the frames of a scenario with the package's Scene, then steps
+// each tracker over them as the demo does (the right frame for a stereo tracker, the car's
+// motion from the ground truth for all) and times setRight + step with performance.now().
+// Message in: the page's params; out: { type: 'progress' | 'version' | 'done' | 'error', ... }.
+import init, { version, trackerIds, Scene, Tracker } from '../pkg/web/lanepf.js';
+
+/** The p-quantile of sorted numbers, as `lanepf bench` computes it (nearest rank on n - 1). */
+const quantile = (sorted, p) => sorted[Math.round((sorted.length - 1) * p)];
+
+async function bench({ frames, width, height, scenario, seed, warmup, trackers }) {
+  await init();
+  self.postMessage({ type: 'version', version: version() });
+  const ids = trackers ?? trackerIds();
+  const scene = new Scene(scenario, { width, height, seed });
+  const camera = scene.camera();
+  const left = [];
+  const right = [];
+  const motion = [];
+  self.postMessage({ type: 'progress', text: `rendering ${frames} frames` });
+  const t0 = performance.now();
+  for (let f = 0; f < frames; f++) left.push(scene.render(f));
+  const renderMs = (performance.now() - t0) / frames;
+  for (let f = 0; f < frames; f++) {
+    const s = scene.truth(f).state;
+    motion.push({ t_s: s.t, speed_mps: s.speed_mps, yaw_rate: s.yaw_rate });
+  }
+  const rows = [];
+  for (const id of ids) {
+    self.postMessage({ type: 'progress', text: `running ${id}` });
+    const tracker = new Tracker(id, { camera, seed });
+    if (tracker.isStereo && right.length === 0) {
+      for (let f = 0; f < frames; f++) right.push(scene.renderRight(f));
+    }
+    const ms = [];
+    for (let f = 0; f < frames; f++) {
+      tracker.setEgoMotion(motion[f]);
+      const t = performance.now();
+      if (tracker.isStereo) tracker.setRight(right[f], width, height);
+      tracker.step(left[f], width, height);
+      const dt = performance.now() - t;
+      if (f >= warmup) ms.push(dt);
+    }
+    tracker.free();
+    const mean = ms.reduce((a, b) => a + b, 0) / ms.length;
+    ms.sort((a, b) => a - b);
+    rows.push({ tracker: id, width, height, frames: ms.length, median_ms: quantile(ms, 0.5),
+      p95_ms: quantile(ms, 0.95), mean_ms: mean });
+  }
+  scene.free();
+  return { version: version(), render_ms: renderMs, rows };
+}
+
+self.onmessage = ({ data }) => {
+  bench(data).then(
+    (result) => self.postMessage({ type: 'done', result }),
+    (e) => self.postMessage({ type: 'error', error: String(e && e.message ? e.message : e) }),
+  );
+};
