@@ -21,8 +21,13 @@ pub fn tracker_ids() -> Vec<String> {
 
 /// Every option of tracker `id` with its default value, `particles` included (pass any of them
 /// in `new Tracker(id, { camera, ...options })`); throws for an unknown id.
-#[wasm_bindgen(js_name = trackerDefaults)]
-pub fn tracker_defaults(id: &str) -> Result<JsValue, JsError> {
+#[wasm_bindgen(
+    js_name = trackerDefaults,
+    unchecked_return_type = "Omit<TrackerConfig, 'camera' | 'seed'> & { particles: number }"
+)]
+pub fn tracker_defaults(
+    #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: &str,
+) -> Result<JsValue, JsError> {
     super::to_js_value(&trackers::default_options(id).map_err(to_js)?)
 }
 
@@ -84,6 +89,7 @@ impl JsTracker {
     /// for: `[{ weight, group, boundaries: [{ role, points, road_points }] }]` (weight: the
     /// normalised weight; group: adachi-mmpf the model r, lee-cpf the stage, danescu-* the
     /// MBSAS cluster or -1, liu-ppf 0). For drawing the cloud without knowing each model.
+    #[wasm_bindgen(unchecked_return_type = "Hypothesis[]")]
     pub fn hypotheses(&self, max: usize) -> Result<JsValue, JsError> {
         super::to_js_value(&self.inner.hypotheses(max))
     }
