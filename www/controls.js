@@ -11,7 +11,7 @@ export class Controls {
       file: 'file', cameraFile: 'camera-file', showTruth: 'show-truth',
       showParticles: 'show-particles', showTop: 'show-top', showCues: 'show-cues',
       showPlots: 'show-plots', departure: 'departure', cueLayer: 'cue-layer',
-      colourGroups: 'colour-groups',
+      colourGroups: 'colour-groups', stereo: 'stereo',
       exportJsonl: 'export-jsonl', exportCsv: 'export-csv', status: 'status', timing: 'timing',
       version: 'version', dropZone: 'drop-zone',
     })) {

@@ -43,13 +43,22 @@ const state = {
 };
 let calibration = null;
 
+/** What to do in this page about a tracker's error. */
+function hint(message) {
+  if (/needs the right image/.test(message)) {
+    return ' In this page: tick Stereo and open a side-by-side video or left/right image pairs, or choose a simulator scene.';
+  }
+  if (/baseline/.test(message)) return ' In this page: import a camera file with baseline_m, or pick a stereo preset under Camera calibration.';
+  return '';
+}
+
 let queue = Promise.resolve();
 /** Runs `fn` after everything queued before it; errors pause the page and are shown. */
 function run(fn) {
   demo.pending += 1;
   queue = queue.then(fn).catch((err) => {
     controls.setPaused(true);
-    controls.say(err.message, true);
+    controls.say(err.message + hint(err.message), true);
   }).finally(() => {
     demo.pending -= 1;
   });
@@ -131,8 +140,11 @@ function record(frame, result) {
 /** Sends a frame's pixels to the worker; the pixels come back with the answer (or the error). */
 async function toWorker(type, frame, extra = {}) {
   const payload = { rgba: frame.rgba, width: frame.width, height: frame.height, want: want(), ...extra };
+  // A stereo frame's right image goes along once (it is not needed back).
+  const transfer = [frame.rgba.buffer];
+  if (extra.right) transfer.push(extra.right.buffer);
   try {
-    const result = await client.request(type, payload, [frame.rgba.buffer]);
+    const result = await client.request(type, payload, transfer);
     frame.rgba = result.rgba;
     return result;
   } catch (err) {
@@ -173,7 +185,7 @@ async function stepFrame() {
   }
   const frame = await nextFrame();
   if (!frame) return;
-  const result = await toWorker('track', frame, { motion: frame.motion });
+  const result = await toWorker('track', frame, { motion: frame.motion, right: frame.right });
   record(frame, result);
   draw(frame, result);
 }
@@ -184,7 +196,7 @@ async function stepStage() {
   if (!frame) {
     frame = await nextFrame();
     if (!frame) return;
-    const result = await toWorker('beginFrame', frame, { motion: frame.motion });
+    const result = await toWorker('beginFrame', frame, { motion: frame.motion, right: frame.right });
     state.inFrame = frame;
     draw(frame, result);
     controls.updateStageButton(result.nextStep);
@@ -274,13 +286,14 @@ async function sourceFor(value, scenarios) {
 }
 
 function filesSource(files) {
+  const stereo = controls.stereo.checked;
   const videos = files.filter((f) => f.type.startsWith('video/') || /\.(mp4|webm|mov|mkv|ogv)$/i.test(f.name));
   if (videos.length > 1) throw new Error('Drop one video at a time (or a set of images).');
   if (videos.length === 1) {
     if (files.length > 1) throw new Error('Drop either one video or a set of images, not both.');
-    return new VideoSource({ file: videos[0], name: videos[0].name });
+    return new VideoSource({ file: videos[0], name: videos[0].name, sideBySide: stereo });
   }
-  return new ImageSource(files);
+  return new ImageSource(files, { stereo });
 }
 
 async function main() {
@@ -306,7 +319,8 @@ async function main() {
   controls.tracker.value = state.trackerId;
   controls.source.value = first;
   controls.lastSource = first;
-  await openSource(await sourceFor(first, scenarios), first);
+  // A source or tracker that fails to open leaves a message, not a dead page.
+  await run(async () => openSource(await sourceFor(first, scenarios), first));
 
   controls.onSource = (value) => run(async () => openSource(await sourceFor(value, scenarios), value));
   controls.onFiles = (files) => run(async () => {
@@ -356,7 +370,7 @@ async function main() {
   controls.showPlots.addEventListener('change', () => {
     document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
   });
-  document.body.dataset.state = 'running';
+  if (document.body.dataset.state !== 'error') document.body.dataset.state = 'running';
 
   let busy = false;
   const loop = async () => {

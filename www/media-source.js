@@ -11,18 +11,31 @@ function workSize(width, height) {
   return { width: Math.round(width * s), height: Math.round(height * s) };
 }
 
+/**
+ * Reads frames of width x height from images, videos or cameras. With `sideBySide`, a source
+ * picture holds the left camera's frame on its left half and the right camera's on its right
+ * half; `grab` then returns both.
+ */
 class Grabber {
-  constructor(width, height) {
-    this.canvas = new OffscreenCanvas(width, height);
+  constructor(width, height, sideBySide = false) {
+    this.canvas = new OffscreenCanvas(sideBySide ? 2 * width : width, height);
     this.ctx = this.canvas.getContext('2d', { willReadFrequently: true });
     this.width = width;
     this.height = height;
+    this.sideBySide = sideBySide;
   }
 
   grab(image) {
-    this.ctx.drawImage(image, 0, 0, this.width, this.height);
-    return this.ctx.getImageData(0, 0, this.width, this.height).data;
+    this.ctx.drawImage(image, 0, 0, this.canvas.width, this.height);
+    const rgba = this.ctx.getImageData(0, 0, this.width, this.height).data;
+    const right = this.sideBySide ? this.ctx.getImageData(this.width, 0, this.width, this.height).data : null;
+    return { rgba, right };
   }
+}
+
+/** The frame size of a picture, halved across for side-by-side stereo. */
+function frameSize(width, height, sideBySide) {
+  return workSize(sideBySide ? width / 2 : width, height);
 }
 
 /** Waits for `ok` on `target`; rejects on `bad` or after `ms` milliseconds. */
@@ -97,8 +110,9 @@ const MEDIA_ERRORS = {
  * the stepping rate: the video's own, given or measured.
  */
 export class VideoSource {
-  constructor({ url, file = null, name, fps = null, camera = null }) {
+  constructor({ url, file = null, name, fps = null, camera = null, sideBySide = false }) {
     this.file = file;
+    this.sideBySide = sideBySide;
     this.url = url ?? URL.createObjectURL(file);
     this.name = name;
     this.fps = fps;
@@ -131,12 +145,13 @@ export class VideoSource {
       this.fpsNote = ' (measured)';
     }
     this.video = video;
-    this.size = workSize(video.videoWidth, video.videoHeight);
-    this.grabber = new Grabber(this.size.width, this.size.height);
+    this.size = frameSize(video.videoWidth, video.videoHeight, this.sideBySide);
+    this.grabber = new Grabber(this.size.width, this.size.height, this.sideBySide);
     this.frames = Math.max(1, Math.floor(video.duration * this.fps));
     this.label = `Video “${this.name}”: ${video.videoWidth}x${video.videoHeight}, `
       + `${video.duration.toFixed(1)} s, read at ${this.fps} frames/s${this.fpsNote}`
-      + (this.size.width !== video.videoWidth ? `, tracked at ${this.size.width}x${this.size.height}` : '');
+      + (this.sideBySide ? `, side-by-side stereo of ${this.size.width}x${this.size.height}` : '')
+      + (!this.sideBySide && this.size.width !== video.videoWidth ? `, tracked at ${this.size.width}x${this.size.height}` : '');
   }
 
   restart() {
@@ -154,10 +169,10 @@ export class VideoSource {
       video.currentTime = t;
       await seeked;
     }
-    const rgba = this.grabber.grab(video);
+    const { rgba, right } = this.grabber.grab(video);
     const index = this.index++;
     this.progress = this.index / this.frames;
-    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index, t };
+    return { rgba, right, width: this.size.width, height: this.size.height, name: `${index}`, index, t };
   }
 
   close() {
@@ -167,15 +182,37 @@ export class VideoSource {
   }
 }
 
-/** Still images (one or a sequence, in file-name order), each a frame. */
+/** The name with its camera token (`left`/`right`, or `l`/`r` between separators) as `*`. */
+const cameraless = (name) => name.replace(/left|right/i, '*').replace(/(^|[_.\-])[lr](?=[_.\-])/i, '$1*');
+
+/** Whether sorted `files` are left/right pairs: names that differ only in their camera token. */
+export function arePairs(names) {
+  if (names.length % 2 !== 0) return false;
+  for (let k = 0; k < names.length; k += 2) {
+    const [a, b] = [names[k], names[k + 1]];
+    if (a === b || cameraless(a) === a || cameraless(a) !== cameraless(b)) return false;
+  }
+  return true;
+}
+
+/**
+ * Still images (one or a sequence, in file-name order), each a frame. Stereo (`stereo`):
+ * images whose names pair up as left and right (`x_left`/`x_right`, `x_l`/`x_r`) are stereo
+ * pairs; otherwise every image is a side-by-side picture.
+ */
 export class ImageSource {
-  constructor(files, camera = null) {
+  constructor(files, { camera = null, stereo = false } = {}) {
     this.files = [...files].sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
     this.camera = camera;
+    this.pairs = stereo && arePairs(this.files.map((f) => f.name));
+    this.sideBySide = stereo && !this.pairs;
+    this.step = this.pairs ? 2 : 1;
     this.index = 0;
     this.progress = 0;
-    const n = this.files.length;
-    this.label = n === 1 ? `Image “${this.files[0].name}”` : `${n} images, “${this.files[0].name}” first`;
+    const n = this.files.length / this.step;
+    const what = this.pairs ? 'stereo pair' : this.sideBySide ? 'side-by-side stereo image' : 'image';
+    this.label = n === 1 ? `${what} “${this.files[0].name}”` : `${n} ${what}s, “${this.files[0].name}” first`;
+    this.label = this.label[0].toUpperCase() + this.label.slice(1);
   }
 
   async decode(file) {
@@ -188,9 +225,9 @@ export class ImageSource {
 
   async open() {
     const first = await this.decode(this.files[0]);
-    this.size = workSize(first.width, first.height);
+    this.size = frameSize(first.width, first.height, this.sideBySide);
     this.first = first;
-    this.grabber = new Grabber(this.size.width, this.size.height);
+    this.grabber = new Grabber(this.size.width, this.size.height, this.sideBySide);
   }
 
   restart() {
@@ -198,20 +235,29 @@ export class ImageSource {
     this.progress = 0;
   }
 
-  async next() {
-    if (this.index >= this.files.length) return null;
-    const file = this.files[this.index];
-    const bitmap = this.index === 0 && this.first ? this.first : await this.decode(file);
-    const expected = workSize(bitmap.width, bitmap.height);
+  /** Reads image `k`, which must have the first image's size. */
+  async read(k) {
+    const file = this.files[k];
+    const bitmap = k === 0 && this.first ? this.first : await this.decode(file);
+    const expected = frameSize(bitmap.width, bitmap.height, this.sideBySide);
     if (expected.width !== this.size.width || expected.height !== this.size.height) {
       throw new Error(`“${file.name}” is ${bitmap.width}x${bitmap.height}; a sequence must keep `
         + `the size of its first image (${this.files[0].name})`);
     }
-    const rgba = this.grabber.grab(bitmap);
+    const out = this.grabber.grab(bitmap);
     if (bitmap !== this.first) bitmap.close();
-    const index = this.index++;
+    return out;
+  }
+
+  async next() {
+    if (this.index >= this.files.length) return null;
+    const k = this.index;
+    const { rgba, right } = await this.read(k);
+    const frame = { rgba, right, width: this.size.width, height: this.size.height, name: this.files[k].name };
+    if (this.pairs) frame.right = (await this.read(k + 1)).rgba;
+    this.index += this.step;
     this.progress = this.index / this.files.length;
-    return { rgba, width: this.size.width, height: this.size.height, name: file.name, index };
+    return { ...frame, index: k / this.step };
   }
 
   close() {
@@ -252,8 +298,8 @@ export class WebcamSource {
     await video.play();
     if (!video.videoWidth) await once(video, 'resize', null, 5000, 'the camera sent no picture');
     this.video = video;
-    this.size = workSize(video.videoWidth, video.videoHeight);
-    this.grabber = new Grabber(this.size.width, this.size.height);
+    this.size = frameSize(video.videoWidth, video.videoHeight, this.sideBySide);
+    this.grabber = new Grabber(this.size.width, this.size.height, this.sideBySide);
     const track = this.stream.getVideoTracks()[0];
     this.label = `Webcam “${track?.label || 'camera'}”: ${video.videoWidth}x${video.videoHeight}`;
   }
@@ -263,7 +309,7 @@ export class WebcamSource {
   }
 
   async next() {
-    const rgba = this.grabber.grab(this.video);
+    const { rgba } = this.grabber.grab(this.video);
     const index = this.index++;
     const t = performance.now() / 1000;
     return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index, t };

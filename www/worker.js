@@ -62,10 +62,11 @@ function requireTracker() {
   return tracker;
 }
 
-function feedTracker(t, { motion }) {
-  // A stereo tracker gets the scene's right camera; without one its step throws an Error
-  // saying that danescu-stereo needs a right image.
-  if (t.isStereo && right) t.setRight(right.rgba, right.width, right.height);
+function feedTracker(t, { motion, frameRight, width, height }) {
+  // A stereo tracker gets the frame's right image (stereo media) or the scene's right camera;
+  // without one its step throws an Error saying that danescu-stereo needs a right image.
+  if (t.isStereo && frameRight) t.setRight(frameRight, width, height);
+  else if (t.isStereo && right) t.setRight(right.rgba, right.width, right.height);
   if (motion && [motion.t_s, motion.speed_mps, motion.yaw_rate].every(Number.isFinite)) {
     t.setEgoMotion(motion);
   }
@@ -133,12 +134,12 @@ const handlers = {
     return null;
   },
   /** One whole frame through the tracker; the pixels come back with the result. */
-  async track({ rgba, width, height, motion, want }) {
+  async track({ rgba, right: frameRight, width, height, motion, want }) {
     if (!tracker) {
       const top = want?.top ? topView(rgba, width, height) : null;
       return { result: { rgba, estimate: null, trackMs: 0, top }, transfer: [rgba.buffer] };
     }
-    feedTracker(tracker, { motion });
+    feedTracker(tracker, { motion, frameRight, width, height });
     const t0 = performance.now();
     const estimate = tracker.step(rgba, width, height);
     const trackMs = performance.now() - t0;
@@ -148,10 +149,10 @@ const handlers = {
     };
   },
   /** Starts a frame in per-step (teaching) mode; `advance` then runs one step per call. */
-  async beginFrame({ rgba, width, height, motion, want }) {
+  async beginFrame({ rgba, right: frameRight, width, height, motion, want }) {
     const t = requireTracker();
     if (t.stepNames().length === 0) throw new Error(`${t.id} has no per-step mode`);
-    feedTracker(t, { motion });
+    feedTracker(t, { motion, frameRight, width, height });
     t.beginFrame(rgba, width, height);
     return { result: { rgba, ...extras(t, rgba, width, height, want ?? {}) }, transfer: [rgba.buffer] };
   },

@@ -180,3 +180,68 @@ test('the webcam path runs on Chromium\'s fake camera, and a refusal is explaine
   await p2.waitForFunction((n) => window.lanepfDemo.frames > n + 2, n);
   await denied.close();
 });
+
+test('danescu-stereo tracks left/right image pairs and side-by-side images', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/?source=test-road&tracker=danescu-stereo`);
+  // The test road's camera is not a stereo rig: the page says so and keeps going.
+  await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
+  assert.match(await status(page), /needs `baseline_m`.*import a camera file with baseline_m/);
+  // Sixteen stereo frames of a simulator scene, as PNGs, and its camera (with the baseline).
+  // (danescu-stereo starts 0.5 m off on this scene and needs about ten frames to settle.)
+  const { left, right, sbs, camera, truth } = await page.evaluate(async () => {
+    const m = await import('/pkg/web/lanepf.js');
+    await m.default();
+    const scene = new m.Scene('highway-straight', { width: 640, height: 480, seed: 2 });
+    const png = async (parts) => {
+      const canvas = new OffscreenCanvas(640 * parts.length, 480);
+      parts.forEach((rgba, k) => canvas.getContext('2d').putImageData(new ImageData(rgba, 640, 480), 640 * k, 0));
+      const bytes = new Uint8Array(await (await canvas.convertToBlob({ type: 'image/png' })).arrayBuffer());
+      let s = '';
+      for (const b of bytes) s += String.fromCharCode(b);
+      return btoa(s);
+    };
+    const out = { left: [], right: [], sbs: [] };
+    for (let f = 0; f < 16; f++) {
+      const [l, r] = [scene.render(f), scene.renderRight(f)];
+      out.left.push(await png([l]));
+      out.right.push(await png([r]));
+      out.sbs.push(await png([l, r]));
+    }
+    return { ...out, camera: scene.camera(), truth: scene.truth(15).lateral_offset_m };
+  });
+  assert.ok(camera.baseline_m > 0, 'the scene camera is a stereo rig');
+  const file = (name, b64) => ({ name, mimeType: 'image/png', buffer: Buffer.from(b64, 'base64') });
+  await page.setInputFiles('#camera-file', {
+    name: 'rig.camera.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(camera)),
+  });
+  await page.waitForFunction(() => /Camera “rig\.camera\.json”/.test(document.getElementById('status').textContent));
+
+  // (The error paused the page; opening a source keeps it paused until Play.)
+  const play = async () => {
+    await page.waitForFunction(() => window.lanepfDemo.pending === 0);
+    if ((await page.textContent('#play')) === 'Play') await page.click('#play');
+  };
+  // Mono images to a stereo tracker: the error says what to do in this page.
+  await page.setInputFiles('#file', [file('only-left.png', left[0])]);
+  await play();
+  await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
+  assert.match(await status(page), /needs the right image.*tick Stereo/);
+
+  await page.check('#stereo');
+  for (const [what, files, label] of [
+    ['pairs', left.flatMap((l, f) => [file(`f${f}_left.png`, l), file(`f${f}_right.png`, right[f])]), /16 stereo pairs/],
+    ['side by side', sbs.map((b, f) => file(`sbs${f}.png`, b)), /16 side-by-side stereo images/],
+  ]) {
+    await page.setInputFiles('#file', files);
+    await play();
+    await page.waitForFunction(() => window.lanepfDemo.ended, null, { timeout: 60000 });
+    assert.match(await status(page), label, what);
+    const results = await page.evaluate(() => window.lanepfDemo.results);
+    assert.equal(results.length, 16, what);
+    const last = results.at(-1);
+    assert.ok(Number.isFinite(last.state['danescu.pitch_detected']), `${what}: the stereo cue ran`);
+    assert.ok(Math.abs(last.lateral_offset_m - truth) < 0.3, `${what}: offset ${last.lateral_offset_m} vs ${truth}`);
+  }
+  assert.deepEqual(errors, []);
+  await page.close();
+});

@@ -60,3 +60,14 @@ test('camera scaling keeps the field of view and maps pixel centres', () => {
   assert.equal(s.height_m, 1.4);
   assert.equal(Math.atan(c.width / 2 / c.fx), Math.atan(s.width / 2 / s.fx));
 });
+
+test('stereo image pairs are told from side-by-side images by their names', async () => {
+  const { arePairs } = await import('../../www/media-source.js');
+  assert.equal(arePairs(['a_left.png', 'a_right.png', 'b_left.png', 'b_right.png']), true);
+  assert.equal(arePairs(['urban1_left.pgm', 'urban1_right.pgm']), true);
+  assert.equal(arePairs(['f1_l.png', 'f1_r.png']), true);
+  assert.equal(arePairs(['left.png', 'right.png']), true);
+  assert.equal(arePairs(['sbs0.png', 'sbs1.png']), false, 'no camera token');
+  assert.equal(arePairs(['a_left.png', 'b_right.png']), false, 'different frames');
+  assert.equal(arePairs(['a_left.png']), false, 'odd count');
+});
