@@ -11,7 +11,7 @@ export class Controls {
       file: 'file', cameraFile: 'camera-file', showTruth: 'show-truth',
       showParticles: 'show-particles', showTop: 'show-top', showCues: 'show-cues',
       showPlots: 'show-plots', departure: 'departure', cueLayer: 'cue-layer',
-      colourGroups: 'colour-groups', stereo: 'stereo',
+      colourGroups: 'colour-groups', stereo: 'stereo', compare: 'compare',
       exportJsonl: 'export-jsonl', exportCsv: 'export-csv', status: 'status', timing: 'timing',
       version: 'version', dropZone: 'drop-zone',
     })) {
@@ -25,9 +25,11 @@ export class Controls {
     this.onFiles = () => {};
     this.onCameraFile = () => {};
     this.onTracker = () => {};
+    this.onCompare = () => {};
     this.onExport = () => {};
     this.lastSource = this.source.value;
     this.tracker.addEventListener('change', () => this.onTracker(this.tracker.value));
+    this.compare.addEventListener('change', () => this.onCompare(this.compare.value));
     this.source.addEventListener('change', () => {
       if (this.source.value === 'file') {
         // Picking files is its own step; until then the old source stays selected.
@@ -131,6 +133,7 @@ export class Controls {
     this.tracker.add(new Option('no tracker (frames only)', ''));
     for (const id of ids) this.tracker.add(new Option(id, id));
     this.tracker.disabled = false;
+    this.compare.replaceChildren(new Option('nothing', ''), ...ids.map((id) => new Option(id, id)));
   }
 
   /** Adds the simulator's scenarios after the built-in sources. */

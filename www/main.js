@@ -21,6 +21,7 @@ const controls = new Controls();
 const ctx = document.getElementById('view').getContext('2d');
 const topCtx = document.getElementById('top').getContext('2d');
 const cues = document.getElementById('cues').getContext('2d');
+const ctx2 = document.getElementById('view2').getContext('2d');
 const client = new WorkerClient();
 const plots = new Plots(document.getElementById('plots'));
 const departure = new Departure();
@@ -35,6 +36,7 @@ const state = {
   source: null,
   sourceName: '',
   trackerId: '',
+  compareId: '',
   camera: null,
   importedCamera: null,
   inFrame: null, // the frame being stepped through in per-step mode
@@ -89,6 +91,7 @@ function draw(frame, result, redraw = false) {
   const top = controls.showTop.checked ? result?.top : null;
   document.getElementById('top-figure').hidden = !top;
   if (top) drawTopView(topCtx, top, { truth, estimate, hypotheses, byGroup });
+  drawCompare(frame, result?.compare ?? null, truth, byGroup);
   const layers = controls.showCues.checked ? result?.layers : null;
   const layer = layers?.[controls.setLayers(layers)];
   document.getElementById('cues-figure').hidden = !layer;
@@ -106,6 +109,7 @@ function draw(frame, result, redraw = false) {
     lastTruth: frame.truth ?? null,
     lastFrame: { index: frame.index, name: frame.name, width: frame.width, height: frame.height },
     lastRgba: frame.rgba,
+    lastCompare: result?.compare ?? null,
   });
   demo.frames += 1;
   let text = `frame ${frame.name}`;
@@ -120,6 +124,23 @@ function draw(frame, result, redraw = false) {
   }
   controls.timing.textContent = text;
   controls.setProgress(state.source?.progress ?? null);
+}
+
+/** The second tracker's view: the same frame with its boundaries and particles. */
+function drawCompare(frame, compared, truth, byGroup) {
+  document.getElementById('compare-figure').hidden = !compared;
+  if (!compared) return;
+  drawFrame(ctx2, frame.rgba, frame.width, frame.height);
+  drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
+  if (truth) drawBoundaries(ctx2, truth.boundaries, { dashed: true, width: 2 });
+  if (compared.estimate) drawBoundaries(ctx2, compared.estimate.boundaries, { width: 4 });
+  let text = `${compared.trackerId} · track ${compared.trackMs.toFixed(1)} ms`;
+  if (compared.estimate && !compared.estimate.valid) text += ' · not valid';
+  if (compared.estimate && frame.truth) {
+    const err = Math.abs(compared.estimate.lateral_offset_m - frame.truth.lateral_offset_m);
+    text += ` · offset error ${(100 * err).toFixed(0)} cm`;
+  }
+  document.getElementById('compare-caption').textContent = text;
 }
 
 function record(frame, result) {
@@ -226,6 +247,10 @@ async function openTracker() {
   panel.show(trackerId, defaults);
   const options = { ...panel.changedOptions(), seed: panel.seedValue() };
   const info = await client.request('openTracker', { trackerId, camera: state.camera, options });
+  // The comparison tracker: its own defaults, the same camera and seed.
+  await client.request('openCompare', {
+    trackerId: trackerId ? state.compareId : '', camera: state.camera, options: { seed: options.seed },
+  });
   controls.setStepNames(info.stepNames);
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
   demo.results = [];
@@ -317,6 +342,8 @@ async function main() {
   const first = params.get('source') ?? 'clip';
   state.trackerId = params.get('tracker') ?? 'lee-cpf';
   controls.tracker.value = state.trackerId;
+  state.compareId = params.get('compare') ?? '';
+  controls.compare.value = state.compareId;
   controls.source.value = first;
   controls.lastSource = first;
   // A source or tracker that fails to open leaves a message, not a dead page.
@@ -342,6 +369,10 @@ async function main() {
     await openTracker();
   });
   panel.onChange = () => run(openTracker);
+  controls.onCompare = (id) => run(async () => {
+    state.compareId = id;
+    await openTracker();
+  });
   controls.onStep = () => run(stepFrame);
   controls.onStepStage = () => run(stepStage);
   controls.onRestart = () => run(async () => {

@@ -10,6 +10,8 @@ import init, {
 const ready = init();
 let road = null;
 let tracker = null;
+// A second tracker run on the same frames, for comparison (null: none).
+let compare = null;
 // The right image of the scene's current frame, for a stereo tracker.
 let right = null;
 // Top view: road cells 0.1 m, 40 m ahead, +-8 m; LUT of camera pixel indices (-1: not seen).
@@ -83,6 +85,17 @@ function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = 
   };
 }
 
+/** One whole frame through the comparison tracker: its estimate, time and particles. */
+function stepCompare(rgba, feed, want) {
+  if (!compare) return null;
+  feedTracker(compare, feed);
+  const t0 = performance.now();
+  const estimate = compare.step(rgba, feed.width, feed.height);
+  const trackMs = performance.now() - t0;
+  const hypotheses = want?.hypotheses > 0 ? compare.hypotheses(want.hypotheses) : null;
+  return { trackerId: compare.id, estimate, trackMs, hypotheses };
+}
+
 const handlers = {
   async hello() {
     return { version: version(), trackers: trackerIds(), scenarios: scenarios() };
@@ -110,6 +123,13 @@ const handlers = {
     if (!trackerId) return { trackerId: null, stepNames: [] };
     tracker = new Tracker(trackerId, { ...(options ?? {}), camera });
     return { trackerId: tracker.id, stepNames: tracker.stepNames(), isStereo: tracker.isStereo };
+  },
+  /** Builds (or, with no id, drops) the comparison tracker for the same camera. */
+  async openCompare({ trackerId, camera, options }) {
+    compare?.free();
+    compare = null;
+    if (trackerId) compare = new Tracker(trackerId, { ...(options ?? {}), camera });
+    return { trackerId: compare?.id ?? null };
   },
   /** Renders frame `index` of the open synthetic source with its truth and ego motion. */
   async renderFrame({ index }) {
@@ -144,7 +164,10 @@ const handlers = {
     const estimate = tracker.step(rgba, width, height);
     const trackMs = performance.now() - t0;
     return {
-      result: { rgba, estimate, trackMs, ...extras(tracker, rgba, width, height, want ?? {}) },
+      result: {
+        rgba, estimate, trackMs, ...extras(tracker, rgba, width, height, want ?? {}),
+        compare: stepCompare(rgba, { motion, frameRight, width, height }, want),
+      },
       transfer: [rgba.buffer],
     };
   },
@@ -154,7 +177,12 @@ const handlers = {
     if (t.stepNames().length === 0) throw new Error(`${t.id} has no per-step mode`);
     feedTracker(t, { motion, frameRight, width, height });
     t.beginFrame(rgba, width, height);
-    return { result: { rgba, ...extras(t, rgba, width, height, want ?? {}) }, transfer: [rgba.buffer] };
+    // The comparison tracker takes the whole frame at once.
+    const compared = stepCompare(rgba, { motion, frameRight, width, height }, want);
+    return {
+      result: { rgba, ...extras(t, rgba, width, height, want ?? {}), compare: compared },
+      transfer: [rgba.buffer],
+    };
   },
   async advance({ rgba, width, height, want }) {
     const t = requireTracker();
@@ -173,6 +201,7 @@ const handlers = {
   },
   async reset() {
     tracker?.reset();
+    compare?.reset();
     return null;
   },
 };
