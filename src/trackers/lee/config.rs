@@ -89,6 +89,17 @@ pub struct LeeConfig {
     /// Filter iterations on the first frame (and after a reset): the paper does not say how
     /// the filter starts; a uniform start needs a few rounds on the same frame to find the lane.
     pub start_iterations: usize,
+    /// How much wider than Q the process noise of the first start iteration is; it narrows
+    /// linearly to Q by the last (ours, like the start iterations: a cloud diffusing by Q
+    /// alone stays where the uniform start's luckiest particles were, often on one marking
+    /// at a wrong width).
+    pub start_spread: f64,
+    /// Share of the stage-1 particles drawn anew from the initial distribution in each of the
+    /// first half of the start iterations (ours; 0 turns it off).
+    pub start_fresh: f64,
+    /// Restart from the initial distribution after this many consecutive frames in which no
+    /// marking supports either boundary of the estimate (ours; 0: never).
+    pub lost_restart: usize,
     /// Kalman smoothing of the CPF output (Fig. 4).
     pub kalman: bool,
     /// Kalman process noise per frame, same order as `process_sd`.
@@ -138,6 +149,9 @@ impl Default for LeeConfig {
             max_transition_m: 60.0,
             max_curvature: 0.02,
             start_iterations: 20,
+            start_spread: 10.0,
+            start_fresh: 0.2,
+            lost_restart: 2,
             kalman: true,
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],
@@ -259,6 +273,20 @@ impl LeeConfig {
                 "max_curvature",
                 self.max_curvature,
                 "times spiral_length_m / 2 (the spiral's turn) must be at most 1.5 rad",
+            ));
+        }
+        if !(1.0..=100.0).contains(&self.start_spread) {
+            return Err(Error::parameter(
+                "start_spread",
+                self.start_spread,
+                "must be between 1 and 100",
+            ));
+        }
+        if !(0.0..=1.0).contains(&self.start_fresh) {
+            return Err(Error::parameter(
+                "start_fresh",
+                self.start_fresh,
+                "must be between 0 and 1",
             ));
         }
         if self.start_iterations > 1000 {

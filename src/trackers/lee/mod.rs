@@ -15,6 +15,14 @@
 //!    full clothoid lane ([`clothoid`]); weighted mean; resampling when N_eff < N_thr;
 //! 4. the six estimated states pass the Kalman smoother ([`kalman`]) and become boundaries.
 //!
+//! Start and restart (ours; the paper does not say how the filter starts): on a first frame
+//! stage 1 runs `start_iterations` rounds on the same cues, its process noise annealed from
+//! `start_spread` times Q down to Q, with a share `start_fresh` of the cloud drawn anew from
+//! the initial distribution in the first half of the rounds; and after `lost_restart`
+//! consecutive frames with no marking near either boundary the filter starts again. Without
+//! them a cold start on a dashed-line scene locked half a lane off, at the width limit, from
+//! about half of its start frames (see `a_cold_start_finds_the_lane_from_almost_any_frame`).
+//!
 //! Lane changes (our addition; the paper shows the lateral offset jumping by a lane width at
 //! each change, Fig. 10, without saying how): when the stage-1 estimate of y0 leaves
 //! [-w/2, w/2) the car has crossed a boundary, and every particle moves by one lane width so
@@ -43,7 +51,8 @@ use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, Tracker
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
-    FilterConfig, Injection, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
+    FilterConfig, InitialDistribution, Injection, MeasurementModel, ParticleFilter, ResamplePolicy,
+    Resampler,
 };
 use crate::image::{luma, Image};
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
@@ -60,6 +69,9 @@ use motion::{Initial, Limits, Motion, Part};
 pub const ID: &str = "lee-cpf";
 /// Particles N (per stage) when the config does not say.
 pub const DEFAULT_PARTICLES: usize = 500;
+
+/// Support (share of near points on a marking) under which a boundary has no marking at all.
+const LOST_SUPPORT: f64 = 0.05;
 
 /// Stage 1's model: eq. 33 on the near map, first-order lane (the full-model baseline uses
 /// [`FarModel`] with the near map instead).
@@ -201,6 +213,8 @@ pub struct LeeTracker {
     smoother: Smoother,
     times: StageTimes,
     first: bool,
+    /// Consecutive frames whose estimate no marking supports (see `lost_restart`).
+    lost: usize,
     frame: Option<Frame>,
 }
 
@@ -323,6 +337,7 @@ impl LeeTracker {
             smoother,
             times: StageTimes::default(),
             first: true,
+            lost: 0,
             frame: None,
             camera,
             config: lee,
@@ -360,6 +375,32 @@ impl LeeTracker {
             out.extend(f.states().iter().zip(f.weights()).map(|(s, &w)| (2, *s, w)));
         }
         out
+    }
+
+    /// Back to the initial distribution: the next frame is a first frame.
+    fn restart(&mut self) {
+        self.stage1.reset(&self.initial);
+        if let Some(f) = self.stage2.as_mut() {
+            f.reset(&self.initial);
+        }
+        self.smoother.reset();
+        self.first = true;
+        self.lost = 0;
+    }
+
+    /// Replaces every k-th stage-1 particle (k = 1 / `start_fresh`) with a draw from the
+    /// initial distribution: spread over the resampled cloud, whose copies of one ancestor sit
+    /// side by side, so no ancestor loses more than its share.
+    fn refresh_start_particles(&mut self) {
+        if self.config.start_fresh <= 0.0 {
+            return;
+        }
+        let every = (1.0 / self.config.start_fresh).round().max(1.0) as usize;
+        let n = self.stage1.len();
+        for i in (0..n).step_by(every) {
+            let fresh = self.initial.sample(self.stage1.rng_mut());
+            self.stage1.states_mut()[i] = fresh;
+        }
     }
 
     fn motion(&self, part: Part) -> Motion {
@@ -476,11 +517,21 @@ impl LeeTracker {
                 } else {
                     Part::FirstOrder
                 };
-                let motion = self.motion(part);
-                // The first frame: more rounds on the same cues (see `start_iterations`).
+                // The first frame: more rounds on the same cues (see `start_iterations`),
+                // annealed: the process noise starts `start_spread` times wider and narrows
+                // linearly to Q, and in the first half of the rounds every
+                // 1 / `start_fresh`-th particle is drawn anew from the initial distribution,
+                // so that the search goes on beyond the uniform start's first draw.
                 for round in 0..=starts {
                     if round > 0 {
+                        let left = 1.0 - round as f64 / starts as f64;
+                        let scale = 1.0 + (self.config.start_spread - 1.0) * left;
+                        let mut motion = self.motion(part);
+                        motion.sd = motion.sd.map(|sd| sd * scale);
                         self.stage1.resample();
+                        if 2 * round <= starts {
+                            self.refresh_start_particles();
+                        }
                         self.stage1.predict(&motion);
                     }
                     if self.config.variant == Variant::FullModel {
@@ -518,7 +569,8 @@ impl LeeTracker {
                         s.y0 += shift;
                     }
                 }
-                frame.change = change;
+                // (On a first frame there is no lane to have changed from: re-centre only.)
+                frame.change = if frame.first { 0 } else { change };
                 if self.config.variant == Variant::FullModel {
                     let (c, delta) = mean_curve(self.stage1.states(), self.stage1.weights());
                     estimate.c = c;
@@ -602,6 +654,15 @@ impl LeeTracker {
                     raw
                 };
                 let support = self.measurement.near_support(&raw, None, &self.map);
+                // Lost: no marking near either boundary. After `lost_restart` such frames the
+                // filter starts again from the initial distribution (with the start
+                // iterations) on the next frame; a cloud that has lost the lane does not find
+                // it again by diffusing with Q.
+                let lost = support[0].max(support[1]) < LOST_SUPPORT;
+                self.lost = if lost { self.lost + 1 } else { 0 };
+                if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {
+                    self.restart();
+                }
                 frame.times.estimate += now() - t;
                 self.times = frame.times;
                 return Some(LeeEstimate {
@@ -715,12 +776,7 @@ impl Tracker for LeeTracker {
     }
 
     fn reset(&mut self) {
-        self.stage1.reset(&self.initial);
-        if let Some(f) = self.stage2.as_mut() {
-            f.reset(&self.initial);
-        }
-        self.smoother.reset();
-        self.first = true;
+        self.restart();
         self.frame = None;
     }
 
