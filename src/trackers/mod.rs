@@ -438,16 +438,23 @@ mod tests {
             .starts_with("unknown tracker `kalman-magic`; available: "));
     }
 
-    #[test]
-    fn every_tracker_steps_one_step_at_a_time_to_the_same_result() {
-        use crate::synth::{default_camera, scenario, Eye, Scene};
+    /// A 200-particle configuration for the simulator's default 320x240 camera and scenario
+    /// `name` (seed 1).
+    fn fixture(name: &str) -> (TrackerConfig, crate::synth::Scene) {
+        use crate::synth::{default_camera, scenario, Scene};
         let camera = default_camera(320, 240).unwrap();
         let c = TrackerConfig::from_json_str(&format!(
             r#"{{"camera": {}, "particles": 200}}"#,
             serde_json::to_string(&camera.to_file()).unwrap()
         ))
         .unwrap();
-        let mut scene = Scene::new(scenario("highway-curve").unwrap(), camera, 1).unwrap();
+        (c, Scene::new(scenario(name).unwrap(), camera, 1).unwrap())
+    }
+
+    #[test]
+    fn every_tracker_steps_one_step_at_a_time_to_the_same_result() {
+        use crate::synth::Eye;
+        let (c, mut scene) = fixture("highway-curve");
         let mut rgba = vec![0; 320 * 240 * 4];
         let mut right = vec![0; 320 * 240 * 4];
         for id in TRACKER_IDS {
@@ -478,14 +485,8 @@ mod tests {
     #[test]
     fn every_tracker_draws_its_particles_around_its_estimate() {
         use crate::lane::{Boundary, Role};
-        use crate::synth::{default_camera, scenario, Eye, Scene};
-        let camera = default_camera(320, 240).unwrap();
-        let c = TrackerConfig::from_json_str(&format!(
-            r#"{{"camera": {}, "particles": 200}}"#,
-            serde_json::to_string(&camera.to_file()).unwrap()
-        ))
-        .unwrap();
-        let mut scene = Scene::new(scenario("highway-straight").unwrap(), camera, 1).unwrap();
+        use crate::synth::Eye;
+        let (c, mut scene) = fixture("highway-straight");
         let mut rgba = vec![0; 320 * 240 * 4];
         let mut right = vec![0; 320 * 240 * 4];
         for id in TRACKER_IDS {
@@ -543,14 +544,8 @@ mod tests {
     #[test]
     fn every_tracker_shows_its_main_cue_on_the_true_boundaries() {
         use crate::lane::Role;
-        use crate::synth::{default_camera, scenario, Eye, Scene};
-        let camera = default_camera(320, 240).unwrap();
-        let c = TrackerConfig::from_json_str(&format!(
-            r#"{{"camera": {}, "particles": 200}}"#,
-            serde_json::to_string(&camera.to_file()).unwrap()
-        ))
-        .unwrap();
-        let mut scene = Scene::new(scenario("highway-straight").unwrap(), camera, 1).unwrap();
+        use crate::synth::Eye;
+        let (c, mut scene) = fixture("highway-straight");
         let mut rgba = vec![0; 320 * 240 * 4];
         let mut right = vec![0; 320 * 240 * 4];
         scene.render(0, Eye::Left, &mut rgba, None).unwrap();
