@@ -66,7 +66,8 @@ export class Controls {
     });
     // Keyboard: space plays or pauses, "." steps a frame, "," steps a stage.
     doc.addEventListener('keydown', (e) => {
-      if (e.target.closest?.('input, select, textarea') || e.ctrlKey || e.metaKey || e.altKey) return;
+      // (Not while a control has the focus: space there is that control's own key.)
+      if (e.target.closest?.('input, select, textarea, button, summary') || e.ctrlKey || e.metaKey || e.altKey) return;
       if (e.key === ' ') {
         e.preventDefault();
         this.setPaused(!this.paused);

@@ -189,3 +189,23 @@ test('two trackers run side by side on the same frames', async () => {
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('the keyboard plays, pauses and steps', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/?source=highway-straight&tracker=lee-cpf`);
+  await running(page);
+  await page.locator('body').click({ position: { x: 5, y: 5 } });
+  await page.keyboard.press(' ');
+  assert.equal(await page.textContent('#play'), 'Play', 'space pauses');
+  await page.waitForFunction(() => window.lanepfDemo.pending === 0);
+  const n = await page.evaluate(() => window.lanepfDemo.results.length);
+  await page.keyboard.press('.');
+  await page.waitForFunction((n) => window.lanepfDemo.results.length === n + 1, n);
+  await page.keyboard.press(',');
+  await page.waitForFunction(() => !/start of a frame/.test(document.getElementById('next-stage').textContent));
+  await page.keyboard.press(' ');
+  assert.equal(await page.textContent('#play'), 'Pause', 'space plays again');
+  // Playing finishes the half-stepped frame first, then goes on.
+  await page.waitForFunction((n) => window.lanepfDemo.results.length >= n + 4, n);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
