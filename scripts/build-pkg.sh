@@ -7,9 +7,10 @@ cd "$(dirname "$0")/.."
 
 wasm=target/wasm32-unknown-unknown/release/lanepf.wasm
 cargo build --lib --release --target wasm32-unknown-unknown
-# Features the Rust wasm32 target emits by default; wasm-opt must accept them.
+# Features the Rust wasm32 target emits by default, and SIMD (128-bit), which .cargo/config.toml
+# turns on for wasm32; wasm-opt must accept them all.
 features=(--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext
-          --enable-mutable-globals --enable-reference-types --enable-multivalue)
+          --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd)
 for target in web bundler; do
   out=pkg/$target
   rm -rf "$out"

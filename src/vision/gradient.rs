@@ -59,9 +59,9 @@ impl Gradients {
             let gx_row = self.gx.row_mut(y);
             let gy_row = self.gy.row_mut(y);
             let mag_row = self.magnitude.row_mut(y);
-            for x in 0..w {
-                let (l, r) = (x.saturating_sub(1), (x + 1).min(w - 1));
-                let p = |row: &[T], i: usize| -> f32 { row[i].into() };
+            let p = |row: &[T], i: usize| -> f32 { row[i].into() };
+            // The same expression at every pixel; the border columns clamp their neighbours.
+            let mut pixel = |x: usize, l: usize, r: usize| {
                 let gx = (p(up, r) + 2.0 * p(mid, r) + p(down, r))
                     - (p(up, l) + 2.0 * p(mid, l) + p(down, l));
                 let gy = (p(down, l) + 2.0 * p(down, x) + p(down, r))
@@ -69,6 +69,27 @@ impl Gradients {
                 gx_row[x] = gx;
                 gy_row[x] = gy;
                 mag_row[x] = (gx * gx + gy * gy).sqrt();
+            };
+            pixel(0, 0, 1.min(w - 1));
+            if w > 1 {
+                pixel(w - 1, w - 2, w - 1);
+            }
+            if w > 2 {
+                let interior = gx_row[1..w - 1]
+                    .iter_mut()
+                    .zip(&mut gy_row[1..w - 1])
+                    .zip(&mut mag_row[1..w - 1])
+                    .zip(up.windows(3).zip(mid.windows(3)).zip(down.windows(3)));
+                for (((gx_o, gy_o), mag_o), ((u, m), d)) in interior {
+                    let q = |row: &[T], i: usize| -> f32 { row[i].into() };
+                    let gx =
+                        (q(u, 2) + 2.0 * q(m, 2) + q(d, 2)) - (q(u, 0) + 2.0 * q(m, 0) + q(d, 0));
+                    let gy =
+                        (q(d, 0) + 2.0 * q(d, 1) + q(d, 2)) - (q(u, 0) + 2.0 * q(u, 1) + q(u, 2));
+                    *gx_o = gx;
+                    *gy_o = gy;
+                    *mag_o = (gx * gx + gy * gy).sqrt();
+                }
             }
         }
         Ok(())

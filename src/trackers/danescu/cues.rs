@@ -140,16 +140,10 @@ impl ImageCues {
     /// Never for buffers built by [`ImageCues::new`].
     pub fn finish(&mut self) -> Result<()> {
         self.edge_count = self.edges.data().iter().filter(|&&e| e == EDGE).count();
-        self.dt.apply(&self.markings.view(), &mut self.dt_marking)?;
-        self.dt.apply(&self.edges.view(), &mut self.dt_edge)?;
-        for d in self
-            .dt_marking
-            .data_mut()
-            .iter_mut()
-            .chain(self.dt_edge.data_mut().iter_mut())
-        {
-            *d = d.min(MAX_DISTANCE_PX);
-        }
+        self.dt
+            .apply_capped(&self.markings.view(), MAX_DISTANCE_PX, &mut self.dt_marking)?;
+        self.dt
+            .apply_capped(&self.edges.view(), MAX_DISTANCE_PX, &mut self.dt_edge)?;
         Ok(())
     }
 

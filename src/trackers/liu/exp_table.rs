@@ -44,6 +44,24 @@ impl ExpTable {
     }
 }
 
+impl ExpTable {
+    /// [`ExpTable::neg_exp`] of both lanes of an f64x2, by the same operations: on wasm32,
+    /// `t as usize` is the saturating conversion to u32 that `u32x4_trunc_sat_f64x2_zero` does
+    /// per lane (NaN to 0), and the index and its f64 value are exact.
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    #[inline]
+    pub fn neg_exp_x2(&self, a: core::arch::wasm32::v128) -> core::arch::wasm32::v128 {
+        use core::arch::wasm32::*;
+        let t = f64x2_mul(a, f64x2_splat(PER_UNIT));
+        let last = self.segments.len() as u32 - 1;
+        let i = u32x4_min(u32x4_trunc_sat_f64x2_zero(t), u32x4_splat(last));
+        let [v0, s0] = self.segments[u32x4_extract_lane::<0>(i) as usize];
+        let [v1, s1] = self.segments[u32x4_extract_lane::<1>(i) as usize];
+        let frac = f64x2_sub(t, f64x2_convert_low_u32x4(i));
+        f64x2_add(f64x2(v0, v1), f64x2_mul(frac, f64x2(s0, s1)))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

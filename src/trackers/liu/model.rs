@@ -34,7 +34,7 @@
 //! than `max_spacing_difference_m`; other particles get weight 0 in stage 0.
 
 use super::config::{LiuConfig, MAX_BOUNDARIES};
-use super::descriptors::{wrap_half_turn, Descriptors};
+use super::descriptors::{wrap_half_turn, Descriptors, MaskPixel};
 use super::exp_table::{ExpTable, RANGE};
 use super::kernels::GaussHermite;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
@@ -193,16 +193,7 @@ impl PpfModel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            for px in &cues.pixels[span] {
-                let dtheta = fold(b.theta - f64::from(px.theta));
-                let orientation = 0.5 * dtheta * dtheta * f64::from(px.precision);
-                if orientation >= RANGE {
-                    continue;
-                }
-                let dist = c * (xc - f64::from(px.x));
-                let arg = dist * dist * inv_2var + orientation;
-                sum += f64::from(px.weight) * self.exp.neg_exp(arg);
-            }
+            sum = self.linear_row(sum, &cues.pixels[span], b.theta, xc, c, inv_2var);
         }
         if self.kernel {
             sum /= (2.0 * PI * var).sqrt();
@@ -228,7 +219,6 @@ impl PpfModel {
         let d = b.d;
         let mut sum = 0.0;
         let nodes = self.node_offsets.len();
-        let inv_2var = 0.5 / self.var_x;
         let mut node_x = [0.0; 20];
         let mut node_theta = [0.0; 20];
         for y in self.far_rows() {
@@ -255,28 +245,161 @@ impl PpfModel {
                 // The change of the curve's orientation from the row to node k.
                 node_theta[k] = dtheta_dy * self.node_offsets[k];
             }
-            for px in &cues.pixels[span] {
-                let precision = f64::from(px.precision);
-                // The orientation difference at the row, folded once: across the nodes it
-                // changes by dtheta_dy * offset (below 1e-3 rad), too little to cross a fold.
-                let dtheta = fold(theta - f64::from(px.theta));
-                if 0.5 * dtheta * dtheta * precision >= RANGE + 1.0 {
-                    // Every node's exponent is beyond the table: the pixel adds nothing.
-                    continue;
-                }
-                let xf = f64::from(px.x);
-                let mut g = 0.0;
-                for k in 0..nodes {
-                    let dx = node_x[k] - xf;
-                    let dt = dtheta + node_theta[k];
-                    let arg = dx * dx * inv_2var + 0.5 * dt * dt * precision;
-                    g += self.node_weights[k] * self.exp.neg_exp(arg);
-                }
-                sum += f64::from(px.weight) * g;
-            }
+            sum = self.parabolic_row(
+                sum,
+                cues,
+                span,
+                theta,
+                &node_x[..nodes],
+                &node_theta[..nodes],
+            );
         }
         if self.kernel {
             sum /= (2.0 * PI * self.var_x).sqrt();
+        }
+        sum
+    }
+}
+
+impl PpfModel {
+    /// The line kernels of one row's band pixels added to `sum`, pixel by pixel: the line at
+    /// column `xc` with orientation `theta` (cos `c`), 1 / (2 var) = `inv_2var`.
+    #[inline]
+    fn linear_row(
+        &self,
+        mut sum: f64,
+        pixels: &[MaskPixel],
+        theta: f64,
+        xc: f64,
+        c: f64,
+        inv_2var: f64,
+    ) -> f64 {
+        for px in pixels {
+            let dtheta = fold(theta - f64::from(px.theta));
+            let orientation = 0.5 * dtheta * dtheta * f64::from(px.precision);
+            if orientation >= RANGE {
+                continue;
+            }
+            let dist = c * (xc - f64::from(px.x));
+            let arg = dist * dist * inv_2var + orientation;
+            sum += f64::from(px.weight) * self.exp.neg_exp(arg);
+        }
+        sum
+    }
+
+    /// The parabolic kernels of one row's band pixels added to `sum`, pixel by pixel, with the
+    /// quadrature rule's nodes (`node_x`, `node_theta`: the curve's column and orientation
+    /// change at each node; `theta`: its orientation at the row).
+    #[inline]
+    fn parabolic_row(
+        &self,
+        mut sum: f64,
+        cues: &Descriptors,
+        span: std::ops::Range<usize>,
+        theta: f64,
+        node_x: &[f64],
+        node_theta: &[f64],
+    ) -> f64 {
+        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+        if let (Ok(x), Ok(t)) = (node_x.try_into(), node_theta.try_into()) {
+            // The default 3-node rule, two pixels at a time (same operations per pixel).
+            return self.parabolic_row_simd(sum, cues, span, theta, x, t);
+        }
+        let pixels = &cues.pixels[span];
+        let inv_2var = 0.5 / self.var_x;
+        for px in pixels {
+            let precision = f64::from(px.precision);
+            // The orientation difference at the row, folded once: across the nodes it
+            // changes by dtheta_dy * offset (below 1e-3 rad), too little to cross a fold.
+            let dtheta = fold(theta - f64::from(px.theta));
+            if 0.5 * dtheta * dtheta * precision >= RANGE + 1.0 {
+                // Every node's exponent is beyond the table: the pixel adds nothing.
+                continue;
+            }
+            let xf = f64::from(px.x);
+            let mut g = 0.0;
+            for (k, (&x, &t)) in node_x.iter().zip(node_theta).enumerate() {
+                let dx = x - xf;
+                let dt = dtheta + t;
+                let arg = dx * dx * inv_2var + 0.5 * dt * dt * precision;
+                g += self.node_weights[k] * self.exp.neg_exp(arg);
+            }
+            sum += f64::from(px.weight) * g;
+        }
+        sum
+    }
+
+    /// [`PpfModel::parabolic_row`] with 3 nodes in WebAssembly SIMD: two pixels in the two
+    /// lanes of each f64x2 operation. Every lane performs the scalar code's IEEE operations in
+    /// the scalar code's order (no fused or reordered arithmetic), and the pixels' terms are
+    /// added to `sum` one by one in pixel order, so the result is bit-identical to the scalar
+    /// path (tests/web.rs checks liu-ppf's estimate against the native build's bits).
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    fn parabolic_row_simd(
+        &self,
+        mut sum: f64,
+        cues: &Descriptors,
+        span: std::ops::Range<usize>,
+        theta: f64,
+        node_x: &[f64; 3],
+        node_theta: &[f64; 3],
+    ) -> f64 {
+        use core::arch::wasm32::{
+            f64x2, f64x2_add, f64x2_extract_lane, f64x2_mul, f64x2_splat, f64x2_sub,
+        };
+        let inv_2var = f64x2_splat(0.5 / self.var_x);
+        let half = f64x2_splat(0.5);
+        let [xs, weights, thetas, precisions] = &cues.columns;
+        let (xs, weights) = (&xs[span.clone()], &weights[span.clone()]);
+        let (thetas, precisions) = (&thetas[span.clone()], &precisions[span.clone()]);
+        let pairs = span.len() / 2;
+        for j in (0..pairs).map(|j| 2 * j) {
+            let (pa, pb) = (precisions[j], precisions[j + 1]);
+            let (da, db) = (fold(theta - thetas[j]), fold(theta - thetas[j + 1]));
+            let skip_a = 0.5 * da * da * pa >= RANGE + 1.0;
+            let skip_b = 0.5 * db * db * pb >= RANGE + 1.0;
+            if skip_a && skip_b {
+                continue;
+            }
+            let precision = f64x2(pa, pb);
+            let dtheta = f64x2(da, db);
+            let xf = f64x2(xs[j], xs[j + 1]);
+            let mut g = f64x2_splat(0.0);
+            for k in 0..3 {
+                let dx = f64x2_sub(f64x2_splat(node_x[k]), xf);
+                let dt = f64x2_add(dtheta, f64x2_splat(node_theta[k]));
+                let arg = f64x2_add(
+                    f64x2_mul(f64x2_mul(dx, dx), inv_2var),
+                    f64x2_mul(f64x2_mul(f64x2_mul(half, dt), dt), precision),
+                );
+                let e = self.exp.neg_exp_x2(arg);
+                g = f64x2_add(g, f64x2_mul(f64x2_splat(self.node_weights[k]), e));
+            }
+            let terms = f64x2_mul(f64x2(weights[j], weights[j + 1]), g);
+            if !skip_a {
+                sum += f64x2_extract_lane::<0>(terms);
+            }
+            if !skip_b {
+                sum += f64x2_extract_lane::<1>(terms);
+            }
+        }
+        let rest = &cues.pixels[span.start + 2 * pairs..span.end];
+        let inv = 0.5 / self.var_x;
+        for px in rest {
+            let precision = f64::from(px.precision);
+            let dtheta = fold(theta - f64::from(px.theta));
+            if 0.5 * dtheta * dtheta * precision >= RANGE + 1.0 {
+                continue;
+            }
+            let xf = f64::from(px.x);
+            let mut g = 0.0;
+            for k in 0..3 {
+                let dx = node_x[k] - xf;
+                let dt = dtheta + node_theta[k];
+                let arg = dx * dx * inv + 0.5 * dt * dt * precision;
+                g += self.node_weights[k] * self.exp.neg_exp(arg);
+            }
+            sum += f64::from(px.weight) * g;
         }
         sum
     }
