@@ -269,6 +269,12 @@ export interface LeeOptions {
   max_curvature?: number;
   /** Filter iterations on the first frame and after a reset (20, at most 1000). */
   start_iterations?: number;
+  /** Process noise of the first start iteration, times Q, narrowing to Q (10, 1 to 100). */
+  start_spread?: number;
+  /** Share of particles drawn anew in the first half of the start iterations (0.2, 0 to 1). */
+  start_fresh?: number;
+  /** Restart after this many frames with no marking near either boundary (2; 0: never). */
+  lost_restart?: number;
   /** Kalman smoothing of the output (true). */
   kalman?: boolean;
   /** Kalman process noise, same order as process_sd ([0.003, 0.03, 0.01, 0.0005, 2, 0.0002]). */
