@@ -31,11 +31,18 @@ export class Calibration {
       this.form.append(label);
     }
     for (const [key, p] of Object.entries(presets)) this.preset.add(new Option(p.label, key));
+    const applyFields = () => {
+      try {
+        this.apply(this.read());
+      } catch (err) {
+        this.readout.textContent = err.message;
+      }
+    };
     this.form.addEventListener('submit', (e) => {
       e.preventDefault();
-      this.apply(this.read());
+      applyFields();
     });
-    doc.getElementById('camera-apply').addEventListener('click', () => this.apply(this.read()));
+    doc.getElementById('camera-apply').addEventListener('click', applyFields);
     doc.getElementById('camera-preset-apply').addEventListener('click', () => {
       const p = this.presets[this.preset.value];
       if (p && this.camera) this.apply(scaleCamera(p.camera, this.camera.width, this.camera.height));
@@ -60,16 +67,17 @@ export class Calibration {
   read() {
     const out = { ...this.camera };
     for (const name of FIELDS) {
-      const v = Number(this.form.elements[name].value);
-      if (!Number.isFinite(v)) throw new Error(`camera ${name}: not a number`);
+      const text = this.form.elements[name].value.trim();
+      const v = Number(text);
+      if (text === '' || !Number.isFinite(v)) throw new Error(`Camera ${name}: “${text}” is not a number.`);
       out[name] = v;
     }
     return out;
   }
 
+  /** Shows `camera` and hands it on; the page saves it once a tracker accepts it. */
   apply(camera) {
     this.show(camera, this.sourceName);
-    this.save(camera);
     this.onApply(camera);
   }
 
@@ -83,6 +91,7 @@ export class Calibration {
     }
   }
 
+  /** Remembers `camera` for the current source. */
   save(camera) {
     try {
       localStorage.setItem(STORE + this.sourceName, JSON.stringify(camera));

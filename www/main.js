@@ -331,6 +331,7 @@ async function main() {
   calibration.onApply = (camera) => run(async () => {
     state.camera = camera;
     await openTracker();
+    calibration.save(camera);
     await refreshTopView();
     controls.say(`Camera applied: pitch ${camera.pitch_deg.toFixed(2)}°, yaw ${camera.yaw_deg.toFixed(2)}°, `
       + `height ${camera.height_m.toFixed(2)} m (remembered for this source).`);
