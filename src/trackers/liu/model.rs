@@ -293,7 +293,7 @@ impl PpfModel {
     #[inline]
     fn parabolic_row(
         &self,
-        mut sum: f64,
+        sum: f64,
         cues: &Descriptors,
         span: std::ops::Range<usize>,
         theta: f64,
@@ -305,7 +305,19 @@ impl PpfModel {
             // The default 3-node rule, two pixels at a time (same operations per pixel).
             return self.parabolic_row_simd(sum, cues, span, theta, x, t);
         }
-        let pixels = &cues.pixels[span];
+        self.parabolic_pixels(sum, &cues.pixels[span], theta, node_x, node_theta)
+    }
+
+    /// [`PpfModel::parabolic_row`] for `pixels`, one at a time, in order.
+    #[inline]
+    fn parabolic_pixels(
+        &self,
+        mut sum: f64,
+        pixels: &[MaskPixel],
+        theta: f64,
+        node_x: &[f64],
+        node_theta: &[f64],
+    ) -> f64 {
         let inv_2var = 0.5 / self.var_x;
         for px in pixels {
             let precision = f64::from(px.precision);
@@ -384,24 +396,7 @@ impl PpfModel {
             }
         }
         let rest = &cues.pixels[span.start + 2 * pairs..span.end];
-        let inv = 0.5 / self.var_x;
-        for px in rest {
-            let precision = f64::from(px.precision);
-            let dtheta = fold(theta - f64::from(px.theta));
-            if 0.5 * dtheta * dtheta * precision >= RANGE + 1.0 {
-                continue;
-            }
-            let xf = f64::from(px.x);
-            let mut g = 0.0;
-            for k in 0..3 {
-                let dx = node_x[k] - xf;
-                let dt = dtheta + node_theta[k];
-                let arg = dx * dx * inv + 0.5 * dt * dt * precision;
-                g += self.node_weights[k] * self.exp.neg_exp(arg);
-            }
-            sum += f64::from(px.weight) * g;
-        }
-        sum
+        self.parabolic_pixels(sum, rest, theta, node_x, node_theta)
     }
 }
 
