@@ -236,7 +236,6 @@ mod tests {
         };
         let mut dt = DistanceTransform::new();
         let mut out = Image::new(1, 1).unwrap();
-        let mut capped = Image::new(1, 1).unwrap();
         for trial in 0..40 {
             let (w, h) = (1 + next() as usize % 37, 1 + next() as usize % 29);
             // Densities from very sparse (often a single pixel or none) to dense.
@@ -249,15 +248,34 @@ mod tests {
             let want = brute_force(&img);
             assert_eq!(out.data(), want.as_slice(), "trial {trial}: {w}x{h}");
             // Capped: min(D, cap) bit for bit, for integer and fractional caps.
-            for cap in [0.0f32, 1.0, 2.5, 5.0, 12.3, 50.0] {
-                dt.apply_capped(&img.view(), cap, &mut capped).unwrap();
-                let same = capped
-                    .data()
-                    .iter()
-                    .zip(&want)
-                    .all(|(a, b)| a.to_bits() == b.min(cap).to_bits());
-                assert!(same, "trial {trial}: {w}x{h}, cap {cap}");
-            }
+            let caps = [0.0f32, 1.0, 2.5, 5.0, 12.3, 50.0];
+            assert_capped(
+                &mut dt,
+                &img,
+                &want,
+                &caps,
+                &format!("trial {trial}: {w}x{h}"),
+            );
+        }
+    }
+
+    /// `apply_capped` with each of `caps` gives min(brute force, cap), bit for bit.
+    fn assert_capped(
+        dt: &mut DistanceTransform,
+        img: &Image<u8>,
+        want: &[f32],
+        caps: &[f32],
+        what: &str,
+    ) {
+        let mut capped = Image::<f32>::new(1, 1).unwrap();
+        for &cap in caps {
+            dt.apply_capped(&img.view(), cap, &mut capped).unwrap();
+            let same = capped
+                .data()
+                .iter()
+                .zip(want)
+                .all(|(a, b)| a.to_bits() == b.min(cap).to_bits());
+            assert!(same, "{what}, cap {cap}");
         }
     }
 
@@ -266,7 +284,7 @@ mod tests {
         // Distances well beyond the cap, and rows whose parabolas are all left out.
         let (w, h) = (230, 170);
         let mut dt = DistanceTransform::new();
-        let (mut out, mut capped) = (Image::new(1, 1).unwrap(), Image::new(1, 1).unwrap());
+        let mut out = Image::new(1, 1).unwrap();
         for (trial, points) in [(0usize, 3usize), (1, 40), (2, 400)] {
             let mut img = Image::<u8>::new(w, h).unwrap();
             for i in 0..points {
@@ -276,15 +294,13 @@ mod tests {
             let want = brute_force(&img);
             dt.apply(&img.view(), &mut out).unwrap();
             assert_eq!(out.data(), want.as_slice(), "trial {trial}");
-            for cap in [50.0f32, 7.5] {
-                dt.apply_capped(&img.view(), cap, &mut capped).unwrap();
-                let same = capped
-                    .data()
-                    .iter()
-                    .zip(&want)
-                    .all(|(a, b)| a.to_bits() == b.min(cap).to_bits());
-                assert!(same, "trial {trial}, cap {cap}");
-            }
+            assert_capped(
+                &mut dt,
+                &img,
+                &want,
+                &[50.0, 7.5],
+                &format!("trial {trial}"),
+            );
         }
     }
 
