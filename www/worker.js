@@ -80,7 +80,6 @@ function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = 
     hypotheses: hypotheses > 0 ? t.hypotheses(hypotheses) : null,
     layers: layers ? t.layers() : null,
     top: top ? topView(rgba, width, height) : null,
-    stepNames: t.stepNames(),
     nextStep: t.nextStep ?? null,
   };
 }
@@ -94,6 +93,13 @@ function stepCompare(rgba, feed, want) {
   const trackMs = performance.now() - t0;
   const hypotheses = want?.hypotheses > 0 ? compare.hypotheses(want.hypotheses) : null;
   return { trackerId: compare.id, estimate, trackMs, hypotheses };
+}
+
+/** A result that carries the frame's pixels (and a top view) back, transferred, not copied. */
+function reply(result) {
+  const transfer = [result.rgba.buffer];
+  if (result.top) transfer.push(result.top.rgba.buffer);
+  return { result, transfer };
 }
 
 const handlers = {
@@ -157,19 +163,16 @@ const handlers = {
   async track({ rgba, right: frameRight, width, height, motion, want }) {
     if (!tracker) {
       const top = want?.top ? topView(rgba, width, height) : null;
-      return { result: { rgba, estimate: null, trackMs: 0, top }, transfer: [rgba.buffer] };
+      return reply({ rgba, estimate: null, trackMs: 0, top });
     }
     feedTracker(tracker, { motion, frameRight, width, height });
     const t0 = performance.now();
     const estimate = tracker.step(rgba, width, height);
     const trackMs = performance.now() - t0;
-    return {
-      result: {
-        rgba, estimate, trackMs, ...extras(tracker, rgba, width, height, want ?? {}),
-        compare: stepCompare(rgba, { motion, frameRight, width, height }, want),
-      },
-      transfer: [rgba.buffer],
-    };
+    return reply({
+      rgba, estimate, trackMs, ...extras(tracker, rgba, width, height, want ?? {}),
+      compare: stepCompare(rgba, { motion, frameRight, width, height }, want),
+    });
   },
   /** Starts a frame in per-step (teaching) mode; `advance` then runs one step per call. */
   async beginFrame({ rgba, right: frameRight, width, height, motion, want }) {
@@ -179,10 +182,7 @@ const handlers = {
     t.beginFrame(rgba, width, height);
     // The comparison tracker takes the whole frame at once.
     const compared = stepCompare(rgba, { motion, frameRight, width, height }, want);
-    return {
-      result: { rgba, ...extras(t, rgba, width, height, want ?? {}), compare: compared },
-      transfer: [rgba.buffer],
-    };
+    return reply({ rgba, ...extras(t, rgba, width, height, want ?? {}), compare: compared });
   },
   async advance({ rgba, width, height, want }) {
     const t = requireTracker();
@@ -190,14 +190,11 @@ const handlers = {
     const t0 = performance.now();
     const estimate = t.advance();
     const trackMs = performance.now() - t0;
-    return {
-      result: { rgba, estimate, trackMs, done, ...extras(t, rgba, width, height, want ?? {}) },
-      transfer: [rgba.buffer],
-    };
+    return reply({ rgba, estimate, trackMs, done, ...extras(t, rgba, width, height, want ?? {}) });
   },
   /** The top view of a frame (after a camera change), with the pixels back. */
   async topView({ rgba, width, height }) {
-    return { result: { rgba, top: topView(rgba, width, height) }, transfer: [rgba.buffer] };
+    return reply({ rgba, top: topView(rgba, width, height) });
   },
   async reset() {
     tracker?.reset();
