@@ -154,14 +154,15 @@ test('in a Vite app under the dev server (vite, no configuration)', { timeout: 9
   const vite = join(tmp, 'vite');
   const port = await freePort();
   const dev = spawn(join(vite, 'node_modules', '.bin', 'vite'), ['--port', String(port), '--strictPort'],
-    { cwd: vite, stdio: ['ignore', 'pipe', 'pipe'] });
+    { cwd: vite, stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, NO_COLOR: '1', FORCE_COLOR: '0' } });
   let log = '';
   dev.stdout.on('data', (d) => { log += d; });
   dev.stderr.on('data', (d) => { log += d; });
   const exited = new Promise((resolve) => dev.once('exit', resolve));
   try {
     const deadline = Date.now() + 30_000;
-    while (!log.includes(`:${port}`)) {
+    // A terminal that forces colour puts escape codes between "localhost:" and the port.
+    while (!log.replace(/\x1b\[[0-9;]*m/g, '').includes(`:${port}`)) {
       if (dev.exitCode !== null || Date.now() > deadline) assert.fail(`vite did not start:\n${log}`);
       await new Promise((r) => setTimeout(r, 100));
     }
