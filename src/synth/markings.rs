@@ -32,7 +32,9 @@ pub enum Pattern {
         /// Gap between the two lines, metres.
         gap_m: f64,
     },
-    /// A kerb: a raised concrete band outside the road edge (drawn flat: a simplification).
+    /// A kerb: its inner face stands on the boundary line and everything beyond it (a
+    /// concrete band [`CURB_WIDTH_M`] wide, then the pavement) is raised by
+    /// [`MarkingConfig::curb_height_m`] (see the renderer's `kerbs` module).
     Curb,
     /// No marking (an unmarked road edge: asphalt meets the verge).
     None,
@@ -107,6 +109,8 @@ pub struct MarkingConfig {
     pub overrides: Vec<BoundaryStyle>,
     /// Worn stretches.
     pub wear: Vec<Wear>,
+    /// Height of kerbs and the pavement behind them above the road, metres (0 to 0.5).
+    pub curb_height_m: f64,
 }
 
 impl Default for MarkingConfig {
@@ -127,12 +131,16 @@ impl Default for MarkingConfig {
             },
             overrides: vec![],
             wear: vec![],
+            curb_height_m: CURB_HEIGHT_M,
         }
     }
 }
 
 /// Width of a kerb band, metres.
 pub const CURB_WIDTH_M: f64 = 0.3;
+
+/// Default kerb height, metres (a common urban kerb).
+pub const CURB_HEIGHT_M: f64 = 0.15;
 
 /// What a pixel's footprint sees of the markings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -182,6 +190,14 @@ impl MarkingConfig {
                 _ => {}
             }
         }
+        require_finite("curb_height_m", self.curb_height_m)?;
+        if !(0.0..=0.5).contains(&self.curb_height_m) {
+            return Err(Error::parameter(
+                "curb_height_m",
+                self.curb_height_m,
+                "must be 0 to 0.5 m",
+            ));
+        }
         for w in &self.wear {
             require_finite("wear.visibility", w.visibility)?;
             if !(0.0..=1.0).contains(&w.visibility) {
@@ -193,6 +209,14 @@ impl MarkingConfig {
             }
         }
         Ok(())
+    }
+
+    /// Whether any style is a kerb.
+    pub fn has_curbs(&self) -> bool {
+        [self.outer, self.inner]
+            .iter()
+            .chain(self.overrides.iter().map(|o| &o.style))
+            .any(|st| st.pattern == Pattern::Curb)
     }
 
     /// The style of boundary `k` at `s`, or `None` when no lane touches it there.

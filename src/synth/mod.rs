@@ -7,6 +7,7 @@
 
 mod appearance;
 mod ego;
+mod kerbs;
 mod markings;
 mod render;
 mod road;

@@ -22,6 +22,7 @@
 
 use super::appearance::value_noise;
 use super::ego::Pose;
+use super::kerbs::{self, Raised};
 use super::road::Road;
 use super::scene::{SceneConfig, Shadow};
 use crate::camera::Camera;
@@ -174,15 +175,39 @@ impl FrameGeometry {
         self.table
     }
 
-    /// Casts the ray of normalised direction (x_n, y_n, 1).
-    pub(super) fn cast(&self, xn: f64, yn: f64) -> Hit {
+    /// The vehicle-frame direction r = R^T n of the ray of normalised direction (x_n, y_n, 1).
+    fn direction(&self, xn: f64, yn: f64) -> [f64; 3] {
         let rt = &self.rt;
-        // r = R^T n.
-        let r = [
+        [
             rt[0][0] * xn + rt[1][0] * yn + rt[2][0],
             rt[0][1] * xn + rt[1][1] * yn + rt[2][1],
             rt[0][2] * xn + rt[1][2] * yn + rt[2][2],
-        ];
+        ]
+    }
+
+    /// The vehicle-frame point C + t r of the ray (x_n, y_n, 1).
+    pub(super) fn point_at(&self, xn: f64, yn: f64, t: f64) -> [f64; 3] {
+        let (o, r) = (self.origin, self.direction(xn, yn));
+        [o[0] + t * r[0], o[1] + t * r[1], o[2] + t * r[2]]
+    }
+
+    /// Height of the road surface at `x` ahead (the vertical curve z = C_V x^2 / 2).
+    pub(super) fn surface_height(&self, x: f64) -> f64 {
+        self.c_v * x * x / 2.0
+    }
+
+    /// Where the ray (x_n, y_n, 1) meets the road surface raised by `height`: vehicle-frame
+    /// x, y and the depth t; `None` when it does not (or beyond the rendered range).
+    pub(super) fn cast_surface(&self, xn: f64, yn: f64, height: f64) -> Option<[f64; 3]> {
+        let (o, r) = (self.origin, self.direction(xn, yn));
+        let t = road_hit([o[0], o[1], o[2] - height], r, self.c_v)?;
+        let x = o[0] + t * r[0];
+        (x <= MAX_RANGE_M).then(|| [x, o[1] + t * r[1], t])
+    }
+
+    /// Casts the ray of normalised direction (x_n, y_n, 1).
+    pub(super) fn cast(&self, xn: f64, yn: f64) -> Hit {
+        let r = self.direction(xn, yn);
         let o = self.origin;
         let mut best = match road_hit(o, r, self.c_v) {
             Some(t) if o[0] + t * r[0] <= MAX_RANGE_M => Hit::Road {
@@ -402,7 +427,14 @@ pub(super) fn shade_road(
     let noise = |scale: f64, salt: u64| value_noise(seed ^ salt, s * scale, d * scale) as f32;
     // Texture finer than the pixel footprint would shimmer: fade it out with distance.
     let fine = (0.1 / fd).min(1.0) as f32;
-    let mut rgb = if d > left_edge || d < right_edge {
+    let raised = kerbs::raised(&config.markings, road, s, d);
+    let mut rgb = if raised == Raised::Pavement {
+        // Concrete paving slabs 1.2 m long with dark joints.
+        let n = (noise(10.0, 31) - 0.5) * fine + (noise(0.8, 32) - 0.5) * 0.6;
+        let joint = super::markings::interval(s.rem_euclid(1.2) - 0.6, 0.015, fs);
+        let g = (150.0 + 28.0 * n) * (1.0 - 0.35 * joint);
+        [g, g * 0.99, g * 0.96]
+    } else if d > left_edge || d < right_edge {
         // Verge: dry grass and gravel.
         let n = noise(3.0, 11) * fine + 0.5 * (1.0 - fine);
         let m = noise(0.4, 12);
@@ -429,6 +461,11 @@ pub(super) fn shade_road(
     // Road paint is retroreflective: at night it returns more of the headlights' light.
     let gain = if a.night { 1.8 } else { 1.0 };
     blend(&mut rgb, m.rgb.map(|c| c * gain), m.alpha);
+    if raised == Raised::Kerbstone {
+        // Weathered concrete.
+        let n = 1.0 + 0.12 * (noise(14.0, 33) - 0.5) * fine;
+        rgb = rgb.map(|c| c * n);
+    }
     for p in &config.road_paint {
         let along = super::markings::interval(s - (p.s + p.size_m[0] / 2.0), p.size_m[0] / 2.0, fs);
         let across = super::markings::interval(d - p.d, p.size_m[1] / 2.0, fd);
@@ -472,6 +509,14 @@ pub(super) fn shade_road(
         *c *= light;
     }
     rgb
+}
+
+/// Shades a kerb's vertical face (facing the road, in its own shadow) at `height` above the
+/// road, `s` along it.
+pub(super) fn shade_kerb_face(s: f64, height: f64, seed: u64) -> [f32; 3] {
+    let n = value_noise(seed ^ 34, s * 14.0, height * 14.0) as f32;
+    let g = 128.0 + 16.0 * (n - 0.5);
+    [g, g * 0.99, g * 0.95]
 }
 
 /// Alpha-blends `with` over `rgb`.

@@ -3,6 +3,7 @@
 
 use super::appearance::{box_blur, Effects};
 use super::ego::Pose;
+use super::kerbs;
 use super::render::{self, FrameGeometry, Hit};
 use super::road::Road;
 use super::scene::SceneConfig;
@@ -197,10 +198,33 @@ impl Scene {
                             s_row = s;
                             first_in_row = false;
                         }
-                        let fs = (x * x / (fy * cam_h)).max(0.003);
-                        let fd = (x / fx + (y / x).abs() * fs).max(0.003);
-                        let mut c =
-                            render::shade_road(&self.config, &self.road, s, d, fd, fs, self.seed);
+                        let [xn, yn] = [xn as f64, yn as f64];
+                        let at = kerbs::surface(
+                            &geo,
+                            &self.config.markings,
+                            &self.road,
+                            xn,
+                            yn,
+                            [x, y, depth],
+                            s,
+                            d,
+                        );
+                        let (x, y) = (at.x, at.y);
+                        let mut c = if at.face {
+                            render::shade_kerb_face(at.s, at.height, self.seed)
+                        } else {
+                            let fs = (x * x / (fy * (cam_h - at.height))).max(0.003);
+                            let fd = (x / fx + (y / x).abs() * fs).max(0.003);
+                            render::shade_road(
+                                &self.config,
+                                &self.road,
+                                at.s,
+                                at.d,
+                                fd,
+                                fs,
+                                self.seed,
+                            )
+                        };
                         let light = geo.under_vehicle(x, y)
                             * if night {
                                 render::night_light(x, y)
@@ -211,7 +235,7 @@ impl Scene {
                             *k *= light;
                         }
                         render::haze(&mut c, x, night);
-                        (c, depth)
+                        (c, at.depth)
                     }
                     Hit::Vehicle {
                         index,
