@@ -33,7 +33,7 @@ pub enum Pattern {
         gap_m: f64,
     },
     /// A kerb: its inner face stands on the boundary line and everything beyond it (a
-    /// concrete band [`CURB_WIDTH_M`] wide, then the pavement) is raised by
+    /// concrete band 0.3 m wide, then the pavement) is raised by
     /// [`MarkingConfig::curb_height_m`] (see the renderer's `kerbs` module).
     Curb,
     /// No marking (an unmarked road edge: asphalt meets the verge).

@@ -155,6 +155,26 @@ export interface DensityConfig {
   threshold?: number;
 }
 
+/** Curbs from the elevation map (stereo; missing fields take the defaults shown). */
+export interface CurbConfig {
+  /** Detect curbs and add them to DT^S (default true). */
+  enabled?: boolean;
+  /** Elevation-map cell: ahead, lateral, metres (default [0.25, 0.1]). */
+  cell_m?: [number, number];
+  /** Farthest distance mapped, metres (default 15, the paper's D_3D). */
+  range_m?: number;
+  /** Lateral half-width mapped, metres (default 8). */
+  half_width_m?: number;
+  /** Fewest points that give a cell a class (default 5). */
+  min_points?: number;
+  /** A cell is raised between these heights, metres; above, an obstacle (default [0.06, 0.35]). */
+  height_m?: [number, number];
+  /** Most unknown cells between a road cell and the curb after it (default 2). */
+  max_gap?: number;
+  /** A foot snaps to the nearest image road edge within this many metres (default 0.2). */
+  snap_m?: number;
+}
+
 /** The census stereo matcher. All fields are required when the object is given. */
 export interface DisparityConfig {
   /** Largest disparity searched (replaced by the tracker with the camera's own). */
@@ -387,6 +407,8 @@ export interface DanescuOptions {
   canny?: CannyConfig;
   /** The discrete 3-D space (stereo). */
   density?: DensityConfig;
+  /** Curbs from the elevation map (stereo). */
+  curbs?: CurbConfig;
   /** The stereo matcher (stereo; { max_disparity: 64, census_radius: 2, window_radius: 3,
    * uniqueness: 0.9, left_right_tolerance: 1 }). */
   disparity?: DisparityConfig;

@@ -6,6 +6,7 @@
 //! point count P of the image mapping, the likelihood widths, the validation limits and the
 //! preliminary pitch detection's histogram.
 
+use super::elevation::CurbConfig;
 use crate::error::{require_finite, require_positive, Error, Result};
 use crate::vision::{CannyConfig, DensityConfig, DisparityConfig, HGradientConfig};
 use serde::{Deserialize, Serialize};
@@ -77,6 +78,8 @@ pub struct DanescuConfig {
     pub canny: CannyConfig,
     /// The discrete 3-D space and its density threshold (stereo only).
     pub density: DensityConfig,
+    /// Curbs from the elevation map, added to DT^S (stereo only).
+    pub curbs: CurbConfig,
     /// The stereo matcher (stereo only; `max_disparity` is set from the camera: the
     /// disparity of the nearest visible road point).
     pub disparity: DisparityConfig,
@@ -138,6 +141,7 @@ impl Default for DanescuConfig {
             marking_width_range_m: [0.05, 0.5],
             canny: CannyConfig::default(),
             density: DensityConfig::default(),
+            curbs: CurbConfig::default(),
             disparity: DisparityConfig::default(),
             pitch_bin_rad: 0.0005,
             pitch_range_rad: 0.05,
@@ -254,6 +258,6 @@ impl DanescuConfig {
         if self.max_clusters == 0 {
             return Err(Error::parameter("max_clusters", 0, "must be at least 1"));
         }
-        Ok(())
+        self.curbs.validate()
     }
 }

@@ -8,8 +8,8 @@
 //! - **Markings** (the paper's ref. \[9\] extracts them from this same gradient): on each row, a
 //!   dark-to-light run of the gradient (g > c) followed by a light-to-dark run (g < -c) whose
 //!   extremes are between the smallest and largest marking width apart at that row's distance
-//!   is a marking; both of its edges are marked. Curbs, which the paper adds from the
-//!   elevation map, are not detected yet (the simulator draws them flat).
+//!   is a marking; both of its edges are marked. The stereo tracker adds the curbs' feet
+//!   from the elevation map ([`super::elevation`]) to the same image before DT^S.
 //! - **Road edges**: Canny edges of the grey image. The stereo tracker keeps those whose 3-D
 //!   point is on the road (selected by the preliminary pitch, Sec. IV); the monocular one keeps
 //!   all of them (it cannot tell the road from what stands on it).
@@ -145,6 +145,44 @@ impl ImageCues {
         self.dt
             .apply_capped(&self.edges.view(), MAX_DISTANCE_PX, &mut self.dt_edge)?;
         Ok(())
+    }
+
+    /// Marks the segment from image point `a` to `b` (pixels) as a delimiter edge in the
+    /// marking-edge image (a curb's foot, [`super::elevation`]). Each of its pixels snaps to
+    /// the nearest road edge on its row within `snap` pixels (interpolated from `a` to `b`),
+    /// if there is one: the elevation map places a foot to a cell, the image edge of the
+    /// face's foot to a pixel. Parts outside the road region are left out. Returns the pixels
+    /// newly marked.
+    pub fn mark_delimiter(&mut self, a: [f64; 2], b: [f64; 2], snap: [f64; 2]) -> usize {
+        let steps = (b[0] - a[0]).abs().max((b[1] - a[1]).abs()).ceil().max(1.0);
+        if !steps.is_finite() || steps > (self.width + self.height) as f64 * 4.0 {
+            return 0;
+        }
+        let mut marked = 0;
+        for k in 0..=steps as usize {
+            let f = k as f64 / steps;
+            let (u, v) = (
+                (a[0] + (b[0] - a[0]) * f).round(),
+                (a[1] + (b[1] - a[1]) * f).round(),
+            );
+            if u < 0.0 || u >= self.width as f64 || v < self.top as f64 || v >= self.height as f64 {
+                continue;
+            }
+            let (u, row) = (u as usize, v as usize - self.top);
+            let reach = (snap[0] + (snap[1] - snap[0]) * f).clamp(0.0, 64.0) as usize;
+            let edges = self.edges.row(row);
+            let u = (0..=reach)
+                .flat_map(|d| [u.checked_sub(d), Some(u + d)])
+                .flatten()
+                .find(|&x| x < self.width && edges[x] == EDGE)
+                .unwrap_or(u);
+            if self.markings.get(u, row) == 0 {
+                self.markings.set(u, row, 1);
+                marked += 1;
+            }
+        }
+        self.marking_count += marked;
+        marked
     }
 
     fn find_markings(&mut self) {

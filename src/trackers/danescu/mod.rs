@@ -32,6 +32,7 @@
 
 pub mod config;
 pub mod cues;
+pub mod elevation;
 pub mod model;
 pub mod stereo;
 

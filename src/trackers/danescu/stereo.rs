@@ -19,9 +19,13 @@
 //!    known to stand off the road, not what could not be measured (our choice; the paper's
 //!    dense stereo hardware measured the edges themselves).
 //! 6. **Density** (Sec. VI-B): the road points in the lateral plane, [`crate::vision::Density`].
+//! 7. **Curbs** (Sec. VI-A b): every point's height above the road line z = m x goes into the
+//!    elevation map ([`super::elevation`]); the curbs' feet found there are projected at road
+//!    height into the marking-edge image, which becomes DT^S.
 
 use super::config::DanescuConfig;
 use super::cues::ImageCues;
+use super::elevation::ElevationMap;
 use crate::camera::{Camera, StereoRig};
 use crate::error::{Error, Result};
 use crate::image::{rgba_to_gray, Image};
@@ -29,12 +33,14 @@ use crate::math;
 use crate::vision::{Density, DisparityConfig, StereoMatcher, EDGE};
 use nalgebra::{Matrix3, Vector3};
 
-/// A triangulated pixel: its column, its row in the road region, its distance ahead and height.
+/// A triangulated pixel: its column, its row in the road region, its distance ahead, lateral
+/// offset and height.
 #[derive(Debug, Clone, Copy)]
 struct Point {
     u: u32,
     row: u32,
     x: f64,
+    y: f64,
     z: f64,
 }
 
@@ -48,6 +54,8 @@ pub struct StereoCues {
     right_gray: Image<u8>,
     matcher: StereoMatcher,
     density: Density,
+    elevation: Option<ElevationMap>,
+    camera: Camera,
     points: Vec<Point>,
     histogram: Vec<u32>,
     bin: f64,
@@ -96,6 +104,12 @@ impl StereoCues {
             right_gray: Image::new(w, h)?,
             matcher,
             density: Density::new(config.density)?,
+            elevation: if config.curbs.enabled {
+                Some(ElevationMap::new(config.curbs)?)
+            } else {
+                None
+            },
+            camera: camera.clone(),
             points: Vec::with_capacity(w * h),
             histogram: vec![0; bins],
             bin: config.pitch_bin_rad,
@@ -112,6 +126,12 @@ impl StereoCues {
     /// The density image and DT^D of the last frame.
     pub fn density(&self) -> &Density {
         &self.density
+    }
+
+    /// The elevation map of the last frame and the curbs found in it (`None` with curbs
+    /// disabled).
+    pub fn elevation(&self) -> Option<&ElevationMap> {
+        self.elevation.as_ref()
     }
 
     /// The disparity of the last frame.
@@ -161,11 +181,12 @@ impl StereoCues {
                 if d <= 0.0 {
                     continue;
                 }
-                if let Some([x, _, z]) = self.point(u, v, d) {
+                if let Some([x, y, z]) = self.point(u, v, d) {
                     self.points.push(Point {
                         u: u as u32,
                         row: (v - top) as u32,
                         x,
+                        y,
                         z,
                     });
                 }
@@ -205,6 +226,21 @@ impl StereoCues {
             }
         }
         self.density.finish()?;
+        if let Some(map) = self.elevation.as_mut() {
+            map.clear();
+            for p in &self.points {
+                map.add(p.x, p.y, p.z - slope * p.x);
+            }
+            let fx = self.camera.focal()[0];
+            let reach = map.config().snap_m;
+            for f in map.find() {
+                let foot = |x: f64| self.camera.project([x, f.y, slope * x]);
+                let x0 = f.x0.max(self.near);
+                if let (Some(a), Some(b)) = (foot(x0), foot(f.x1)) {
+                    cues.mark_delimiter(a, b, [reach * fx / x0, reach * fx / f.x1]);
+                }
+            }
+        }
         Ok(matching)
     }
 }
