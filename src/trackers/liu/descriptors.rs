@@ -47,9 +47,9 @@ pub struct Descriptors {
     before: Vec<u32>,
     /// Running sum of the weights over `pixels` (index j: the first j pixels).
     weight_sum: Vec<f64>,
-    /// `pixels` as f64 columns (x, weight, theta, precision), for the SIMD kernel sums.
+    /// `pixels` as columns (x, weight, theta, precision), for the SIMD kernel sums.
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    pub(super) columns: [Vec<f64>; 4],
+    pub(super) columns: [Vec<f32>; 4],
 }
 
 /// One measurement pixel.
@@ -186,7 +186,7 @@ impl Descriptors {
                 column.extend(
                     self.pixels
                         .iter()
-                        .map(|p| f64::from([p.x, p.weight, p.theta, p.precision][field])),
+                        .map(|p| [p.x, p.weight, p.theta, p.precision][field]),
                 );
             }
         }

@@ -19,6 +19,8 @@ pub struct ExpTable {
     /// (exp(-i h), exp(-(i + 1) h) - exp(-i h)) per node i; the last entry, at a = 32, is
     /// (0, 0) so that every larger argument reads 0 without a branch.
     segments: Vec<[f64; 2]>,
+    /// The same in f32, for the parabolic sums.
+    segments32: Vec<[f32; 2]>,
 }
 
 impl Default for ExpTable {
@@ -28,7 +30,22 @@ impl Default for ExpTable {
         let mut segments: Vec<[f64; 2]> =
             (0..n).map(|i| [node(i), node(i + 1) - node(i)]).collect();
         segments.push([0.0, 0.0]);
-        Self { segments }
+        let segments32 = segments
+            .iter()
+            .enumerate()
+            .map(|(i, _)| {
+                if i + 1 == segments.len() {
+                    [0.0, 0.0]
+                } else {
+                    let (a, b) = (node(i) as f32, node(i + 1) as f32);
+                    [a, b - a]
+                }
+            })
+            .collect();
+        Self {
+            segments,
+            segments32,
+        }
     }
 }
 
@@ -45,20 +62,34 @@ impl ExpTable {
 }
 
 impl ExpTable {
-    /// [`ExpTable::neg_exp`] of both lanes of an f64x2, by the same operations: on wasm32,
-    /// `t as usize` is the saturating conversion to u32 that `u32x4_trunc_sat_f64x2_zero` does
-    /// per lane (NaN to 0), and the index and its f64 value are exact.
+    /// [`ExpTable::neg_exp`] in f32 (the interpolation bound holds to f32 rounding).
+    #[inline]
+    pub fn neg_exp32(&self, a: f32) -> f32 {
+        let t = a * PER_UNIT as f32;
+        let i = (t as usize).min(self.segments32.len() - 1);
+        let [value, slope] = self.segments32[i];
+        value + (t - i as f32) * slope
+    }
+
+    /// [`ExpTable::neg_exp32`] of the four lanes of an f32x4, by the same operations: on
+    /// wasm32, `t as usize` is the saturating conversion to u32 that `u32x4_trunc_sat_f32x4`
+    /// does per lane (NaN to 0), and the index and its f32 value are exact.
     #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
     #[inline]
-    pub fn neg_exp_x2(&self, a: core::arch::wasm32::v128) -> core::arch::wasm32::v128 {
+    pub fn neg_exp_x4(&self, a: core::arch::wasm32::v128) -> core::arch::wasm32::v128 {
         use core::arch::wasm32::*;
-        let t = f64x2_mul(a, f64x2_splat(PER_UNIT));
-        let last = self.segments.len() as u32 - 1;
-        let i = u32x4_min(u32x4_trunc_sat_f64x2_zero(t), u32x4_splat(last));
-        let [v0, s0] = self.segments[u32x4_extract_lane::<0>(i) as usize];
-        let [v1, s1] = self.segments[u32x4_extract_lane::<1>(i) as usize];
-        let frac = f64x2_sub(t, f64x2_convert_low_u32x4(i));
-        f64x2_add(f64x2(v0, v1), f64x2_mul(frac, f64x2(s0, s1)))
+        let t = f32x4_mul(a, f32x4_splat(PER_UNIT as f32));
+        let last = self.segments32.len() as u32 - 1;
+        let i = u32x4_min(u32x4_trunc_sat_f32x4(t), u32x4_splat(last));
+        let [v0, s0] = self.segments32[u32x4_extract_lane::<0>(i) as usize];
+        let [v1, s1] = self.segments32[u32x4_extract_lane::<1>(i) as usize];
+        let [v2, s2] = self.segments32[u32x4_extract_lane::<2>(i) as usize];
+        let [v3, s3] = self.segments32[u32x4_extract_lane::<3>(i) as usize];
+        let frac = f32x4_sub(t, f32x4_convert_u32x4(i));
+        f32x4_add(
+            f32x4(v0, v1, v2, v3),
+            f32x4_mul(frac, f32x4(s0, s1, s2, s3)),
+        )
     }
 }
 
@@ -81,5 +112,18 @@ mod tests {
         assert_eq!(table.neg_exp(40.0), 0.0);
         assert_eq!(table.neg_exp(32.0), 0.0);
         assert!(table.neg_exp(f64::NAN).is_nan());
+        let mut worst32: f64 = 0.0;
+        for k in 0..100_000 {
+            let a = k as f32 * RANGE as f32 / 100_000.0;
+            let exact = math::exp(-f64::from(a));
+            worst32 = worst32.max((f64::from(table.neg_exp32(a)) - exact).abs() / exact);
+        }
+        // The chord bound plus f32 rounding of the table and of the interpolation.
+        assert!(
+            worst32 <= 1.01 / (8.0 * PER_UNIT * PER_UNIT) + 1e-6,
+            "{worst32}"
+        );
+        assert_eq!(table.neg_exp32(0.0), 1.0);
+        assert_eq!(table.neg_exp32(40.0), 0.0);
     }
 }
