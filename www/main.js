@@ -12,6 +12,7 @@ import { drawFrame, drawBoundaries, drawHypotheses, drawTopView, drawLayer } fro
 import { toJsonLines, toCsv, download } from './export.js';
 import { Plots } from './plots.js';
 import { Departure } from './departure.js';
+import { appendCapped } from './capped.js';
 import { ParamsPanel } from './params-panel.js';
 
 /** Particles drawn per frame (spread over the cloud). */
@@ -29,7 +30,7 @@ const panel = new ParamsPanel();
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
-  lastHypotheses: null, lastRgba: null, results: [], offsetErrors: [], ended: false, source: null, pending: 0,
+  lastHypotheses: null, lastRgba: null, results: [], droppedResults: 0, offsetErrors: [], ended: false, source: null, pending: 0,
 });
 
 const state = {
@@ -151,9 +152,9 @@ function record(frame, result) {
   const status = departure.update(result.estimate, t, frame.motion?.speed_mps ?? null);
   controls.departure.textContent = status?.text ?? '';
   controls.departure.classList.toggle('warn', !!status?.warn);
-  demo.results.push({ ...result.estimate, frame: frame.name, ms: result.trackMs });
+  demo.droppedResults += appendCapped(demo.results, { ...result.estimate, frame: frame.name, ms: result.trackMs });
   if (frame.truth) {
-    demo.offsetErrors.push(Math.abs(result.estimate.lateral_offset_m - frame.truth.lateral_offset_m));
+    appendCapped(demo.offsetErrors, Math.abs(result.estimate.lateral_offset_m - frame.truth.lateral_offset_m));
   }
   controls.setExportable(true);
 }
@@ -254,6 +255,7 @@ async function openTracker() {
   controls.setStepNames(info.stepNames);
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
   demo.results = [];
+  demo.droppedResults = 0;
   demo.offsetErrors = [];
   plots.clear();
   departure.reset();
@@ -381,6 +383,7 @@ async function main() {
     await client.request('reset');
     state.inFrame = null;
     demo.results = [];
+    demo.droppedResults = 0;
     demo.offsetErrors = [];
     demo.ended = false;
     plots.clear();
@@ -393,6 +396,10 @@ async function main() {
     const base = `lanepf-${state.trackerId || 'frames'}-${state.sourceName.replace(/[^\w.-]+/g, '_')}`;
     if (format === 'jsonl') download(`${base}.jsonl`, toJsonLines(demo.results), 'application/x-ndjson');
     else download(`${base}.csv`, toCsv(demo.results), 'text/csv');
+    if (demo.droppedResults > 0) {
+      controls.say(`The export holds the last ${demo.results.length} frames: ${demo.droppedResults} older ones `
+        + 'were let go to bound the page\'s memory. Restart and export more often to keep them all.');
+    }
   };
   const redraw = () => {
     if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);

@@ -5,6 +5,7 @@ import assert from 'node:assert/strict';
 import { Departure, CAR_HALF_WIDTH_M } from '../../www/departure.js';
 import { toJsonLines, toCsv, CSV_COLUMNS } from '../../www/export.js';
 import { scaleCamera } from '../../www/camera-presets.js';
+import { appendCapped, MAX_RESULTS } from '../../www/capped.js';
 
 const lane = (q, psi = 0, valid = true) => ({
   valid, lateral_offset_m: q, heading_rad: psi, lane_width_m: 3.6, curvature_per_m: 0,
@@ -70,4 +71,18 @@ test('stereo image pairs are told from side-by-side images by their names', asyn
   assert.equal(arePairs(['sbs0.png', 'sbs1.png']), false, 'no camera token');
   assert.equal(arePairs(['a_left.png', 'b_right.png']), false, 'different frames');
   assert.equal(arePairs(['a_left.png']), false, 'odd count');
+});
+
+test('the run log keeps the newest frames within its cap, dropping the oldest in batches', () => {
+  const list = [];
+  let dropped = 0;
+  for (let i = 0; i < 100; i += 1) {
+    dropped += appendCapped(list, i, 36);
+    // Never more than the cap plus one batch (36 / 18 = 2), never fewer than the cap once full.
+    assert.ok(list.length <= 38 && list.length >= Math.min(i + 1, 36), `${i}: ${list.length}`);
+    assert.equal(list[list.length - 1], i);
+    assert.equal(dropped + list.length, i + 1);
+  }
+  assert.deepEqual(list, Array.from({ length: list.length }, (_, k) => 100 - list.length + k));
+  assert.ok(MAX_RESULTS >= 10 * 60 * 30, 'ten minutes at 30 fps');
 });
