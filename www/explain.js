@@ -58,7 +58,7 @@ export const TRACKERS = {
     title: 'Danescu & Nedevschi 2011: particle filter on an 11-parameter 3-D lane',
     text: [
       'A particle is a whole 3-D lane: width W₀ and its rate, horizontal and vertical curvature, height Y₀, offset X_CW, pitch α, roll γ, yaw ψ and the two marking widths (eqs. 1-4).',
-      'Each frame: resample keeping N − R particles and draw R from a generic distribution; drift every particle by the car’s speed and yaw rate, then diffuse; weigh each by projecting it into the image and comparing with distance transforms of marking and road edges (eqs. 9-14) and, with stereo, with a 3-D density image of road points.',
+      'Each frame: resample keeping N − R particles and draw R from a generic distribution; drift every particle by the car’s speed and yaw rate, then diffuse; weigh each by projecting it into the image and comparing with distance transforms of marking and road edges (eqs. 9-14) and, with stereo, with a 3-D density image of road points. With stereo, curbs found as steps in an elevation map of the 3-D points join the markings (the “elevation map” layer).',
       'The estimate clusters the particles by X_CW (MBSAS) and averages the biggest cluster’s heavy particles (eq. 15). danescu-mono is our one-camera variant: a flat road, no density cue.',
     ],
     params: [

@@ -285,6 +285,22 @@ impl ElevationMap {
         &self.feet
     }
 
+    /// What the map says of road point (`x` ahead, `y` left): 0 unknown or outside the map,
+    /// 1 road, 2 raised (curb), 3 obstacle.
+    pub fn class_at(&self, x: f64, y: f64) -> u8 {
+        let r = x / self.config.cell_m[0];
+        let c = y / self.config.cell_m[1] + (self.cols / 2) as f64;
+        if !(r >= 0.0 && c >= 0.0 && (r as usize) < self.rows && (c as usize) < self.cols) {
+            return 0;
+        }
+        match self.class(r as usize * self.cols + c as usize) {
+            Class::Unknown => 0,
+            Class::Road => 1,
+            Class::Raised => 2,
+            Class::Obstacle => 3,
+        }
+    }
+
     /// The feet found by the last [`ElevationMap::find`].
     pub fn feet(&self) -> &[CurbFoot] {
         &self.feet
@@ -327,6 +343,11 @@ mod tests {
     fn curb_feet_are_found_where_the_road_steps_up() {
         let mut map = street();
         let feet = map.find().to_vec();
+        assert_eq!(map.class_at(10.0, 0.0), 1, "road");
+        assert_eq!(map.class_at(10.0, 3.5), 2, "behind the left curb");
+        assert_eq!(map.class_at(13.0, 2.5), 3, "the parked car");
+        assert_eq!(map.class_at(30.0, 0.0), 0, "beyond the map");
+        assert_eq!(map.class_at(f64::NAN, 0.0), 0);
         let left: Vec<_> = feet.iter().filter(|f| f.y > 0.0).collect();
         let right: Vec<_> = feet.iter().filter(|f| f.y < 0.0).collect();
         // Rows of 0.25 m from 4 m to 20 m: 64 rows, less the car's 8 on the left.

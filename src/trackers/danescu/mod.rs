@@ -576,7 +576,8 @@ impl Tracker for DanescuTracker {
 
     /// The marking and road-edge cues seen on the road: exp(-DT^2 / 2) of DT^S and DT^E
     /// sampled on a 0.1 m grid from `near_m` to `far_m` and +-6 m (1 on an edge pixel); for
-    /// danescu-stereo also the density image and its column maxima on the lateral plane.
+    /// danescu-stereo also the elevation map's cell classes on the same grid, and the density
+    /// image and its column maxima on the lateral plane.
     fn layers(&self) -> Vec<Layer> {
         const CELL: f64 = 0.1;
         const HALF_WIDTH_M: f64 = 6.0;
@@ -609,13 +610,33 @@ impl Tracker for DanescuTracker {
             }
         };
         let mut layers = vec![
-            grid("marking edges: exp(-DT^S^2 / 2)", &|u, v| {
+            grid("marking and curb edges: exp(-DT^S^2 / 2)", &|u, v| {
                 self.cues.marking_distance(u, v)
             }),
             grid("road edges: exp(-DT^E^2 / 2)", &|u, v| {
                 self.cues.edge_distance(u, v)
             }),
         ];
+        if let Some(map) = self.stereo.as_ref().and_then(|s| s.elevation()) {
+            // The cell classes on the same grid: 1/3 road, 2/3 raised, 1 obstacle.
+            let mut values = vec![0.0f32; width * height];
+            for r in 0..height {
+                let x = x0 + (r as f64 + 0.5) * CELL;
+                for c in 0..width {
+                    let y = HALF_WIDTH_M - (c as f64 + 0.5) * CELL;
+                    values[r * width + c] = f32::from(map.class_at(x, y)) / 3.0;
+                }
+            }
+            layers.push(Layer::Grid {
+                name: "elevation map: road 1/3, curb 2/3, obstacle 1 (Sec. VI-A b)".into(),
+                width,
+                height,
+                x0,
+                y0: HALF_WIDTH_M,
+                cell: CELL,
+                values,
+            });
+        }
         if let Some(stereo) = &self.stereo {
             let density = stereo.density();
             let c = density.config();

@@ -539,6 +539,16 @@ fn curbs_from_the_elevation_map_put_dt_s_on_the_true_kerbs() {
         feet >= 40 && within_cell * 5 >= feet * 4,
         "{within_cell} of {feet} feet"
     );
+    // The demo's view of the map: the cell classes of the last frame on the road grid.
+    let layers = with.layers();
+    let Some(crate::trackers::Layer::Grid { values, .. }) = layers.iter().find(
+        |l| matches!(l, crate::trackers::Layer::Grid { name, .. } if name.starts_with("elevation")),
+    ) else {
+        panic!("no elevation layer");
+    };
+    let count = |v: f32| values.iter().filter(|&&x| x == v).count();
+    let (road, raised) = (count(1.0 / 3.0), count(2.0 / 3.0));
+    assert!(road > 1000 && raised > 100, "{road} road, {raised} raised");
     // The kerb is seen (not behind a parked car) on 76 of the 144 rows.
     assert!(rows >= 60, "{rows}");
     assert!(near_with * 2 >= rows, "{near_with} of {rows}");
