@@ -134,7 +134,7 @@ pub(super) fn surface(
         };
     }
     // Down the face, between P_1 and P_0.
-    let k = (face - d1) / (d - d1);
+    let k = ((face - d1) / (d - d1)).clamp(0.0, 1.0);
     let t = t1 + (ground[2] - t1) * k;
     let [x, y, z] = geo.point_at(xn, yn, t);
     Surface {

@@ -584,19 +584,14 @@ impl Tracker for DanescuTracker {
         let (x0, x1) = (self.config.near_m, self.config.far_m);
         let height = ((x1 - x0) / CELL).round() as usize;
         let width = (2.0 * HALF_WIDTH_M / CELL).round() as usize;
-        let grid = |name: &str, distance: &dyn Fn(f64, f64) -> Option<f32>| {
+        // A layer of `value(x, y)` at every road cell.
+        let grid = |name: &str, value: &dyn Fn(f64, f64) -> f32| {
             let mut values = vec![0.0f32; width * height];
             for r in 0..height {
                 let x = x0 + (r as f64 + 0.5) * CELL;
                 for c in 0..width {
                     let y = HALF_WIDTH_M - (c as f64 + 0.5) * CELL;
-                    if let Some(d) = self
-                        .camera
-                        .road_to_pixel(x, y)
-                        .and_then(|[u, v]| distance(u, v))
-                    {
-                        values[r * width + c] = crate::math::exp(-0.5 * (d * d) as f64) as f32;
-                    }
+                    values[r * width + c] = value(x, y);
                 }
             }
             Layer::Grid {
@@ -609,33 +604,26 @@ impl Tracker for DanescuTracker {
                 values,
             }
         };
+        // exp(-DT^2 / 2) of a distance image at the cell's pixel (0 off the image).
+        let closeness = |distance: &dyn Fn(f64, f64) -> Option<f32>, x: f64, y: f64| {
+            self.camera
+                .road_to_pixel(x, y)
+                .and_then(|[u, v]| distance(u, v))
+                .map_or(0.0, |d| crate::math::exp(-0.5 * (d * d) as f64) as f32)
+        };
         let mut layers = vec![
-            grid("marking and curb edges: exp(-DT^S^2 / 2)", &|u, v| {
-                self.cues.marking_distance(u, v)
+            grid("marking and curb edges: exp(-DT^S^2 / 2)", &|x, y| {
+                closeness(&|u, v| self.cues.marking_distance(u, v), x, y)
             }),
-            grid("road edges: exp(-DT^E^2 / 2)", &|u, v| {
-                self.cues.edge_distance(u, v)
+            grid("road edges: exp(-DT^E^2 / 2)", &|x, y| {
+                closeness(&|u, v| self.cues.edge_distance(u, v), x, y)
             }),
         ];
         if let Some(map) = self.stereo.as_ref().and_then(|s| s.elevation()) {
-            // The cell classes on the same grid: 1/3 road, 2/3 raised, 1 obstacle.
-            let mut values = vec![0.0f32; width * height];
-            for r in 0..height {
-                let x = x0 + (r as f64 + 0.5) * CELL;
-                for c in 0..width {
-                    let y = HALF_WIDTH_M - (c as f64 + 0.5) * CELL;
-                    values[r * width + c] = f32::from(map.class_at(x, y)) / 3.0;
-                }
-            }
-            layers.push(Layer::Grid {
-                name: "elevation map: road 1/3, curb 2/3, obstacle 1 (Sec. VI-A b)".into(),
-                width,
-                height,
-                x0,
-                y0: HALF_WIDTH_M,
-                cell: CELL,
-                values,
-            });
+            layers.push(grid(
+                "elevation map: road 1/3, curb 2/3, obstacle 1 (Sec. VI-A b)",
+                &|x, y| f32::from(map.class_at(x, y)) / 3.0,
+            ));
         }
         if let Some(stereo) = &self.stereo {
             let density = stereo.density();

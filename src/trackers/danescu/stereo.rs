@@ -233,7 +233,7 @@ impl StereoCues {
             }
             let fx = self.camera.focal()[0];
             let reach = map.config().snap_m;
-            for f in map.find() {
+            for f in map.find().iter().filter(|f| f.x1 > self.near) {
                 let foot = |x: f64| self.camera.project([x, f.y, slope * x]);
                 let x0 = f.x0.max(self.near);
                 if let (Some(a), Some(b)) = (foot(x0), foot(f.x1)) {
