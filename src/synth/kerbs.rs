@@ -63,8 +63,9 @@ pub(super) fn faces(markings: &MarkingConfig, road: &Road, s: f64) -> [Option<f6
     [kerb(first), kerb(last + 1)]
 }
 
-/// How far `d` is past a kerb face at `s` (positive: raised), and the face's offset, for the
-/// face on `d`'s side of the road; `None` when that side has no kerb.
+/// How far `d` is past a kerb face (positive: raised; negative: on the road side), and the
+/// face's offset: the face `d` is past, else the nearer face, else the only one; `None`
+/// without kerbs.
 fn past_face(faces: [Option<f64>; 2], d: f64) -> Option<(f64, f64)> {
     match faces {
         [Some(f), _] if d > f => Some((d - f, f)),
