@@ -87,6 +87,21 @@ pub fn require_finite(name: &str, value: f64) -> Result<f64> {
     }
 }
 
+/// Checks that `value` is finite and in `range`, naming it with `reason` otherwise.
+pub fn require_within(
+    name: &str,
+    value: f64,
+    range: std::ops::RangeInclusive<f64>,
+    reason: &str,
+) -> Result<f64> {
+    require_finite(name, value)?;
+    if range.contains(&value) {
+        Ok(value)
+    } else {
+        Err(Error::parameter(name, value, reason))
+    }
+}
+
 /// Checks that `value` is finite and strictly positive.
 pub fn require_positive(name: &str, value: f64) -> Result<f64> {
     require_finite(name, value)?;
@@ -111,5 +126,13 @@ mod tests {
         let e = require_positive("height_m", -1.0).unwrap_err();
         assert!(e.to_string().contains("must be greater than zero"));
         assert_eq!(require_positive("x", 2.5), Ok(2.5));
+        let e = require_within("split", 0.95, 0.1..=0.9, "must be 0.1 to 0.9").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid parameter `split` = 0.95: must be 0.1 to 0.9"
+        );
+        let e = require_within("split", f64::INFINITY, 0.1..=0.9, "-").unwrap_err();
+        assert!(e.to_string().contains("must be a finite number"));
+        assert_eq!(require_within("split", 0.9, 0.1..=0.9, "-"), Ok(0.9));
     }
 }

@@ -11,7 +11,7 @@
 //! fraction of [d - f_d/2, d + f_d/2] x [s - f_s/2, s + f_s/2] that is paint.
 
 use super::road::Road;
-use crate::error::{require_finite, require_positive, Error, Result};
+use crate::error::{require_positive, require_within, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// The dash pattern of a marking.
@@ -182,31 +182,19 @@ impl MarkingConfig {
                     }
                 }
                 Pattern::Double { gap_m } => {
-                    require_finite("gap_m", gap_m)?;
-                    if !(0.0..=1.0).contains(&gap_m) {
-                        return Err(Error::parameter("gap_m", gap_m, "must be 0 to 1 m"));
-                    }
+                    require_within("gap_m", gap_m, 0.0..=1.0, "must be 0 to 1 m")?;
                 }
                 _ => {}
             }
         }
-        require_finite("curb_height_m", self.curb_height_m)?;
-        if !(0.0..=0.5).contains(&self.curb_height_m) {
-            return Err(Error::parameter(
-                "curb_height_m",
-                self.curb_height_m,
-                "must be 0 to 0.5 m",
-            ));
-        }
+        require_within(
+            "curb_height_m",
+            self.curb_height_m,
+            0.0..=0.5,
+            "must be 0 to 0.5 m",
+        )?;
         for w in &self.wear {
-            require_finite("wear.visibility", w.visibility)?;
-            if !(0.0..=1.0).contains(&w.visibility) {
-                return Err(Error::parameter(
-                    "wear.visibility",
-                    w.visibility,
-                    "must be 0 to 1",
-                ));
-            }
+            require_within("wear.visibility", w.visibility, 0.0..=1.0, "must be 0 to 1")?;
         }
         Ok(())
     }

@@ -26,7 +26,7 @@
 //!    snaps to the nearest road edge (Canny) within `snap_m` on its row, which places the foot
 //!    to a pixel where the map places it to a cell (our refinement).
 
-use crate::error::{require_finite, require_positive, Error, Result};
+use crate::error::{require_finite, require_positive, require_within, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// Options of the curb detection (stereo only).
@@ -77,14 +77,7 @@ impl CurbConfig {
         require_positive("curbs.cell_m", self.cell_m[1])?;
         require_positive("curbs.range_m", self.range_m)?;
         require_positive("curbs.half_width_m", self.half_width_m)?;
-        require_finite("curbs.snap_m", self.snap_m)?;
-        if !(0.0..=1.0).contains(&self.snap_m) {
-            return Err(Error::parameter(
-                "curbs.snap_m",
-                self.snap_m,
-                "must be 0 to 1 m",
-            ));
-        }
+        require_within("curbs.snap_m", self.snap_m, 0.0..=1.0, "must be 0 to 1 m")?;
         require_finite("curbs.height_m", self.height_m[0])?;
         require_finite("curbs.height_m", self.height_m[1])?;
         if !(self.height_m[0] > 0.0 && self.height_m[0] < self.height_m[1]) {

@@ -1,6 +1,6 @@
 //! Settings of the Lee tracker (all optional in the tracker config; defaults documented).
 
-use crate::error::{require_finite, require_positive, Error, Result};
+use crate::error::{require_finite, require_positive, require_within, Error, Result};
 use crate::vision::{CannyConfig, DldConfig};
 use serde::{Deserialize, Serialize};
 
@@ -242,14 +242,12 @@ impl LeeConfig {
                 require_positive(name, v)?;
             }
         }
-        require_finite("ess_threshold", self.ess_threshold)?;
-        if !(0.0..=1.0).contains(&self.ess_threshold) {
-            return Err(Error::parameter(
-                "ess_threshold",
-                self.ess_threshold,
-                "must be a fraction in [0, 1]",
-            ));
-        }
+        require_within(
+            "ess_threshold",
+            self.ess_threshold,
+            0.0..=1.0,
+            "must be a fraction in [0, 1]",
+        )?;
         require_positive("max_heading_rad", self.max_heading_rad)?;
         if self.max_heading_rad >= 1.2 {
             return Err(Error::parameter(
@@ -296,14 +294,12 @@ impl LeeConfig {
                 "must be at most 1000",
             ));
         }
-        require_finite("valid_fraction", self.valid_fraction)?;
-        if !(0.0..=1.0).contains(&self.valid_fraction) {
-            return Err(Error::parameter(
-                "valid_fraction",
-                self.valid_fraction,
-                "must be a fraction in [0, 1]",
-            ));
-        }
+        require_within(
+            "valid_fraction",
+            self.valid_fraction,
+            0.0..=1.0,
+            "must be a fraction in [0, 1]",
+        )?;
         if self.stage2_particles > super::super::MAX_PARTICLES {
             return Err(Error::parameter(
                 "stage2_particles",

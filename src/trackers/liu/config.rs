@@ -7,7 +7,7 @@
 //! its top view (spacing > 12 px, spacing difference < 5 px); here they are in metres so they
 //! hold at any resolution. What the paper leaves open is our choice, said so below.
 
-use crate::error::{require_finite, require_positive, Error, Result};
+use crate::error::{require_finite, require_positive, require_within, Error, Result};
 use crate::vision::TopViewConfig;
 use serde::{Deserialize, Serialize};
 
@@ -134,14 +134,12 @@ impl LiuConfig {
                 &format!("must be between 1 and {MAX_BOUNDARIES}"),
             ));
         }
-        require_finite("split", self.split)?;
-        if !(0.1..=0.9).contains(&self.split) {
-            return Err(Error::parameter(
-                "split",
-                self.split,
-                "must be a fraction between 0.1 and 0.9",
-            ));
-        }
+        require_within(
+            "split",
+            self.split,
+            0.1..=0.9,
+            "must be a fraction between 0.1 and 0.9",
+        )?;
         require_finite("gradient_threshold", self.gradient_threshold)?;
         require_positive("position_variance_px2", self.position_variance_px2)?;
         require_finite("intensity_mean", self.intensity_mean)?;
@@ -172,14 +170,12 @@ impl LiuConfig {
         require_positive("sigma_d", self.sigma_d)?;
         require_positive("min_spacing_m", self.min_spacing_m)?;
         require_positive("max_spacing_difference_m", self.max_spacing_difference_m)?;
-        require_finite("valid_fraction", self.valid_fraction)?;
-        if !(0.0..=1.0).contains(&self.valid_fraction) {
-            return Err(Error::parameter(
-                "valid_fraction",
-                self.valid_fraction,
-                "must be a fraction in [0, 1]",
-            ));
-        }
+        require_within(
+            "valid_fraction",
+            self.valid_fraction,
+            0.0..=1.0,
+            "must be a fraction in [0, 1]",
+        )?;
         let [lo, hi] = self.default_width_m;
         require_positive("default_width_m", lo)?;
         require_finite("default_width_m", hi)?;
