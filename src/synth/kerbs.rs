@@ -43,6 +43,21 @@ pub(super) struct Surface {
     pub face: bool,
 }
 
+impl Surface {
+    /// The ground point `ground` (vehicle-frame x, y and depth) at road coordinates (s, d).
+    pub(super) fn ground(ground: [f64; 3], s: f64, d: f64) -> Self {
+        Self {
+            x: ground[0],
+            y: ground[1],
+            depth: ground[2],
+            s,
+            d,
+            height: 0.0,
+            face: false,
+        }
+    }
+}
+
 /// The lateral offsets of the kerb faces at `s`: the left one (raised where d > face) and the
 /// right one (raised where d < face), `None` where that road edge is not a kerb.
 pub(super) fn faces(markings: &MarkingConfig, road: &Road, s: f64) -> [Option<f64>; 2] {
@@ -84,8 +99,9 @@ fn past_face(faces: [Option<f64>; 2], d: f64) -> Option<(f64, f64)> {
     }
 }
 
-/// The surface a road ray of normalised direction (`xn`, `yn`) ends on, given where it met
-/// the ground: `ground` (vehicle-frame x, y and depth) at road coordinates (`s`, `d`).
+/// The surface a road ray of normalised direction (`xn`, `yn`) ends on in a scene with kerbs,
+/// given where it met the ground: `ground` (vehicle-frame x, y and depth) at road coordinates
+/// (`s`, `d`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn surface(
     geo: &FrameGeometry,
@@ -97,17 +113,9 @@ pub(super) fn surface(
     s: f64,
     d: f64,
 ) -> Surface {
-    let on_ground = Surface {
-        x: ground[0],
-        y: ground[1],
-        depth: ground[2],
-        s,
-        d,
-        height: 0.0,
-        face: false,
-    };
+    let on_ground = Surface::ground(ground, s, d);
     let height = markings.curb_height_m;
-    if height <= 0.0 || !markings.has_curbs() {
+    if height <= 0.0 {
         return on_ground;
     }
     let Some((past, _)) = past_face(faces(markings, road, s), d) else {
@@ -162,9 +170,6 @@ pub(super) enum Raised {
 
 /// Which raised part, if any, (`s`, `d`) is on.
 pub(super) fn raised(markings: &MarkingConfig, road: &Road, s: f64, d: f64) -> Raised {
-    if !markings.has_curbs() {
-        return Raised::No;
-    }
     match past_face(faces(markings, road, s), d) {
         Some((past, _)) if past > CURB_WIDTH_M => Raised::Pavement,
         Some((past, _)) if past >= 0.0 => Raised::Kerbstone,

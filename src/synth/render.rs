@@ -22,7 +22,7 @@
 
 use super::appearance::value_noise;
 use super::ego::Pose;
-use super::kerbs::{self, Raised};
+use super::kerbs::Raised;
 use super::road::Road;
 use super::scene::{SceneConfig, Shadow};
 use crate::camera::Camera;
@@ -401,13 +401,15 @@ fn box_hit(b: &BoxNow, o: [f64; 3], r: [f64; 3]) -> Option<(f64, [f64; 3], usize
     })
 }
 
-/// Shades a road point. `fd`, `fs`: footprint across and along, metres.
+/// Shades a road point, `raised`: what of a kerb it is on. `fd`, `fs`: footprint across and
+/// along, metres.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn shade_road(
     config: &SceneConfig,
     road: &Road,
     s: f64,
     d: f64,
+    raised: Raised,
     fd: f64,
     fs: f64,
     seed: u64,
@@ -427,7 +429,6 @@ pub(super) fn shade_road(
     let noise = |scale: f64, salt: u64| value_noise(seed ^ salt, s * scale, d * scale) as f32;
     // Texture finer than the pixel footprint would shimmer: fade it out with distance.
     let fine = (0.1 / fd).min(1.0) as f32;
-    let raised = kerbs::raised(&config.markings, road, s, d);
     let mut rgb = if raised == Raised::Pavement {
         // Concrete paving slabs 1.2 m long with dark joints.
         let n = (noise(10.0, 31) - 0.5) * fine + (noise(0.8, 32) - 0.5) * 0.6;

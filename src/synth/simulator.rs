@@ -30,6 +30,8 @@ pub struct Scene {
     baseline: f64,
     /// Undistorted normalised direction of every pixel (NaN where the lens cannot be inverted).
     rays: Vec<[f32; 2]>,
+    /// Whether any boundary is a kerb (the per-pixel kerb geometry is skipped otherwise).
+    kerbs: bool,
     table: Vec<super::render::LocalSample>,
     blur_tmp: Vec<u8>,
 }
@@ -86,6 +88,7 @@ impl Scene {
         let baseline = camera.baseline_m().unwrap_or(DEFAULT_BASELINE_M);
         require_positive("baseline_m", baseline)?;
         Ok(Self {
+            kerbs: config.markings.has_curbs(),
             config,
             road,
             camera,
@@ -199,27 +202,37 @@ impl Scene {
                             first_in_row = false;
                         }
                         let [xn, yn] = [xn as f64, yn as f64];
-                        let at = kerbs::surface(
-                            &geo,
-                            &self.config.markings,
-                            &self.road,
-                            xn,
-                            yn,
-                            [x, y, depth],
-                            s,
-                            d,
-                        );
+                        let at = if self.kerbs {
+                            kerbs::surface(
+                                &geo,
+                                &self.config.markings,
+                                &self.road,
+                                xn,
+                                yn,
+                                [x, y, depth],
+                                s,
+                                d,
+                            )
+                        } else {
+                            kerbs::Surface::ground([x, y, depth], s, d)
+                        };
                         let (x, y) = (at.x, at.y);
                         let mut c = if at.face {
                             render::shade_kerb_face(at.s, at.height, self.seed)
                         } else {
                             let fs = (x * x / (fy * (cam_h - at.height))).max(0.003);
                             let fd = (x / fx + (y / x).abs() * fs).max(0.003);
+                            let raised = if self.kerbs {
+                                kerbs::raised(&self.config.markings, &self.road, at.s, at.d)
+                            } else {
+                                kerbs::Raised::No
+                            };
                             render::shade_road(
                                 &self.config,
                                 &self.road,
                                 at.s,
                                 at.d,
+                                raised,
                                 fd,
                                 fs,
                                 self.seed,
