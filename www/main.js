@@ -411,11 +411,17 @@ async function main() {
   });
   if (document.body.dataset.state !== 'error') document.body.dataset.state = 'running';
 
+  // A frame the play loop queued behind another task (a camera change, say) is dropped if
+  // that task paused the demo, e.g. with an error: the error stays on screen instead of the
+  // next frame's redraw replacing it.
+  const playFrame = async () => {
+    if (!controls.paused) await stepFrame();
+  };
   let busy = false;
   const loop = async () => {
     if (!controls.paused && !busy) {
       busy = true;
-      await run(stepFrame);
+      await run(playFrame);
       busy = false;
     }
     requestAnimationFrame(loop);
