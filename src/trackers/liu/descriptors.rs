@@ -47,9 +47,6 @@ pub struct Descriptors {
     before: Vec<u32>,
     /// Running sum of the weights over `pixels` (index j: the first j pixels).
     weight_sum: Vec<f64>,
-    /// `pixels` as columns (x, weight, theta, precision), for the SIMD kernel sums.
-    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    pub(super) columns: [Vec<f32>; 4],
 }
 
 /// One measurement pixel.
@@ -105,8 +102,6 @@ impl Descriptors {
             pixels: Vec::with_capacity(w * h),
             before: vec![0; (w + 1) * h],
             weight_sum: Vec::with_capacity(w * h + 1),
-            #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-            columns: std::array::from_fn(|_| Vec::with_capacity(w * h)),
             ipm,
         })
     }
@@ -177,18 +172,6 @@ impl Descriptors {
                 self.weight_sum.push(total);
             }
             self.before[y * (w + 1) + w] = self.pixels.len() as u32;
-        }
-        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-        {
-            let [x, weight, theta, precision] = &mut self.columns;
-            for (column, field) in [(x, 0usize), (weight, 1), (theta, 2), (precision, 3)] {
-                column.clear();
-                column.extend(
-                    self.pixels
-                        .iter()
-                        .map(|p| [p.x, p.weight, p.theta, p.precision][field]),
-                );
-            }
         }
         Ok(())
     }

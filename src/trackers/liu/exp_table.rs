@@ -6,6 +6,7 @@
 //! near the boundary) the value is 0. The table is filled with `crate::math::exp` and read with
 //! plain arithmetic, so the results are bit-identical natively and in wasm.
 
+use super::lanes::F32x4;
 use crate::math;
 
 /// Largest tabulated argument.
@@ -54,10 +55,11 @@ impl ExpTable {
     #[inline]
     pub fn neg_exp(&self, a: f64) -> f64 {
         let t = a * PER_UNIT;
-        // `as` saturates: negative and NaN arguments give 0, huge ones the last entry.
-        let i = (t as usize).min(self.segments.len() - 1);
-        let [value, slope] = self.segments[i];
-        value + (t - i as f64) * slope
+        // `as` saturates: negative and NaN arguments give 0, huge ones the last entry. (A u32
+        // index converts in a few instructions, a usize one in many; the value is the same.)
+        let i = (t as u32).min(self.segments.len() as u32 - 1);
+        let [value, slope] = self.segments[i as usize];
+        value + (t - f64::from(i)) * slope
     }
 }
 
@@ -66,30 +68,22 @@ impl ExpTable {
     #[inline]
     pub fn neg_exp32(&self, a: f32) -> f32 {
         let t = a * PER_UNIT as f32;
-        let i = (t as usize).min(self.segments32.len() - 1);
-        let [value, slope] = self.segments32[i];
+        let i = (t as u32).min(self.segments32.len() as u32 - 1);
+        let [value, slope] = self.segments32[i as usize];
         value + (t - i as f32) * slope
     }
 
-    /// [`ExpTable::neg_exp32`] of the four lanes of an f32x4, by the same operations: on
-    /// wasm32, `t as usize` is the saturating conversion to u32 that `u32x4_trunc_sat_f32x4`
-    /// does per lane (NaN to 0), and the index and its f32 value are exact.
-    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    /// [`ExpTable::neg_exp32`] of four lanes, by the same operations lane by lane (the index
+    /// and its f32 value are exact; the table read is one scalar load per lane).
     #[inline]
-    pub fn neg_exp_x4(&self, a: core::arch::wasm32::v128) -> core::arch::wasm32::v128 {
-        use core::arch::wasm32::*;
-        let t = f32x4_mul(a, f32x4_splat(PER_UNIT as f32));
-        let last = self.segments32.len() as u32 - 1;
-        let i = u32x4_min(u32x4_trunc_sat_f32x4(t), u32x4_splat(last));
-        let [v0, s0] = self.segments32[u32x4_extract_lane::<0>(i) as usize];
-        let [v1, s1] = self.segments32[u32x4_extract_lane::<1>(i) as usize];
-        let [v2, s2] = self.segments32[u32x4_extract_lane::<2>(i) as usize];
-        let [v3, s3] = self.segments32[u32x4_extract_lane::<3>(i) as usize];
-        let frac = f32x4_sub(t, f32x4_convert_u32x4(i));
-        f32x4_add(
-            f32x4(v0, v1, v2, v3),
-            f32x4_mul(frac, f32x4(s0, s1, s2, s3)),
-        )
+    pub fn neg_exp_x4(&self, a: F32x4) -> F32x4 {
+        let t = a.mul(F32x4::splat(PER_UNIT as f32));
+        let last = self.segments32.len() - 1;
+        let (i, i_f32) = t.index_below(last as u32);
+        let [s0, s1, s2, s3] = i.map(|k| self.segments32[(k as usize).min(last)]);
+        let frac = t.sub(i_f32);
+        F32x4::from_array([s0[0], s1[0], s2[0], s3[0]])
+            .add(frac.mul(F32x4::from_array([s0[1], s1[1], s2[1], s3[1]])))
     }
 }
 

@@ -28,6 +28,7 @@ pub mod config;
 pub mod descriptors;
 pub mod exp_table;
 pub mod kernels;
+pub mod lanes;
 pub mod model;
 
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};

@@ -40,6 +40,7 @@ use super::config::{LiuConfig, MAX_BOUNDARIES};
 use super::descriptors::{wrap_half_turn, Descriptors, MaskPixel};
 use super::exp_table::{ExpTable, RANGE};
 use super::kernels::GaussHermite;
+use super::lanes::F32x4;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
 use crate::math;
@@ -228,6 +229,7 @@ impl PpfModel {
         let nodes = self.node_offsets.len();
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
+        let mut batch = (self.kernel && nodes == 3).then(Batch::default);
         for y in self.far_rows() {
             let yf = y as f64;
             let xc = c + d * yf + e * yf * yf;
@@ -252,14 +254,30 @@ impl PpfModel {
                 // The change of the curve's orientation from the row to node k.
                 node_theta[k] = (dtheta_dy * self.node_offsets[k]) as f32;
             }
-            sum = self.parabolic_row(
-                sum,
-                cues,
-                span,
-                theta as f32,
-                &node_x[..nodes],
-                &node_theta[..nodes],
-            );
+            let pixels = &cues.pixels[span];
+            if let Some(batch) = batch.as_mut() {
+                // The default 3-node rule: the pixels are batched across rows and go four at
+                // a time.
+                let (x, t) = (&node_x[..3], &node_theta[..3]);
+                for px in pixels {
+                    batch.push(px, theta as f32, x, t);
+                    if batch.used == BATCH {
+                        sum = self.parabolic_batch(sum, batch);
+                        batch.used = 0;
+                    }
+                }
+            } else {
+                sum = self.parabolic_pixels(
+                    sum,
+                    pixels,
+                    theta as f32,
+                    &node_x[..nodes],
+                    &node_theta[..nodes],
+                );
+            }
+        }
+        if let Some(batch) = batch.filter(|b| b.used > 0) {
+            sum = self.parabolic_batch(sum, &batch);
         }
         if self.kernel {
             sum /= (2.0 * PI * self.var_x).sqrt();
@@ -294,29 +312,12 @@ impl PpfModel {
         sum
     }
 
-    /// The parabolic kernels of one row's band pixels added to `sum`, pixel by pixel, with the
-    /// quadrature rule's nodes (`node_x`, `node_theta`: the curve's column and orientation
-    /// change at each node; `theta`: its orientation at the row). A pixel's kernel is computed
-    /// in f32 (rounding 6e-8 relative, against the exp table's 3e-5) and added to the f64 sum.
-    #[inline]
-    fn parabolic_row(
-        &self,
-        sum: f64,
-        cues: &Descriptors,
-        span: std::ops::Range<usize>,
-        theta: f32,
-        node_x: &[f32],
-        node_theta: &[f32],
-    ) -> f64 {
-        #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-        if let (Ok(x), Ok(t)) = (node_x.try_into(), node_theta.try_into()) {
-            // The default 3-node rule, four pixels at a time (same operations per pixel).
-            return self.parabolic_row_simd(sum, cues, span, theta, x, t);
-        }
-        self.parabolic_pixels(sum, &cues.pixels[span], theta, node_x, node_theta)
-    }
-
-    /// [`PpfModel::parabolic_row`] for `pixels`, one at a time, in order.
+    /// The parabolic kernels of one row's band `pixels` added to `sum`, one pixel at a time in
+    /// order, with the quadrature rule's nodes (`node_x`, `node_theta`: the curve's column and
+    /// orientation change at each node; `theta`: its orientation at the row). A pixel's kernel
+    /// is computed in f32 (rounding 6e-8 relative, against the exp table's 3e-5) and added to
+    /// the f64 sum. (The default 3-node rule goes four pixels at a time instead:
+    /// [`PpfModel::parabolic_batch`], with the same bits.)
     #[inline]
     fn parabolic_pixels(
         &self,
@@ -347,94 +348,107 @@ impl PpfModel {
         sum
     }
 
-    /// [`PpfModel::parabolic_row`] with 3 nodes in WebAssembly SIMD: four pixels in the four
-    /// lanes of each f32x4 operation. Every lane performs the scalar code's IEEE operations in
-    /// the scalar code's order (no fused or reordered arithmetic; the fold's branches become
-    /// lane selects), and the pixels' terms are added to `sum` one by one in pixel order, so
-    /// the result is bit-identical to the scalar path (tests/web.rs checks liu-ppf's estimate
-    /// against the native build's bits).
-    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    fn parabolic_row_simd(
-        &self,
-        mut sum: f64,
-        cues: &Descriptors,
-        span: std::ops::Range<usize>,
-        theta: f32,
-        node_x: &[f32; 3],
-        node_theta: &[f32; 3],
-    ) -> f64 {
-        use core::arch::wasm32::*;
-        let inv_2var = f32x4_splat((0.5 / self.var_x) as f32);
-        let half = f32x4_splat(0.5);
-        let (half_pi, pi) = (f32x4_splat(FRAC_PI_2_32), f32x4_splat(PI_32));
-        let minus_half_pi = f32x4_splat(-FRAC_PI_2_32);
-        let skip_at = f32x4_splat(SKIP);
-        let theta_v = f32x4_splat(theta);
-        let [xs, weights, thetas, precisions] = &cues.columns;
-        let base = span.start;
-        let quads = span.len() / 4;
-        let load = |v: &Vec<f32>, j: usize| {
-            let four = &v[j..j + 4];
-            // SAFETY: `four` holds four f32 (16 bytes); wasm loads need no alignment.
-            unsafe { v128_load(four.as_ptr() as *const v128) }
-        };
-        for q in 0..quads {
-            let j = base + 4 * q;
-            let precision = load(precisions, j);
-            let d = f32x4_sub(theta_v, load(thetas, j));
-            let above = f32x4_gt(d, half_pi);
-            let below = f32x4_le(d, minus_half_pi);
-            let dtheta = v128_bitselect(
-                f32x4_sub(d, pi),
-                v128_bitselect(f32x4_add(d, pi), d, below),
-                above,
-            );
-            let skip = f32x4_ge(
-                f32x4_mul(f32x4_mul(f32x4_mul(half, dtheta), dtheta), precision),
-                skip_at,
-            );
-            if !v128_any_true(v128_not(skip)) {
+    /// [`PpfModel::parabolic_pixels`] with 3 nodes for the `used` pixels of `batch`, four at a
+    /// time in the four lanes of each operation ([`F32x4`]: WebAssembly SIMD in the browser,
+    /// SSE2 on x86_64). Every lane performs the scalar code's IEEE operations in the scalar
+    /// code's order with its own row's curve (the fold's branches become lane selects), and
+    /// the pixels' terms are added to `sum` one by one in pixel order, so the result is
+    /// bit-identical to the one-pixel-at-a-time path. (Lanes past `used` in the last quad are
+    /// computed from stale entries and not added.)
+    fn parabolic_batch(&self, mut sum: f64, batch: &Batch) -> f64 {
+        let inv_2var = F32x4::splat((0.5 / self.var_x) as f32);
+        let half = F32x4::splat(0.5);
+        let (half_pi, pi) = (F32x4::splat(FRAC_PI_2_32), F32x4::splat(PI_32));
+        let minus_half_pi = F32x4::splat(-FRAC_PI_2_32);
+        let skip_at = F32x4::splat(SKIP);
+        let node_weights = [0, 1, 2].map(|k| F32x4::splat(self.node_weights[k]));
+        for j in (0..batch.used).step_by(4) {
+            let used = (batch.used - j).min(4);
+            let precision = F32x4::load(&batch.precision, j);
+            let d = F32x4::load(&batch.theta, j).sub(F32x4::load(&batch.theta_i, j));
+            let dtheta = d
+                .gt(half_pi)
+                .select(d.sub(pi), d.le(minus_half_pi).select(d.add(pi), d));
+            let skip = half.mul(dtheta).mul(dtheta).mul(precision).ge(skip_at);
+            if used == 4 && skip.all() {
                 continue;
             }
-            let xf = load(xs, j);
-            let mut g = f32x4_splat(0.0);
+            let xf = F32x4::load(&batch.x, j);
+            let mut g = F32x4::splat(0.0);
             for k in 0..3 {
-                let dx = f32x4_sub(f32x4_splat(node_x[k]), xf);
-                let dt = f32x4_add(dtheta, f32x4_splat(node_theta[k]));
-                let arg = f32x4_add(
-                    f32x4_mul(f32x4_mul(dx, dx), inv_2var),
-                    f32x4_mul(f32x4_mul(f32x4_mul(half, dt), dt), precision),
-                );
-                let e = self.exp.neg_exp_x4(arg);
-                g = f32x4_add(g, f32x4_mul(f32x4_splat(self.node_weights[k]), e));
+                let dx = F32x4::load(&batch.node_x[k], j).sub(xf);
+                let dt = dtheta.add(F32x4::load(&batch.node_theta[k], j));
+                let arg = dx
+                    .mul(dx)
+                    .mul(inv_2var)
+                    .add(half.mul(dt).mul(dt).mul(precision));
+                g = g.add(node_weights[k].mul(self.exp.neg_exp_x4(arg)));
             }
-            let terms = f32x4_mul(load(weights, j), g);
-            let lanes = [
-                (
-                    i32x4_extract_lane::<0>(skip),
-                    f32x4_extract_lane::<0>(terms),
-                ),
-                (
-                    i32x4_extract_lane::<1>(skip),
-                    f32x4_extract_lane::<1>(terms),
-                ),
-                (
-                    i32x4_extract_lane::<2>(skip),
-                    f32x4_extract_lane::<2>(terms),
-                ),
-                (
-                    i32x4_extract_lane::<3>(skip),
-                    f32x4_extract_lane::<3>(terms),
-                ),
-            ];
-            for (skipped, term) in lanes {
-                if skipped == 0 {
-                    sum += f64::from(term);
+            let terms = F32x4::load(&batch.weight, j).mul(g).to_array();
+            let skipped = skip.mask_to_array();
+            for k in 0..used {
+                if !skipped[k] {
+                    sum += f64::from(terms[k]);
                 }
             }
         }
-        let rest = &cues.pixels[base + 4 * quads..span.end];
-        self.parabolic_pixels(sum, rest, theta, node_x, node_theta)
+        sum
+    }
+}
+
+/// Pixels per [`Batch`] (a multiple of 4).
+const BATCH: usize = 64;
+
+/// Band pixels of the parabolic sum, each with its row's curve (3-node rule), gathered across
+/// rows: a row has few (about 3 in a 7-column band), too few to fill the four lanes, and lanes
+/// read long after their entries were written run at full speed (loading four floats just
+/// written one by one stalls the processor's store forwarding).
+#[derive(Debug, Clone, Copy)]
+struct Batch {
+    used: usize,
+    x: [f32; BATCH],
+    weight: [f32; BATCH],
+    theta_i: [f32; BATCH],
+    precision: [f32; BATCH],
+    /// The curve's orientation at the pixel's row.
+    theta: [f32; BATCH],
+    /// Per node: the curve's column, and its orientation change from the row.
+    node_x: [[f32; BATCH]; 3],
+    node_theta: [[f32; BATCH]; 3],
+}
+
+impl Default for Batch {
+    fn default() -> Self {
+        let zeros = [0.0; BATCH];
+        Self {
+            used: 0,
+            x: zeros,
+            weight: zeros,
+            theta_i: zeros,
+            precision: zeros,
+            theta: zeros,
+            node_x: [zeros; 3],
+            node_theta: [zeros; 3],
+        }
+    }
+}
+
+impl Batch {
+    /// Adds a pixel of a row whose curve has orientation `theta` and nodes `node_x`,
+    /// `node_theta` (3 each); the batch must not be full.
+    #[inline]
+    fn push(&mut self, px: &MaskPixel, theta: f32, node_x: &[f32], node_theta: &[f32]) {
+        let j = self.used;
+        self.x[j] = px.x;
+        self.weight[j] = px.weight;
+        self.theta_i[j] = px.theta;
+        self.precision[j] = px.precision;
+        self.theta[j] = theta;
+        for k in 0..3 {
+            self.node_x[k][j] = node_x[k];
+            self.node_theta[k][j] = node_theta[k];
+        }
+        self.used = j + 1;
     }
 }
 
