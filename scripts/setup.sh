@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything lanepf's build, demo and tests need, on a Debian machine with Rust (rustup)
 # and Node/npm. Idempotent: each step checks first and does nothing when already done.
-#   scripts/setup.sh          everything (wasm target, wasm-bindgen CLI, npm tools, Chromium)
-#   scripts/setup.sh --no-browser   skip Chromium/chromedriver (enough for `make demo`)
+#   scripts/setup.sh          everything (wasm target, wasm-bindgen CLI, npm tools, Chromium, Firefox)
+#   scripts/setup.sh --no-browser   skip the browsers (enough for `make demo`)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -37,25 +37,32 @@ if [ "$have" != "$wb_version" ] || ! command -v wasm-bindgen-test-runner >/dev/n
   cargo install wasm-bindgen-cli --version "$wb_version"
 fi
 
-# 3. npm tools: binaryen (wasm-opt 132; Debian's is too old) and playwright-core (no browser download).
+# 3. npm tools: binaryen (wasm-opt 132; Debian's is too old), playwright-core and puppeteer-core
+#    (no browser download).
 if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ] \
+   || [ ! -d node_modules/puppeteer-core ] \
    || [ package.json -nt node_modules/.package-lock.json ]; then
-  say "installing npm dev tools (binaryen, playwright-core)"
+  say "installing npm dev tools (binaryen, playwright-core, puppeteer-core)"
   if [ -f package-lock.json ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
 fi
 
-# 4. Chromium and chromedriver from Debian, for the wasm tests and the end-to-end tests.
+# 4. Chromium and chromedriver from Debian, for the wasm tests and the end-to-end tests, and
+#    Debian's Firefox ESR for the Firefox end-to-end test (driven over WebDriver BiDi by
+#    puppeteer-core, so no geckodriver and no browser download).
 if [ "$want_browser" = 1 ]; then
-  if [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; then
+  missing=()
+  { [ -x /usr/bin/chromium ] && [ -x /usr/bin/chromedriver ]; } || missing+=(chromium chromium-driver)
+  [ -x /usr/bin/firefox-esr ] || missing+=(firefox-esr)
+  if [ "${#missing[@]}" -gt 0 ]; then
     if [ "$(id -u)" != 0 ]; then
-      die "Chromium and chromedriver are missing and installing them needs root. Run:
-    sudo apt-get update && sudo apt-get install -y chromium chromium-driver
+      die "missing Debian packages: ${missing[*]}; installing them needs root. Run:
+    sudo apt-get update && sudo apt-get install -y ${missing[*]}
 then run this command again."
     fi
-    say "installing chromium and chromium-driver from apt (about 30 seconds)"
+    say "installing ${missing[*]} from apt (about a minute)"
     export DEBIAN_FRONTEND=noninteractive
     apt-get update -qq
-    apt-get install -y -qq chromium chromium-driver >/dev/null
+    apt-get install -y -qq "${missing[@]}" >/dev/null
   fi
 fi
 say "ready"

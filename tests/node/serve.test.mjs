@@ -1,4 +1,5 @@
-// The demo server: Range requests, wasm MIME type, no escape from www/ and pkg/.
+// The demo server: Range requests, wasm MIME type, cross-origin isolation, no escape from www/
+// and pkg/.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { serve, parseRange, resolvePath } from '../../scripts/serve.mjs';
@@ -36,6 +37,11 @@ test('server answers ranges with 206 and wasm with application/wasm', async () =
     const wasm = await fetch(`${base}/pkg/web/lanepf_bg.wasm`, { method: 'HEAD' });
     assert.equal(wasm.status, 200);
     assert.equal(wasm.headers.get('content-type'), 'application/wasm');
+    // Cross-origin isolated (Firefox's clock is whole milliseconds otherwise), page and worker.
+    for (const r of [whole, wasm, await fetch(`${base}/worker.js`, { method: 'HEAD' })]) {
+      assert.equal(r.headers.get('cross-origin-opener-policy'), 'same-origin');
+      assert.equal(r.headers.get('cross-origin-embedder-policy'), 'require-corp');
+    }
     assert.equal((await fetch(`${base}/nope.html`)).status, 404);
     assert.equal((await fetch(`${base}/x`, { method: 'POST' })).status, 405);
   } finally {
