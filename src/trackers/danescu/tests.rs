@@ -102,13 +102,14 @@ fn mono_follows_curves_and_width_changes() {
     let valid = tail.iter().filter(|(_, e)| e.valid).count();
     assert!(off < 0.05 && ch < 0.0004, "curve: offset {off} C_H {ch}");
     assert!(valid * 100 >= tail.len() * 95, "curve: {valid} valid");
-    // Frames 60-150 drive through the widening from 3.6 to 4.5 m (W_l = 0.009): W_0 follows
-    // within 0.08 m and the estimated W_l has the right sign on average.
+    // Frames 60-150 drive through the widening from 3.6 to 4.5 m (true W_l = 0.009 on every
+    // one of them): W_0 follows within 0.08 m RMS (0.023 when written) and W_l within 0.002
+    // RMS of the truth frame by frame (0.0009 when written; 0.009 for a W_l held at 0).
     let widening = run("width-change", 150, 640, 480);
     let part = &widening[60..150];
     let w = rms(part.iter().map(|(t, e)| t.state["danescu.w0"] - e.lane.w0));
-    let wl: f64 = part.iter().map(|(_, e)| e.lane.wl).sum::<f64>() / part.len() as f64;
-    assert!(w < 0.08 && wl > 0.002, "width-change: W_0 {w} W_l {wl}");
+    let wl = rms(part.iter().map(|(t, e)| t.state["danescu.wl"] - e.lane.wl));
+    assert!(w < 0.08 && wl < 0.002, "width-change: W_0 {w} W_l {wl}");
 }
 
 /// The estimates the browser tests `danescu_mono_runs_in_the_browser_with_the_native_result`
@@ -386,6 +387,75 @@ fn stereo_tracks_the_pitch_and_height_on_bumps_and_a_straight_highway() {
     let valid = tail.iter().filter(|(_, e, _)| e.valid).count();
     assert!(off < 0.1 && w0 < 0.1, "straight: offset {off} W_0 {w0}");
     assert!(valid * 100 >= tail.len() * 90, "straight: {valid} valid");
+}
+
+/// Pearson correlation of two series.
+fn correlation(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len() as f64;
+    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        ab += (x - ma) * (y - mb);
+        aa += (x - ma) * (x - ma);
+        bb += (y - mb) * (y - mb);
+    }
+    ab / (aa * bb).sqrt()
+}
+
+#[test]
+fn stereo_follows_a_curve() {
+    // highway-curve at 640x480, frames 30-120 (the curve begins near frame 55): offset under
+    // 4 cm RMS (2.5 when written), C_H under 5e-4 (3.4e-4), psi under 6 mrad (3.9), W_0 under
+    // 0.1 m (0.066), valid on at least 90 % of the frames (87 of 90). The monocular tracker
+    // does better on this flat road (`mono_follows_curves_and_width_changes`).
+    let curve = run_stereo("highway-curve", 120, 640, 480, "");
+    let tail = &curve[30..];
+    let off = rms(tail.iter().map(|(t, e, _)| t.lateral_offset_m - e.lane.xcw));
+    let ch = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.ch"] - e.lane.ch));
+    let psi = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.psi"] - e.lane.psi));
+    let w0 = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.w0"] - e.lane.w0));
+    let valid = tail.iter().filter(|(_, e, _)| e.valid).count();
+    assert!(
+        off < 0.04 && ch < 0.0005 && psi < 0.006 && w0 < 0.1,
+        "offset {off} C_H {ch} psi {psi} W_0 {w0}"
+    );
+    assert!(valid * 100 >= tail.len() * 90, "{valid} valid");
+}
+
+#[test]
+fn stereo_follows_the_width_change() {
+    // width-change at 640x480, frames 30-300: the lane widens from 3.45 to 4.35 m over
+    // frames 45-165 (true W_l = 0.009) and narrows towards 3.05 m from frame 235 (W_l =
+    // -0.016). The estimated W_l follows the true one over the sequence: correlation above
+    // 0.7 (0.83 when written); its mean over frames 60-160 within 0.003 of 0.009. W_0 is
+    // within 0.13 m RMS of the truth (0.097), valid on at least 90 % of the frames (267 of
+    // 270). W_l lags the truth by some 10-30 frames at each change (it is diffused by
+    // 0.001 per frame), so frame by frame it is no closer than that.
+    let run = run_stereo("width-change", 300, 640, 480, "");
+    let tail = &run[30..];
+    let truth: Vec<f64> = tail.iter().map(|(t, _, _)| t.state["danescu.wl"]).collect();
+    let est: Vec<f64> = tail.iter().map(|(_, e, _)| e.lane.wl).collect();
+    let r = correlation(&truth, &est);
+    let widening = &run[60..160];
+    assert!(widening
+        .iter()
+        .all(|(t, _, _)| t.state["danescu.wl"] > 0.008));
+    let mean = widening.iter().map(|(_, e, _)| e.lane.wl).sum::<f64>() / 100.0;
+    let w0 = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.w0"] - e.lane.w0));
+    let valid = tail.iter().filter(|(_, e, _)| e.valid).count();
+    assert!(
+        r > 0.7 && (mean - 0.009).abs() < 0.003 && w0 < 0.13,
+        "W_l correlation {r}, mean while widening {mean}, W_0 {w0}"
+    );
+    assert!(valid * 100 >= tail.len() * 90, "{valid} valid");
 }
 
 #[test]
