@@ -651,3 +651,106 @@ fn roads_without_kerbs_give_no_curbs() {
         }
     }
 }
+
+/// Image column of a polyline at row `v` (linear between its points).
+fn column_at(points: &[[f64; 2]], v: f64) -> Option<f64> {
+    points.windows(2).find_map(|p| {
+        let ([u0, v0], [u1, v1]) = (p[0], p[1]);
+        (v <= v0 && v >= v1 && v0 > v1).then(|| u0 + (u1 - u0) * (v0 - v) / (v0 - v1))
+    })
+}
+
+#[test]
+fn the_output_has_each_markings_inner_and_outer_edge_a_marking_width_apart() {
+    // The true lane of the first curved frame of highway-curve (the car off centre, 0.15 m
+    // markings)
+    // put through the output: four delimiters (eqs. 2-3), each marking's inner and outer edge
+    // W_L (W_R) apart on the road and the boundary (the marking's centre) half-way between,
+    // the inner edges W(Z) apart (eq. 1); in the image, outer-centre-inner in order on every
+    // row; and all of them on the simulator's truth (its boundaries are the marking centres).
+    let (w, h) = (640, 480);
+    let scene = Scene::new(
+        scenario("highway-curve").unwrap(),
+        default_camera(w, h).unwrap(),
+        1,
+    )
+    .unwrap();
+    let truth = (0..300)
+        .step_by(10)
+        .map(|f| scene.truth(f))
+        .find(|t| t.state["danescu.ch"].abs() > 5e-4)
+        .unwrap();
+    let lane = true_lane(&truth);
+    assert!(lane.ch.abs() > 1e-4 && lane.wl_mark > 0.1, "{lane:?}");
+    let tracker = DanescuTracker::new(&config(w, h, ""), ID_STEREO).unwrap();
+    let out = tracker.to_lane_estimate(&DanescuEstimate {
+        lane,
+        valid: true,
+        cluster_share: 1.0,
+        clusters: 1,
+        change: 0,
+        ess: 1.0,
+        support: [1.0; 2],
+    });
+    let find = |role: Role, side: Side| {
+        out.delimiters
+            .iter()
+            .find(|d| d.boundary.role == role && d.side == side)
+            .map(|d| &d.boundary)
+            .unwrap()
+    };
+    assert_eq!(out.delimiters.len(), 4);
+    let json = serde_json::to_string(&out).unwrap();
+    assert!(
+        json.contains(r#""side":"outer","role":"ego-left""#),
+        "{json}"
+    );
+    for (role, mark, sign) in [
+        (Role::EgoLeft, lane.wl_mark, 1.0),
+        (Role::EgoRight, lane.wr_mark, -1.0),
+    ] {
+        let (inner, outer) = (find(role, Side::Inner), find(role, Side::Outer));
+        let centre = out.boundaries.iter().find(|b| b.role == role).unwrap();
+        let true_centre = truth.boundaries.iter().find(|b| b.role == role).unwrap();
+        for b in [inner, outer] {
+            b.check_polyline().unwrap();
+            assert!(b.points.len() > 10 && b.road_points.len() == b.points.len());
+        }
+        for x in [6.0, 10.0, 15.0, 20.0] {
+            let (yi, yo, yc) = (
+                inner.y_at(x).unwrap(),
+                outer.y_at(x).unwrap(),
+                centre.y_at(x).unwrap(),
+            );
+            // y is to the left: the left marking's outer edge is further left.
+            assert!(
+                ((yo - yi) * sign - mark).abs() < 1e-3,
+                "{role:?} at {x} m: {yi} {yo}"
+            );
+            assert!((yc - (yi + yo) / 2.0).abs() < 1e-3, "{role:?} at {x} m");
+            // Within a pixel at x (the model's second-order centre line against the
+            // simulator's clothoid, as in lane_3d's tests).
+            let t = true_centre.y_at(x).unwrap();
+            assert!(
+                (yi - (t - sign * mark / 2.0)).abs() < x / tracker.camera.focal()[0],
+                "{role:?} at {x} m: inner {yi}, truth centre {t}"
+            );
+        }
+        for v in [300.0, 350.0, 400.0, 450.0] {
+            let u = |b: &Boundary| column_at(&b.points, v).unwrap();
+            let (ui, uc, uo) = (u(inner), u(centre), u(outer));
+            assert!(
+                (uo - uc) * sign < 0.0 && (uc - ui) * sign < 0.0,
+                "{role:?} row {v}: outer {uo} centre {uc} inner {ui}"
+            );
+        }
+    }
+    let (li, ri) = (
+        find(Role::EgoLeft, Side::Inner),
+        find(Role::EgoRight, Side::Inner),
+    );
+    for x in [6.0, 20.0] {
+        let width = li.y_at(x).unwrap() - ri.y_at(x).unwrap();
+        assert!((width - lane.width(x)).abs() < 1e-3, "{width} at {x} m");
+    }
+}

@@ -438,6 +438,7 @@ impl LiuTracker {
             heading_rad: heading,
             curvature_per_m: curvature,
             lane_width_m: width,
+            delimiters: Vec::new(),
             state,
         }
     }
