@@ -1,10 +1,11 @@
 //! danescu-mono or danescu-stereo on the simulator: per scenario, over several seeds at 640x480
 //! with the simulator's ego motion, the RMSE of the lateral offset, yaw, horizontal curvature,
-//! lane width W_0 (inner edges), pitch and height offset Y_0, the mean absolute error of the
-//! marking widths W_L, W_R, the valid rate and the median ms/frame (indicative: the runs share
-//! the machine). Each scenario runs twice: with the marking-width model and the gradient cue
-//! (the paper's new approach) and without (`marking_widths: false`, its previous approach,
-//! Fig. 10).
+//! lane width W_0 (inner edges; also its mean absolute error, in mm and in % of the true
+//! width, the paper's measure in Fig. 10), width change W_l, vertical curvature C_V, pitch,
+//! roll and height offset Y_0, the mean absolute error of each marking width W_L, W_R, the
+//! valid rate and the median ms/frame (indicative: the runs share the machine). Each scenario
+//! runs twice: with the marking-width model and the gradient cue (the paper's new approach)
+//! and without (`marking_widths: false`, its previous approach, Fig. 10).
 //! `cargo run --release --example danescu_sweep -- [ID] [SEEDS] [FRAMES] [SCENARIO...]`
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
@@ -17,10 +18,14 @@ struct Sums {
     psi: f64,
     ch: f64,
     w0: f64,
+    w0_abs: f64,
+    w0_rel: f64,
+    wl: f64,
+    cv: f64,
+    gamma: f64,
     alpha: f64,
     y0: f64,
-    marks: f64,
-    marks_n: f64,
+    marks: [f64; 2],
     valid: f64,
     ms: Vec<f64>,
 }
@@ -53,8 +58,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{id}: {seeds} seeds x {frames} frames, N = 500, 640x480, first 30 frames of each run skipped"
     );
     println!();
-    println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | pitch RMSE (mrad) | Y_0 RMSE (cm) | W_L, W_R MAE (m) | valid | ms/frame (median) |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | W_0 MAE (mm, %) | W_l RMSE | C_V RMSE (1/m) | pitch RMSE (mrad) | roll RMSE (mrad) | Y_0 RMSE (cm) | W_L MAE (mm) | W_R MAE (mm) | valid | ms/frame (median) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for name in &names {
         for marking_widths in [true, false] {
             let mut s = Sums::default();
@@ -90,11 +95,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     s.psi += sq("danescu.psi");
                     s.ch += sq("danescu.ch");
                     s.w0 += sq("danescu.w0");
+                    let w0_err = (t.state["danescu.w0"] - e.state["danescu.w0"]).abs();
+                    s.w0_abs += w0_err;
+                    s.w0_rel += w0_err / t.state["danescu.w0"];
+                    s.wl += sq("danescu.wl");
+                    s.cv += sq("danescu.cv");
+                    s.gamma += sq("danescu.gamma");
                     s.alpha += sq("danescu.alpha");
                     s.y0 += sq("danescu.y0");
-                    for k in ["danescu.wl_mark", "danescu.wr_mark"] {
-                        s.marks += (t.state[k] - e.state[k]).abs();
-                        s.marks_n += 1.0;
+                    for (m, k) in s
+                        .marks
+                        .iter_mut()
+                        .zip(["danescu.wl_mark", "danescu.wr_mark"])
+                    {
+                        *m += (t.state[k] - e.state[k]).abs();
                     }
                     s.valid += f64::from(u8::from(e.valid));
                 }
@@ -102,7 +116,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s.ms.sort_by(f64::total_cmp);
             let r = |x: f64| (x / s.n).sqrt();
             println!(
-                "| {name} | {} | {:.3} | {:.4} | {:.5} | {:.3} | {:.1} | {:.1} | {:.3} | {:.1} % | {:.1} |",
+                "| {name} | {} | {:.3} | {:.4} | {:.5} | {:.3} | {:.1}, {:.2} % | {:.4} | {:.5} | {:.1} | {:.2} | {:.1} | {:.1} | {:.1} | {:.1} % | {:.1} |",
                 if marking_widths {
                     "marking widths + gradient"
                 } else {
@@ -112,9 +126,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 r(s.psi),
                 r(s.ch),
                 r(s.w0),
+                1e3 * s.w0_abs / s.n,
+                1e2 * s.w0_rel / s.n,
+                r(s.wl),
+                r(s.cv),
                 1e3 * r(s.alpha),
+                1e3 * r(s.gamma),
                 1e2 * r(s.y0),
-                s.marks / s.marks_n,
+                1e3 * s.marks[0] / s.n,
+                1e3 * s.marks[1] / s.n,
                 100.0 * s.valid / s.n,
                 s.ms[s.ms.len() / 2],
             );

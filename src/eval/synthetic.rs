@@ -97,6 +97,7 @@ pub fn parse_ground_truth(text: &str, source: &str) -> Result<Vec<LaneEstimate>>
             heading_rad: g.heading_rad.unwrap_or(f64::NAN),
             curvature_per_m: g.curvature_per_m.unwrap_or(f64::NAN),
             lane_width_m: g.lane_width_m.unwrap_or(f64::NAN),
+            delimiters: Vec::new(),
             state: g
                 .state
                 .into_iter()

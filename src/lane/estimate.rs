@@ -49,6 +49,39 @@ pub struct Boundary {
     pub road_points: Vec<[f64; 2]>,
 }
 
+/// Which edge of a lane marking a [`Delimiter`] follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Side {
+    /// The marking's edge towards the ego lane.
+    Inner,
+    /// The marking's edge away from the ego lane.
+    Outer,
+}
+
+impl Side {
+    /// The side's name as written in JSON (`inner`, `outer`).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Side::Inner => "inner",
+            Side::Outer => "outer",
+        }
+    }
+}
+
+/// One edge of a boundary's marking: for trackers whose lane model has marking widths
+/// (Danescu & Nedevschi 2011, eqs. 2-3), the inner and outer delimiters of the marking whose
+/// centre line is the boundary of the same role. Serialised as the boundary's fields plus
+/// `"side": "inner" | "outer"`; the polyline rules are the boundaries'.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Delimiter {
+    /// Which edge of the marking.
+    pub side: Side,
+    /// The edge's role (the boundary it belongs to) and polylines.
+    #[serde(flatten)]
+    pub boundary: Boundary,
+}
+
 /// A tracker's (or the ground truth's) description of the lane in one frame.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct LaneEstimate {
@@ -74,6 +107,11 @@ pub struct LaneEstimate {
     /// Tracker-specific parameters by name (e.g. Lee's psi, y0, w, w', c, delta).
     #[serde(default)]
     pub state: BTreeMap<String, f64>,
+    /// The inner and outer edges of the boundaries' markings, from trackers that model
+    /// marking widths (danescu-*); empty, and omitted from JSON, for the others. Evaluation
+    /// and drawing of lanes use `boundaries` only.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub delimiters: Vec<Delimiter>,
 }
 
 impl Boundary {
@@ -140,6 +178,7 @@ mod tests {
             curvature_per_m: 0.0008,
             lane_width_m: 3.62,
             state: BTreeMap::from([("w".to_string(), 3.62)]),
+            delimiters: vec![],
         };
         let json = serde_json::to_string(&e).unwrap();
         assert!(json.contains(r#""role":"ego-left""#), "{json}");
@@ -150,6 +189,28 @@ mod tests {
         assert!(
             !json.contains("road_points"),
             "empty road polylines are omitted"
+        );
+        assert!(!json.contains("delimiters"), "no delimiters, no field");
+        let back: LaneEstimate = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, e);
+        // A marking's edges: the boundary's fields and the side, read back the same.
+        let e = LaneEstimate {
+            delimiters: vec![Delimiter {
+                side: Side::Outer,
+                boundary: Boundary {
+                    role: Role::EgoRight,
+                    points: vec![[600.0, 470.0]],
+                    road_points: vec![[5.0, -1.95]],
+                },
+            }],
+            ..e
+        };
+        let json = serde_json::to_string(&e).unwrap();
+        assert!(
+            json.contains(
+                r#""delimiters":[{"side":"outer","role":"ego-right","points":[[600.0,470.0]],"road_points":[[5.0,-1.95]]}]"#
+            ),
+            "{json}"
         );
         let back: LaneEstimate = serde_json::from_str(&json).unwrap();
         assert_eq!(back, e);

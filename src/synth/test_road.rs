@@ -261,6 +261,7 @@ impl TestRoad {
             heading_rad: 0.0,
             curvature_per_m: 0.0,
             lane_width_m: self.config.lane_width_m,
+            delimiters: Vec::new(),
             state: Default::default(),
         }
     }

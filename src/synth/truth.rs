@@ -180,6 +180,7 @@ impl Scene {
             heading_rad: heading,
             curvature_per_m: kappa,
             lane_width_m: width,
+            delimiters: Vec::new(),
             state,
         }
     }

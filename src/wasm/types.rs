@@ -460,6 +460,15 @@ export interface Boundary {
   road_points?: [number, number][];
 }
 
+/** Which edge of a lane marking a delimiter follows. */
+export type Side = 'inner' | 'outer';
+
+/** One edge of a boundary's marking (danescu-*: eqs. 2-3 of Danescu & Nedevschi 2011). */
+export interface Delimiter extends Boundary {
+  /** The edge towards the ego lane ('inner') or away from it ('outer'). */
+  side: Side;
+}
+
 /** A tracker's estimate (or the ground truth) of one frame. */
 export interface LaneEstimate {
   /** Frame name ('' for a tracker's estimate). */
@@ -480,6 +489,11 @@ export interface LaneEstimate {
   lane_width_m: number;
   /** Tracker-specific parameters by name ('lee.psi', 'adachi.q', 'danescu.w0', ...). */
   state: Record<string, number>;
+  /**
+   * The inner and outer edges of the boundaries' markings, from trackers that model marking
+   * widths (danescu-mono, danescu-stereo); absent for the others.
+   */
+  delimiters?: Delimiter[];
 }
 
 /** The named values of a scene's ground truth (`Scene.truth(f).state`). */

@@ -395,6 +395,7 @@ impl AdachiTracker {
             heading_rad: 0.0,
             curvature_per_m: 0.0,
             lane_width_m: e.w,
+            delimiters: Vec::new(),
             state,
         }
     }

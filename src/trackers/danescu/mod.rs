@@ -25,6 +25,12 @@
 //! moves by one lane (X_CW +- (W_0 + the crossed marking's width), the crossed marking becoming
 //! the new near one) and the change is reported, as `lee-cpf` does.
 //!
+//! Output: the boundaries `ego-left` and `ego-right` are the markings' centre lines (the
+//! road edge where a marking's width is 0), as for every tracker, so that evaluation compares
+//! like with like; `delimiters` adds the inner and outer edge of each marking (eqs. 2-3) as
+//! image and road polylines with the same roles and a `side`. All are drawn from 1 m to
+//! `far_m` on the estimate's own vertical profile.
+//!
 //! A frame is valid when the chosen cluster holds at least `valid_cluster_share` of the
 //! resampled particles and, on each side, at least `valid_support` of the estimate's
 //! inner-edge points are within `valid_distance_px` of a road edge (our definition, as for
@@ -44,7 +50,9 @@ use crate::error::{Error, Result};
 use crate::filter::{
     FilterConfig, Injection, Mbsas, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
 };
-use crate::lane::{sample_road_curve, Boundary, Lane3d, LaneCamera, LaneEstimate, Role};
+use crate::lane::{
+    sample_road_curve, Boundary, Delimiter, Edge, Lane3d, LaneCamera, LaneEstimate, Role, Side,
+};
 use config::DanescuConfig;
 use cues::ImageCues;
 use model::{Initial, Measurement, Motion};
@@ -411,24 +419,46 @@ impl DanescuTracker {
 
     /// The marking centres of `lane` as image and road polylines (eqs. 1-4).
     fn boundaries(&self, lane: &Lane3d) -> Vec<Boundary> {
+        [(Role::EgoLeft, false), (Role::EgoRight, true)]
+            .into_iter()
+            .map(|(role, right)| self.polyline(lane, role, |z| lane.marking_centre_x(right, z)))
+            .collect()
+    }
+
+    /// The inner and outer delimiters of both markings (eqs. 2-3) as image and road
+    /// polylines, left marking first, inner before outer.
+    fn delimiters(&self, lane: &Lane3d) -> Vec<Delimiter> {
+        [
+            (Role::EgoLeft, Side::Inner, Edge::LeftInner),
+            (Role::EgoLeft, Side::Outer, Edge::LeftOuter),
+            (Role::EgoRight, Side::Inner, Edge::RightInner),
+            (Role::EgoRight, Side::Outer, Edge::RightOuter),
+        ]
+        .into_iter()
+        .map(|(role, side, edge)| Delimiter {
+            side,
+            boundary: self.polyline(lane, role, |z| lane.edge_x(edge, z)),
+        })
+        .collect()
+    }
+
+    /// The curve at X = `lateral(Z)` (the paper's X, to the right) on `lane`'s vertical
+    /// profile from 1 m to `far_m`, as the boundary `role`.
+    fn polyline(&self, lane: &Lane3d, role: Role, lateral: impl Fn(f64) -> f64) -> Boundary {
         let lc = LaneCamera::new(&self.camera, lane);
-        let mut boundaries = Vec::new();
-        for (role, right) in [(Role::EgoLeft, false), (Role::EgoRight, true)] {
-            let (points, road_points) = sample_road_curve(
-                |x| -lane.marking_centre_x(right, x),
-                |x, y| lc.project(-y, x),
-                1.0,
-                self.config.far_m,
-                self.camera.width(),
-                self.camera.height(),
-            );
-            boundaries.push(Boundary {
-                role,
-                points,
-                road_points,
-            });
+        let (points, road_points) = sample_road_curve(
+            |x| -lateral(x),
+            |x, y| lc.project(-y, x),
+            1.0,
+            self.config.far_m,
+            self.camera.width(),
+            self.camera.height(),
+        );
+        Boundary {
+            role,
+            points,
+            road_points,
         }
-        boundaries
     }
 
     /// The estimate as the shared output type.
@@ -468,6 +498,7 @@ impl DanescuTracker {
             curvature_per_m: -lane.ch,
             lane_width_m: lane.w0 + (lane.wl_mark + lane.wr_mark) / 2.0,
             state,
+            delimiters: self.delimiters(lane),
         }
     }
 

@@ -102,13 +102,14 @@ fn mono_follows_curves_and_width_changes() {
     let valid = tail.iter().filter(|(_, e)| e.valid).count();
     assert!(off < 0.05 && ch < 0.0004, "curve: offset {off} C_H {ch}");
     assert!(valid * 100 >= tail.len() * 95, "curve: {valid} valid");
-    // Frames 60-150 drive through the widening from 3.6 to 4.5 m (W_l = 0.009): W_0 follows
-    // within 0.08 m and the estimated W_l has the right sign on average.
+    // Frames 60-150 drive through the widening from 3.6 to 4.5 m (true W_l = 0.009 on every
+    // one of them): W_0 follows within 0.08 m RMS (0.023 when written) and W_l within 0.002
+    // RMS of the truth frame by frame (0.0009 when written; 0.009 for a W_l held at 0).
     let widening = run("width-change", 150, 640, 480);
     let part = &widening[60..150];
     let w = rms(part.iter().map(|(t, e)| t.state["danescu.w0"] - e.lane.w0));
-    let wl: f64 = part.iter().map(|(_, e)| e.lane.wl).sum::<f64>() / part.len() as f64;
-    assert!(w < 0.08 && wl > 0.002, "width-change: W_0 {w} W_l {wl}");
+    let wl = rms(part.iter().map(|(t, e)| t.state["danescu.wl"] - e.lane.wl));
+    assert!(w < 0.08 && wl < 0.002, "width-change: W_0 {w} W_l {wl}");
 }
 
 /// The estimates the browser tests `danescu_mono_runs_in_the_browser_with_the_native_result`
@@ -388,6 +389,75 @@ fn stereo_tracks_the_pitch_and_height_on_bumps_and_a_straight_highway() {
     assert!(valid * 100 >= tail.len() * 90, "straight: {valid} valid");
 }
 
+/// Pearson correlation of two series.
+fn correlation(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len() as f64;
+    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        ab += (x - ma) * (y - mb);
+        aa += (x - ma) * (x - ma);
+        bb += (y - mb) * (y - mb);
+    }
+    ab / (aa * bb).sqrt()
+}
+
+#[test]
+fn stereo_follows_a_curve() {
+    // highway-curve at 640x480, frames 30-120 (the curve begins near frame 55): offset under
+    // 4 cm RMS (2.5 when written), C_H under 5e-4 (3.4e-4), psi under 6 mrad (3.9), W_0 under
+    // 0.1 m (0.066), valid on at least 90 % of the frames (87 of 90). The monocular tracker
+    // does better on this flat road (`mono_follows_curves_and_width_changes`).
+    let curve = run_stereo("highway-curve", 120, 640, 480, "");
+    let tail = &curve[30..];
+    let off = rms(tail.iter().map(|(t, e, _)| t.lateral_offset_m - e.lane.xcw));
+    let ch = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.ch"] - e.lane.ch));
+    let psi = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.psi"] - e.lane.psi));
+    let w0 = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.w0"] - e.lane.w0));
+    let valid = tail.iter().filter(|(_, e, _)| e.valid).count();
+    assert!(
+        off < 0.04 && ch < 0.0005 && psi < 0.006 && w0 < 0.1,
+        "offset {off} C_H {ch} psi {psi} W_0 {w0}"
+    );
+    assert!(valid * 100 >= tail.len() * 90, "{valid} valid");
+}
+
+#[test]
+fn stereo_follows_the_width_change() {
+    // width-change at 640x480, frames 30-300: the lane widens from 3.45 to 4.35 m over
+    // frames 45-165 (true W_l = 0.009) and narrows towards 3.05 m from frame 235 (W_l =
+    // -0.016). The estimated W_l follows the true one over the sequence: correlation above
+    // 0.7 (0.83 when written); its mean over frames 60-160 within 0.003 of 0.009. W_0 is
+    // within 0.13 m RMS of the truth (0.097), valid on at least 90 % of the frames (267 of
+    // 270). W_l lags the truth by some 10-30 frames at each change (it is diffused by
+    // 0.001 per frame), so frame by frame it is no closer than that.
+    let run = run_stereo("width-change", 300, 640, 480, "");
+    let tail = &run[30..];
+    let truth: Vec<f64> = tail.iter().map(|(t, _, _)| t.state["danescu.wl"]).collect();
+    let est: Vec<f64> = tail.iter().map(|(_, e, _)| e.lane.wl).collect();
+    let r = correlation(&truth, &est);
+    let widening = &run[60..160];
+    assert!(widening
+        .iter()
+        .all(|(t, _, _)| t.state["danescu.wl"] > 0.008));
+    let mean = widening.iter().map(|(_, e, _)| e.lane.wl).sum::<f64>() / 100.0;
+    let w0 = rms(tail
+        .iter()
+        .map(|(t, e, _)| t.state["danescu.w0"] - e.lane.w0));
+    let valid = tail.iter().filter(|(_, e, _)| e.valid).count();
+    assert!(
+        r > 0.7 && (mean - 0.009).abs() < 0.003 && w0 < 0.13,
+        "W_l correlation {r}, mean while widening {mean}, W_0 {w0}"
+    );
+    assert!(valid * 100 >= tail.len() * 90, "{valid} valid");
+}
+
 #[test]
 fn stereo_input_errors_are_clear() {
     let (w, h) = (320, 240);
@@ -579,5 +649,115 @@ fn roads_without_kerbs_give_no_curbs() {
                 assert!(feet.is_empty(), "{name} {w}x{h} frame {f}: {feet:?}");
             }
         }
+    }
+}
+
+/// Image column of a polyline at row `v` (linear between its points).
+fn column_at(points: &[[f64; 2]], v: f64) -> Option<f64> {
+    points.windows(2).find_map(|p| {
+        let ([u0, v0], [u1, v1]) = (p[0], p[1]);
+        (v <= v0 && v >= v1 && v0 > v1).then(|| u0 + (u1 - u0) * (v0 - v) / (v0 - v1))
+    })
+}
+
+#[test]
+fn the_output_has_each_markings_inner_and_outer_edge_a_marking_width_apart() {
+    // The true lane of the first curved frame of highway-curve (the car off centre, 0.15 m
+    // markings)
+    // put through the output: four delimiters (eqs. 2-3), each marking's inner and outer edge
+    // W_L (W_R) apart on the road and the boundary (the marking's centre) half-way between,
+    // the inner edges W(Z) apart (eq. 1); in the image, outer-centre-inner in order on every
+    // row; and all of them on the simulator's truth (its boundaries are the marking centres).
+    let (w, h) = (640, 480);
+    let scene = Scene::new(
+        scenario("highway-curve").unwrap(),
+        default_camera(w, h).unwrap(),
+        1,
+    )
+    .unwrap();
+    let truth = (0..300)
+        .step_by(10)
+        .map(|f| scene.truth(f))
+        .find(|t| t.state["danescu.ch"].abs() > 5e-4)
+        .unwrap();
+    let lane = true_lane(&truth);
+    assert!(lane.ch.abs() > 1e-4 && lane.wl_mark > 0.1, "{lane:?}");
+    let tracker = DanescuTracker::new(&config(w, h, ""), ID_STEREO).unwrap();
+    let out = tracker.to_lane_estimate(&DanescuEstimate {
+        lane,
+        valid: true,
+        cluster_share: 1.0,
+        clusters: 1,
+        change: 0,
+        ess: 1.0,
+        support: [1.0; 2],
+    });
+    let find = |role: Role, side: Side| {
+        out.delimiters
+            .iter()
+            .find(|d| d.boundary.role == role && d.side == side)
+            .map(|d| &d.boundary)
+            .unwrap()
+    };
+    assert_eq!(out.delimiters.len(), 4);
+    let json = serde_json::to_string(&out).unwrap();
+    assert!(
+        json.contains(r#""side":"outer","role":"ego-left""#),
+        "{json}"
+    );
+    for (role, mark, sign) in [
+        (Role::EgoLeft, lane.wl_mark, 1.0),
+        (Role::EgoRight, lane.wr_mark, -1.0),
+    ] {
+        let (inner, outer) = (find(role, Side::Inner), find(role, Side::Outer));
+        let centre = out.boundaries.iter().find(|b| b.role == role).unwrap();
+        let true_centre = truth.boundaries.iter().find(|b| b.role == role).unwrap();
+        for b in [inner, outer] {
+            b.check_polyline().unwrap();
+            assert!(b.points.len() > 10 && b.road_points.len() == b.points.len());
+        }
+        for x in [6.0, 10.0, 15.0, 20.0] {
+            let (yi, yo, yc) = (
+                inner.y_at(x).unwrap(),
+                outer.y_at(x).unwrap(),
+                centre.y_at(x).unwrap(),
+            );
+            // y is to the left: the left marking's outer edge is further left.
+            assert!(
+                ((yo - yi) * sign - mark).abs() < 1e-3,
+                "{role:?} at {x} m: {yi} {yo}"
+            );
+            assert!((yc - (yi + yo) / 2.0).abs() < 1e-3, "{role:?} at {x} m");
+            // Within a pixel at x (the model's second-order centre line against the
+            // simulator's clothoid, as in lane_3d's tests).
+            let t = true_centre.y_at(x).unwrap();
+            assert!(
+                (yi - (t - sign * mark / 2.0)).abs() < x / tracker.camera.focal()[0],
+                "{role:?} at {x} m: inner {yi}, truth centre {t}"
+            );
+        }
+        // On the rows where all three are in the image (a marking leaves it at the side
+        // near the bottom).
+        let mut rows = 0;
+        for v in (250..=450).step_by(25).map(f64::from) {
+            let u = |b: &Boundary| column_at(&b.points, v);
+            let (Some(ui), Some(uc), Some(uo)) = (u(inner), u(centre), u(outer)) else {
+                continue;
+            };
+            rows += 1;
+            assert!(
+                (uo - uc) * sign < 0.0 && (uc - ui) * sign < 0.0,
+                "{role:?} row {v}: outer {uo} centre {uc} inner {ui}"
+            );
+        }
+        assert!(rows >= 5, "{role:?}: {rows} rows");
+    }
+    let (li, ri) = (
+        find(Role::EgoLeft, Side::Inner),
+        find(Role::EgoRight, Side::Inner),
+    );
+    for x in [6.0, 20.0] {
+        let width = li.y_at(x).unwrap() - ri.y_at(x).unwrap();
+        assert!((width - lane.width(x)).abs() < 1e-3, "{width} at {x} m");
     }
 }

@@ -740,6 +740,7 @@ impl LeeTracker {
             heading_rad: s.psi,
             curvature_per_m: curve.curvature_at_car(),
             lane_width_m: s.w,
+            delimiters: Vec::new(),
             state,
         }
     }

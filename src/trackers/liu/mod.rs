@@ -439,6 +439,7 @@ impl LiuTracker {
             heading_rad: heading,
             curvature_per_m: curvature,
             lane_width_m: width,
+            delimiters: Vec::new(),
             state,
         }
     }
