@@ -8,6 +8,7 @@
 
 use super::lanes::F32x4;
 use crate::math;
+use std::ops::{Add, Mul, Sub};
 
 /// Largest tabulated argument.
 pub const RANGE: f64 = 32.0;

@@ -1,10 +1,13 @@
-//! Four f32 lanes for liu-ppf's parabolic kernel sums: WebAssembly SIMD (`simd128`) in the
-//! browser, SSE2 on x86_64 (every x86_64 CPU has it), four plain floats elsewhere.
+//! Four f32 lanes for liu-ppf's parabolic kernel sums: SSE2 on x86_64 (every x86_64 CPU has
+//! it), four plain floats elsewhere. (WebAssembly runs those sums one pixel at a time: with
+//! `simd128` lanes they measured 3 % slower there, the table reads of the four lanes costing
+//! what the arithmetic saves.)
 //!
 //! Every operation is the IEEE operation the scalar code performs, lane by lane (no fused
-//! multiply-add, no reordering), so a sum written with these lanes is bit-identical on every
-//! target and to the same sum written one pixel at a time (tests/web.rs compares liu-ppf in
-//! Chromium with the native bits). Masks are lanes of all ones (true) or all zeros (false).
+//! multiply-add, no reordering), so a sum written with these lanes is bit-identical to the
+//! same sum written one pixel at a time, and so to the browser build (tests/web.rs compares
+//! liu-ppf in Chromium with the native bits). Masks are lanes of all ones (true) or all zeros
+//! (false).
 
 /// Four f32 lanes (or a mask of four lanes).
 #[derive(Clone, Copy, Debug)]
@@ -31,21 +34,6 @@ impl F32x4 {
     pub fn load(v: &[f32], j: usize) -> Self {
         let four: &[f32; 4] = v[j..j + 4].try_into().expect("four floats");
         Self(imp::load(four))
-    }
-    /// Lane-wise `self + b`.
-    #[inline]
-    pub fn add(self, b: Self) -> Self {
-        Self(imp::add(self.0, b.0))
-    }
-    /// Lane-wise `self - b`.
-    #[inline]
-    pub fn sub(self, b: Self) -> Self {
-        Self(imp::sub(self.0, b.0))
-    }
-    /// Lane-wise `self * b`.
-    #[inline]
-    pub fn mul(self, b: Self) -> Self {
-        Self(imp::mul(self.0, b.0))
     }
     /// Mask of `self > b` (false where either is NaN).
     #[inline]
@@ -86,85 +74,30 @@ impl F32x4 {
     }
 }
 
-#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-mod imp {
-    use core::arch::wasm32::*;
-    pub type Raw = v128;
+impl std::ops::Add for F32x4 {
+    type Output = Self;
+    /// Lane-wise `self + b`.
+    #[inline]
+    fn add(self, b: Self) -> Self {
+        Self(imp::add(self.0, b.0))
+    }
+}
 
+impl std::ops::Sub for F32x4 {
+    type Output = Self;
+    /// Lane-wise `self - b`.
     #[inline]
-    pub fn from_array(a: [f32; 4]) -> Raw {
-        f32x4(a[0], a[1], a[2], a[3])
+    fn sub(self, b: Self) -> Self {
+        Self(imp::sub(self.0, b.0))
     }
+}
+
+impl std::ops::Mul for F32x4 {
+    type Output = Self;
+    /// Lane-wise `self * b`.
     #[inline]
-    pub fn to_array(v: Raw) -> [f32; 4] {
-        [
-            f32x4_extract_lane::<0>(v),
-            f32x4_extract_lane::<1>(v),
-            f32x4_extract_lane::<2>(v),
-            f32x4_extract_lane::<3>(v),
-        ]
-    }
-    #[inline]
-    pub fn splat(v: f32) -> Raw {
-        f32x4_splat(v)
-    }
-    #[inline]
-    pub fn load(four: &[f32; 4]) -> Raw {
-        // SAFETY: `four` is 16 readable bytes; wasm loads need no alignment.
-        unsafe { v128_load(four.as_ptr() as *const v128) }
-    }
-    #[inline]
-    pub fn add(a: Raw, b: Raw) -> Raw {
-        f32x4_add(a, b)
-    }
-    #[inline]
-    pub fn sub(a: Raw, b: Raw) -> Raw {
-        f32x4_sub(a, b)
-    }
-    #[inline]
-    pub fn mul(a: Raw, b: Raw) -> Raw {
-        f32x4_mul(a, b)
-    }
-    #[inline]
-    pub fn gt(a: Raw, b: Raw) -> Raw {
-        f32x4_gt(a, b)
-    }
-    #[inline]
-    pub fn le(a: Raw, b: Raw) -> Raw {
-        f32x4_le(a, b)
-    }
-    #[inline]
-    pub fn ge(a: Raw, b: Raw) -> Raw {
-        f32x4_ge(a, b)
-    }
-    #[inline]
-    pub fn select(mask: Raw, a: Raw, b: Raw) -> Raw {
-        v128_bitselect(a, b, mask)
-    }
-    #[inline]
-    pub fn all(mask: Raw) -> bool {
-        i32x4_all_true(mask)
-    }
-    #[inline]
-    pub fn mask_to_array(mask: Raw) -> [bool; 4] {
-        [
-            i32x4_extract_lane::<0>(mask) != 0,
-            i32x4_extract_lane::<1>(mask) != 0,
-            i32x4_extract_lane::<2>(mask) != 0,
-            i32x4_extract_lane::<3>(mask) != 0,
-        ]
-    }
-    #[inline]
-    pub fn index_below(t: Raw, last: u32) -> ([u32; 4], Raw) {
-        // Saturating per lane, NaN to 0: `t as u32` (and so `as usize` up to the minimum).
-        let i = u32x4_min(u32x4_trunc_sat_f32x4(t), u32x4_splat(last));
-        let lanes = [
-            u32x4_extract_lane::<0>(i),
-            u32x4_extract_lane::<1>(i),
-            u32x4_extract_lane::<2>(i),
-            u32x4_extract_lane::<3>(i),
-        ];
-        (lanes, f32x4_convert_u32x4(i))
+    fn mul(self, b: Self) -> Self {
+        Self(imp::mul(self.0, b.0))
     }
 }
 
@@ -245,10 +178,7 @@ mod imp {
     }
 }
 
-#[cfg(not(any(
-    all(target_arch = "wasm32", target_feature = "simd128"),
-    target_arch = "x86_64"
-)))]
+#[cfg(not(target_arch = "x86_64"))]
 mod imp {
     //! Four plain floats, lane by lane; masks hold all-ones bit patterns as the SIMD ones do.
     pub type Raw = [f32; 4];
@@ -322,6 +252,7 @@ mod imp {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::ops::{Add, Mul, Sub};
 
     #[test]
     fn lanes_compute_what_the_scalar_operations_compute() {

@@ -45,6 +45,7 @@ use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
 use crate::math;
 use std::f64::consts::PI;
+use std::ops::{Add, Mul, Sub};
 
 /// One particle: (rho, theta, d) of each boundary, left to right; only the first n_l are used.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -229,7 +230,10 @@ impl PpfModel {
         let nodes = self.node_offsets.len();
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
-        let mut batch = (self.kernel && nodes == 3).then(Batch::default);
+        // Four lanes natively; in WebAssembly one pixel at a time, which measured faster
+        // there (see `super::lanes`).
+        let lanes = self.kernel && nodes == 3 && !cfg!(target_arch = "wasm32");
+        let mut batch = lanes.then(Batch::default);
         for y in self.far_rows() {
             let yf = y as f64;
             let xc = c + d * yf + e * yf * yf;
@@ -349,8 +353,7 @@ impl PpfModel {
     }
 
     /// [`PpfModel::parabolic_pixels`] with 3 nodes for the `used` pixels of `batch`, four at a
-    /// time in the four lanes of each operation ([`F32x4`]: WebAssembly SIMD in the browser,
-    /// SSE2 on x86_64). Every lane performs the scalar code's IEEE operations in the scalar
+    /// time in the four lanes of each operation ([`F32x4`]: SSE2 on x86_64). Every lane performs the scalar code's IEEE operations in the scalar
     /// code's order with its own row's curve (the fold's branches become lane selects), and
     /// the pixels' terms are added to `sum` one by one in pixel order, so the result is
     /// bit-identical to the one-pixel-at-a-time path. (Lanes past `used` in the last quad are
@@ -375,14 +378,18 @@ impl PpfModel {
             }
             let xf = F32x4::load(&batch.x, j);
             let mut g = F32x4::splat(0.0);
-            for k in 0..3 {
-                let dx = F32x4::load(&batch.node_x[k], j).sub(xf);
-                let dt = dtheta.add(F32x4::load(&batch.node_theta[k], j));
+            for ((weight, node_x), node_theta) in node_weights
+                .iter()
+                .zip(&batch.node_x)
+                .zip(&batch.node_theta)
+            {
+                let dx = F32x4::load(node_x, j).sub(xf);
+                let dt = dtheta.add(F32x4::load(node_theta, j));
                 let arg = dx
                     .mul(dx)
                     .mul(inv_2var)
                     .add(half.mul(dt).mul(dt).mul(precision));
-                g = g.add(node_weights[k].mul(self.exp.neg_exp_x4(arg)));
+                g = g.add(weight.mul(self.exp.neg_exp_x4(arg)));
             }
             let terms = F32x4::load(&batch.weight, j).mul(g).to_array();
             let skipped = skip.mask_to_array();
