@@ -478,7 +478,9 @@ export interface LaneEstimate {
   curvature_per_m: number;
   /** Lane width, metres. */
   lane_width_m: number;
-  /** Tracker-specific parameters by name ('lee.psi', 'adachi.q', 'danescu.w0', ...). */
+  /** Tracker-specific parameters by name ('lee.psi', 'adachi.q', 'danescu.w0', ...);
+   *  'adachi.change', 'lee.change', 'danescu.change': +1 a lane change to the left this frame,
+   *  -1 to the right, 0 none. */
   state: Record<string, number>;
 }
 

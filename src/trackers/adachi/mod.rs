@@ -10,7 +10,8 @@
 //! applied to the estimate: the estimated q is followed without wrapping (each frame takes the
 //! copy q + k w nearest the previous one), and when it leaves [-w/2, w/2) of the current lane
 //! by more than a 0.1 m hysteresis margin, the lane index moves and an event is reported: q
-//! past +w/2 is a change to the left, past -w/2 a change to the right. (Per-particle wraps are
+//! past +w/2 is a change to the left (`change` +1), past -w/2 a change to the right (-1), the
+//! sign convention of `lee.change` and `danescu.change`. (Per-particle wraps are
 //! spread over several frames, so counting them gives no clean event.)
 //! Boundaries are the straight lines rho_l parallel to the car (the paper's model assumes
 //! straight lanes along the driving direction), drawn from `near_m` to 3 `far_m`.
@@ -98,7 +99,7 @@ pub struct AdachiEstimate {
     pub r: usize,
     /// Posterior probability of each model.
     pub probabilities: [f64; 4],
-    /// Lane change this frame: -1 left, +1 right, 0 none.
+    /// Lane change this frame: +1 to the left, -1 to the right, 0 none (as `lee.change`).
     pub change: i8,
     /// Number of edge votes.
     pub votes: usize,
@@ -319,10 +320,10 @@ impl AdachiTracker {
         let local = track - self.lane_index as f64 * w;
         let change = if local >= w / 2.0 + CHANGE_MARGIN_M {
             self.lane_index += 1;
-            -1
+            1
         } else if local < -w / 2.0 - CHANGE_MARGIN_M {
             self.lane_index -= 1;
-            1
+            -1
         } else {
             0
         };
@@ -589,7 +590,7 @@ mod tests {
         assert_eq!(truth.len(), 2);
         assert_eq!(events.len(), 2, "{events:?} vs {truth:?}");
         // First to the right (lane 1 -> 2), then back to the left, each within 0.5 s.
-        assert_eq!((events[0].1, events[1].1), (1, -1));
+        assert_eq!((events[0].1, events[1].1), (-1, 1));
         for (e, t) in events.iter().zip(&truth) {
             assert!(e.0.abs_diff(*t) <= 15, "{events:?} vs {truth:?}");
         }
