@@ -229,6 +229,9 @@ export interface AdachiOptions {
   width_range_m?: [number, number];
   /** Model transition matrix, 4 rows of 4 (the paper's Table 1). */
   transitions?: number[][];
+  /** A frame is valid when each ego boundary's edge voted in at least this share of the
+   *  voting region's rows (0.08; 0 to 1). */
+  valid_support?: number;
 }
 
 /** Options of `lee-cpf` (all optional; defaults shown). */

@@ -92,6 +92,33 @@ impl Likelihood {
             .sum()
     }
 
+    /// The vote support of one boundary at `rho`: the share of the region's rows in which its
+    /// edge voted. Votes are counted within 2 sd of where the template H_bar puts the edge
+    /// (rho -+ m/2 by polarity) and divided by the number of region rows crossing that window,
+    /// since a solid marking's edge votes once per row; capped at 1 per edge and averaged over
+    /// the edges of the polarity. 0 for an edge off the axis. Not part of the paper: it defines
+    /// [`super::AdachiEstimate::valid`].
+    pub fn support(&self, votes: &Votes, rho: f64) -> f64 {
+        let lo_axis = votes.rho_min();
+        let hi_axis = lo_axis + votes.bin_m() * votes.bins() as f64;
+        self.edges
+            .iter()
+            .map(|&(off, weight)| {
+                let (a, b) = (rho + off - 2.0 * self.sd, rho + off + 2.0 * self.sd);
+                if !(b > lo_axis && a < hi_axis) {
+                    return 0.0;
+                }
+                let (lo, hi) = (votes.bin_of(a), votes.bin_of(b));
+                let rows = votes.rows_crossing(lo, hi);
+                if rows == 0 {
+                    return 0.0;
+                }
+                let n: f64 = votes.histogram[lo..=hi].iter().sum();
+                weight * (n / rows as f64).min(1.0)
+            })
+            .sum()
+    }
+
     /// ln p(z | r, q, w) (eq. 6) for model index `model` (0..3 for r = 1..4).
     pub fn log_likelihood(&self, votes: &Votes, model: usize, q: f64, w: f64) -> f64 {
         let coefficients = COEFFICIENTS[model.min(3)];

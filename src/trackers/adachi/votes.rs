@@ -23,6 +23,8 @@ pub struct Votes {
     response: Vec<f32>,
     /// N_j normalised to sum 1.
     pub noise: Vec<f64>,
+    /// The first and last bin of each region row that covers any (for [`Votes::rows_crossing`]).
+    row_spans: Vec<(u32, u32)>,
     /// H_j of the last frame.
     pub histogram: Vec<f64>,
     bin_m: f64,
@@ -66,6 +68,14 @@ impl Votes {
                 noise[b as usize] += 1.0;
             }
         }
+        let row_spans = bins
+            .chunks(w.max(1))
+            .filter_map(|row| {
+                let mut span = row.iter().filter(|&&b| b != u32::MAX);
+                let first = *span.next()?;
+                Some(span.fold((first, first), |(lo, hi), &b| (lo.min(b), hi.max(b))))
+            })
+            .collect();
         let total: f64 = noise.iter().sum();
         if total > 0.0 {
             noise.iter_mut().for_each(|n| *n /= total);
@@ -77,6 +87,7 @@ impl Votes {
             gray: vec![0.0; (rows.len() + 2) * w],
             response: vec![0.0; w],
             noise,
+            row_spans,
             histogram: vec![0.0; bins_n],
             bin_m: config.bin_m,
             rho_min,
@@ -100,6 +111,23 @@ impl Votes {
     /// The lower end of the rho axis, metres.
     pub fn rho_min(&self) -> f64 {
         self.rho_min
+    }
+    /// The bin holding `rho`, clamped to the axis.
+    pub fn bin_of(&self, rho: f64) -> usize {
+        let j = ((rho - self.rho_min) / self.bin_m).floor();
+        if j.is_nan() || j < 0.0 {
+            0
+        } else {
+            (j as usize).min(self.bins().saturating_sub(1))
+        }
+    }
+    /// Number of region rows that cover any of the bins `lo..=hi`: a solid marking edge lying
+    /// in those bins can give at most that many votes (one per row).
+    pub fn rows_crossing(&self, lo: usize, hi: usize) -> usize {
+        self.row_spans
+            .iter()
+            .filter(|&&(a, b)| (a as usize) <= hi && (b as usize) >= lo)
+            .count()
     }
     /// Whether the region covers any pixel.
     pub fn is_empty(&self) -> bool {
