@@ -635,6 +635,98 @@ mod tests {
         }
     }
 
+    /// Error of q against the truth, modulo the lane width (q and q +- w describe the same
+    /// lanes).
+    fn q_error(t: &LaneEstimate, e: &AdachiEstimate) -> f64 {
+        let d = e.q - t.state["adachi.q"];
+        d - (d / e.w).round() * e.w
+    }
+
+    /// Share of `out` (among the frames `select` keeps) where `hit` holds, and how many
+    /// frames were kept.
+    fn share(
+        out: &[(LaneEstimate, AdachiEstimate)],
+        select: impl Fn(usize, &LaneEstimate) -> bool,
+        hit: impl Fn(&LaneEstimate, &AdachiEstimate) -> bool,
+    ) -> (f64, usize) {
+        let kept: Vec<_> = out
+            .iter()
+            .enumerate()
+            .filter(|(i, (t, _))| select(*i, t))
+            .collect();
+        let n = kept.iter().filter(|(_, (t, e))| hit(t, e)).count();
+        (n as f64 / kept.len().max(1) as f64, kept.len())
+    }
+
+    /// `multi-lane`: four lanes, the car in the second; the lane on its left is missing for
+    /// s = 90-200 m (frames 84-216), so the true model goes 4 -> 3 -> 4. Measured at 320x240
+    /// over all 300 frames, scene seeds 1-4 with tracker seeds 11-14 (2026-11-24): model r
+    /// right in 64-67 % of the frames (model 4: 80-83 %, model 3: 42-46 %), the presence of the
+    /// left lane right in 92-93 %. Thresholds: 60 % and 85 % (always answering 4 would give
+    /// 56 %, a left lane always present 56 %). What the tracker misses is the lane on the
+    /// right while its outer boundary, 5.4 m out, is a dashed line (s = 70-230): it votes only
+    /// in the far rows of the region and model 1 or 2 wins, the failure of the paper's
+    /// Fig. 5 (c).
+    #[test]
+    fn multi_lane_model_follows_the_adjacent_lanes() {
+        let out = run("multi-lane", 300);
+        let truth_r = |t: &LaneEstimate| t.state["adachi.r"] as usize;
+        let (model, _) = share(&out, |_, _| true, |t, e| e.r == truth_r(t));
+        // Models 2 and 4 have a lane on the left.
+        let (left, _) = share(
+            &out,
+            |_, _| true,
+            |t, e| (e.r % 2 == 0) == (truth_r(t) % 2 == 0),
+        );
+        let (without_left, n) = share(&out, |_, t| truth_r(t) == 3, |t, e| e.r == truth_r(t));
+        assert!(n > 100, "the left lane disappears for {n} frames");
+        assert!(
+            model >= 0.6 && left >= 0.85,
+            "model r {model:.3}, left lane {left:.3}, model 3 {without_left:.3}"
+        );
+    }
+
+    /// `worn-markings`, the paper's known failure (faded and dashed lines): all paint faded to
+    /// 35 % for s = 60-140 m, the ego-left line gone for s = 160-220 and the ego-right line for
+    /// s = 240-290, the inner lines dashed (3 m every 12 m) throughout. A line is gone from the
+    /// whole 6-22 m voting region in frames 161-213 (left) and 257-297 (right). Measured at
+    /// 320x240 over 300 frames, scene seeds 1-4 with tracker seeds 11-14 (2026-11-24): q error
+    /// (modulo w) RMSE 0.092-0.094 m and at most 0.23 m, w RMSE 0.011-0.013 m; model r right in
+    /// 69-70 % of the frames (4 is true throughout; while the paint is faded the dashed lines
+    /// 5.4 m out give too few votes and model 1 wins, as in the paper); valid in 94-100 % of
+    /// frames 0-143 and in none where an ego line is gone from the whole region. Thresholds:
+    /// RMSE 0.12 m, max 0.3 m, model 60 %, valid 85 % and at most 5 %.
+    #[test]
+    fn worn_and_dashed_markings_keep_the_position_and_lose_validity_where_a_line_is_gone() {
+        let out = run("worn-markings", 300);
+        let n = out.len() as f64;
+        let rmse_q = (out.iter().map(|(t, e)| q_error(t, e).powi(2)).sum::<f64>() / n).sqrt();
+        let max_q = out
+            .iter()
+            .map(|(t, e)| q_error(t, e).abs())
+            .fold(0.0, f64::max);
+        let (model, _) = share(&out, |_, _| true, |t, e| e.r as f64 == t.state["adachi.r"]);
+        let (valid_painted, _) = share(&out, |i, _| i < 144, |_, e| e.valid);
+        let gone = |i: usize| (161..=213).contains(&i) || (257..=297).contains(&i);
+        let (valid_gone, _) = share(&out, |i, _| gone(i), |_, e| e.valid);
+        // The gone line is the one without support.
+        assert!(out[161..=213]
+            .iter()
+            .all(|(_, e)| e.support[0] < e.support[1]));
+        assert!(out[257..=297]
+            .iter()
+            .all(|(_, e)| e.support[1] < e.support[0]));
+        assert!(
+            rmse_q < 0.12
+                && max_q < 0.3
+                && model >= 0.6
+                && valid_painted >= 0.85
+                && valid_gone <= 0.05,
+            "q RMSE {rmse_q:.3} max {max_q:.3}, model {model:.3}, valid {valid_painted:.3} \
+             painted, {valid_gone:.3} gone"
+        );
+    }
+
     /// `valid` needs vote support on both ego lines: a marked road is valid, a blank, a black
     /// and an occluded frame (a truck's flat back over the road region) are not.
     #[test]
