@@ -39,3 +39,43 @@ pub fn grid_search(
     }
     best
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synth::default_camera;
+    use crate::trackers::adachi::config::AdachiConfig;
+
+    #[test]
+    fn the_grid_keeps_to_its_steps_and_bad_steps_do_not_hang() {
+        let config = AdachiConfig::default();
+        let mut votes = Votes::new(&default_camera(320, 240).unwrap(), &config).unwrap();
+        // Left edges of boundaries at q = 0.12, w = 3.6 (eq. 3), 30 votes each.
+        for rho in [-1.68, 1.92, -5.28, 5.52] {
+            let j = votes.bin_of(rho - config.marking_width_m / 2.0);
+            votes.histogram[j] = 30.0;
+        }
+        let mut likelihood = Likelihood::new(
+            config.polarity,
+            config.marking_width_m,
+            config.edge_sigma_m,
+            config.bin_m,
+            config.beta,
+        );
+        likelihood.prepare(&votes);
+        for (q_step, w_step) in [
+            (0.05, 0.02),
+            (0.005, 0.02),
+            (0.0, f64::NAN),
+            (f64::NAN, -1.0),
+        ] {
+            let (r, q, w, ll) = grid_search(&votes, &likelihood, [3.6, 3.6], q_step, w_step);
+            let step = if q_step >= 1e-3 { q_step } else { 1e-3 };
+            let k = (q + w / 2.0) / step;
+            assert!((k - k.round()).abs() < 1e-6, "q {q} off the {step} m grid");
+            assert!(r == 4 && w == 3.6 && ll.is_finite(), "r {r} w {w} ll {ll}");
+            // The votes are binned at 5 cm: q within a bin of the truth.
+            assert!((q - 0.12).abs() <= 0.05, "q {q} with step {q_step}");
+        }
+    }
+}
