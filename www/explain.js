@@ -43,13 +43,13 @@ export const TRACKERS = {
     text: [
       'Edge points in a box ahead vote onto one lateral axis ρ: the histogram H_j. A particle is (r, q, w): a model r (which of four boundaries exist), the lane position q and width w.',
       'Each frame the model switches by the Markov chain of Table 1 and q, w random-walk (eqs. 7-8), with q wrapping by a lane at ±w/2 (eq. 9), which is how a lane change shows.',
-      'The weight compares the histogram with the template of model r, less β times the noise histogram N_j (eqs. 4-6). The estimate is the most probable model and its particles’ mean.',
+      'The weight compares the histogram with an edge distribution: the template of each boundary model r has, plus β times the noise histogram N_j of all the box’s pixels, normalised (eq. 4); each vote multiplies in its bin’s probability (eq. 6). The estimate is the most probable model and its particles’ mean.',
     ],
     params: [
       PARTICLES,
       { path: 'sigma_q_m', label: 'σ_q: random walk of q (m)', min: 0.005, max: 0.3, step: 0.005 },
       { path: 'sigma_w_m', label: 'σ_w: random walk of w (m)', min: 0.002, max: 0.15, step: 0.002 },
-      { path: 'beta', label: 'β: weight of the noise histogram', min: 0, max: 3, step: 0.05 },
+      { path: 'beta', label: 'β: weight of the noise histogram', min: 0.05, max: 3, step: 0.05 },
       { path: 'edge_threshold', label: 'edge threshold', min: 10, max: 300, step: 5 },
     ],
   },

@@ -229,6 +229,9 @@ export interface AdachiOptions {
   width_range_m?: [number, number];
   /** Model transition matrix, 4 rows of 4 (the paper's Table 1). */
   transitions?: number[][];
+  /** A frame is valid when each ego boundary's edge voted in at least this share of the
+   *  voting region's rows (0.08; 0 to 1). */
+  valid_support?: number;
 }
 
 /** Options of `lee-cpf` (all optional; defaults shown). */
@@ -487,7 +490,9 @@ export interface LaneEstimate {
   curvature_per_m: number;
   /** Lane width, metres. */
   lane_width_m: number;
-  /** Tracker-specific parameters by name ('lee.psi', 'adachi.q', 'danescu.w0', ...). */
+  /** Tracker-specific parameters by name ('lee.psi', 'adachi.q', 'danescu.w0', ...);
+   *  'adachi.change', 'lee.change', 'danescu.change': +1 a lane change to the left this frame,
+   *  -1 to the right, 0 none. */
   state: Record<string, number>;
   /**
    * The inner and outer edges of the boundaries' markings, from trackers that model marking

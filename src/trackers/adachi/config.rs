@@ -1,6 +1,6 @@
 //! Settings of the Adachi tracker (all optional in the tracker config; defaults documented).
 
-use crate::error::{require_finite, require_positive, Error, Result};
+use crate::error::{require_finite, require_positive, require_within, Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// Which side of a marking votes (Sec. 3.2 uses the left edge of each white line).
@@ -50,6 +50,11 @@ pub struct AdachiConfig {
     pub width_range_m: [f64; 2],
     /// Model transition matrix pi (rows: from model 1..4), Table 1 by default.
     pub transitions: Vec<Vec<f64>>,
+    /// A frame is valid when each ego boundary of the estimate has at least this vote support:
+    /// the share of the voting region's rows in which its edge voted (see
+    /// [`super::likelihood::Likelihood::support`]). Not in the paper, which does not define a
+    /// valid frame.
+    pub valid_support: f64,
 }
 
 impl Default for AdachiConfig {
@@ -74,6 +79,7 @@ impl Default for AdachiConfig {
                 vec![1.0 / 12.0, 1.0 / 12.0, 9.0 / 12.0, 1.0 / 12.0],
                 vec![0.0, 1.0 / 8.0, 1.0 / 8.0, 6.0 / 8.0],
             ],
+            valid_support: 0.08,
         }
     }
 }
@@ -133,6 +139,12 @@ impl AdachiConfig {
         if hi <= lo {
             return Err(Error::parameter("width_range_m", hi, "max must exceed min"));
         }
+        require_within(
+            "valid_support",
+            self.valid_support,
+            0.0..=1.0,
+            "must be a fraction in [0, 1]",
+        )?;
         if self.transitions.len() != 4 {
             return Err(Error::Config(
                 "transitions must be a 4x4 matrix (models 1-4)".into(),

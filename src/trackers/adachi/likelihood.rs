@@ -92,6 +92,33 @@ impl Likelihood {
             .sum()
     }
 
+    /// The vote support of one boundary at `rho`: the share of the region's rows in which its
+    /// edge voted. Votes are counted within 2 sd of where the template H_bar puts the edge
+    /// (rho -+ m/2 by polarity) and divided by the number of region rows crossing that window,
+    /// since a solid marking's edge votes once per row; capped at 1 per edge and averaged over
+    /// the edges of the polarity. 0 for an edge off the axis. Not part of the paper: it defines
+    /// [`super::AdachiEstimate::valid`].
+    pub fn support(&self, votes: &Votes, rho: f64) -> f64 {
+        let lo_axis = votes.rho_min();
+        let hi_axis = lo_axis + votes.bin_m() * votes.bins() as f64;
+        self.edges
+            .iter()
+            .map(|&(off, weight)| {
+                let (a, b) = (rho + off - 2.0 * self.sd, rho + off + 2.0 * self.sd);
+                if !(b > lo_axis && a < hi_axis) {
+                    return 0.0;
+                }
+                let (lo, hi) = (votes.bin_of(a), votes.bin_of(b));
+                let rows = votes.rows_crossing(lo, hi);
+                if rows == 0 {
+                    return 0.0;
+                }
+                let n: f64 = votes.histogram[lo..=hi].iter().sum();
+                weight * (n / rows as f64).min(1.0)
+            })
+            .sum()
+    }
+
     /// ln p(z | r, q, w) (eq. 6) for model index `model` (0..3 for r = 1..4).
     pub fn log_likelihood(&self, votes: &Votes, model: usize, q: f64, w: f64) -> f64 {
         let coefficients = COEFFICIENTS[model.min(3)];
@@ -120,5 +147,110 @@ impl Likelihood {
             votes_n += h;
         }
         total + votes_n * ln_alpha
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::filter::Rng;
+    use crate::synth::default_camera;
+    use crate::trackers::adachi::config::AdachiConfig;
+
+    /// Grid steps for q and w, metres.
+    const Q_STEP: f64 = 0.025;
+    const W_STEP: f64 = 0.05;
+    fn grid_q(k: i64) -> f64 {
+        k as f64 * Q_STEP
+    }
+    fn grid_w(i: i64) -> f64 {
+        3.0 + i as f64 * W_STEP
+    }
+
+    /// H_j for the lanes (model, q, w): at the left edge of each boundary model r has
+    /// (rho_l - m/2, eq. 3 and the template's polarity) 40 votes, 15 in each neighbouring bin
+    /// and 3 two bins off; plus 60 noise votes in bins drawn uniformly where the region has
+    /// pixels.
+    fn synthetic(votes: &mut Votes, model: usize, q: f64, w: f64, m: f64, seed: u64) {
+        votes.histogram.fill(0.0);
+        for l in 0..4 {
+            if COEFFICIENTS[model][l] {
+                let j = votes.bin_of(q + OFFSETS[l] * w / 2.0 - m / 2.0);
+                for (d, n) in [(-2, 3.0), (-1, 15.0), (0, 40.0), (1, 15.0), (2, 3.0)] {
+                    votes.histogram[(j as i64 + d) as usize] += n;
+                }
+            }
+        }
+        let visible: Vec<usize> = (0..votes.bins())
+            .filter(|&j| votes.noise[j] > 0.0)
+            .collect();
+        let mut rng = Rng::new(seed);
+        for _ in 0..60 {
+            votes.histogram[visible[rng.below(visible.len())]] += 1.0;
+        }
+    }
+
+    #[test]
+    fn the_likelihood_is_maximal_at_the_true_lanes_of_a_synthetic_histogram() {
+        let cam = default_camera(320, 240).unwrap();
+        let config = AdachiConfig::default();
+        let mut votes = Votes::new(&cam, &config).unwrap();
+        let mut likelihood = Likelihood::new(
+            config.polarity,
+            config.marking_width_m,
+            config.edge_sigma_m,
+            config.bin_m,
+            config.beta,
+        );
+        // q = 0.1 and w = 3.6 put every boundary's edge on a bin centre.
+        let (kq, iw) = (4, 12);
+        let (q, w) = (grid_q(kq), grid_w(iw));
+        for truth in 0..4 {
+            synthetic(
+                &mut votes,
+                truth,
+                q,
+                w,
+                config.marking_width_m,
+                truth as u64 + 1,
+            );
+            likelihood.prepare(&votes);
+            // The best (q, w) of each model over q in [-w/2, w/2), w in 3.0..4.2.
+            let mut best = [(f64::NEG_INFINITY, 0, 0); 4];
+            for (model, b) in best.iter_mut().enumerate() {
+                for i in 0..=24 {
+                    for k in -72..72 {
+                        if grid_q(k) < -grid_w(i) / 2.0 || grid_q(k) >= grid_w(i) / 2.0 {
+                            continue;
+                        }
+                        let ll = likelihood.log_likelihood(&votes, model, grid_q(k), grid_w(i));
+                        if ll > b.0 {
+                            *b = (ll, k, i);
+                        }
+                    }
+                }
+            }
+            let at_truth = likelihood.log_likelihood(&votes, truth, q, w);
+            assert_eq!(
+                (best[truth].1, best[truth].2),
+                (kq, iw),
+                "model {}: best q {} w {}",
+                truth + 1,
+                grid_q(best[truth].1),
+                grid_w(best[truth].2)
+            );
+            assert_eq!(best[truth].0, at_truth);
+            for (model, b) in best.iter().enumerate() {
+                if model != truth {
+                    assert!(
+                        b.0 < at_truth - 1.0,
+                        "truth r = {}: r = {} reaches {} against {at_truth}",
+                        truth + 1,
+                        model + 1,
+                        b.0
+                    );
+                }
+            }
+        }
     }
 }

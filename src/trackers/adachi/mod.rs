@@ -10,8 +10,18 @@
 //! applied to the estimate: the estimated q is followed without wrapping (each frame takes the
 //! copy q + k w nearest the previous one), and when it leaves [-w/2, w/2) of the current lane
 //! by more than a 0.1 m hysteresis margin, the lane index moves and an event is reported: q
-//! past +w/2 is a change to the left, past -w/2 a change to the right. (Per-particle wraps are
+//! past +w/2 is a change to the left (`change` +1), past -w/2 a change to the right (-1), the
+//! sign convention of `lee.change` and `danescu.change`. (Per-particle wraps are
 //! spread over several frames, so counting them gives no clean event.)
+//!
+//! A frame is valid when both ego boundaries of the estimate have vote support: in at least
+//! `valid_support` (0.08 by default) of the voting region's rows, the boundary's edge voted
+//! within 2 sd of where the template puts it ([`likelihood::Likelihood::support`]). A solid
+//! line gives about 1; a dashed line of 3 m dashes every 12 m, as the dashes move through the
+//! 6-22 m region, never less than 0.12 (measured on `highway-straight` at 320x240, median
+//! 0.2); a blank, black or occluded road, or a line worn away, gives 0. The paper does not define a valid frame; this is our definition, and every
+//! vote still counts in the likelihood whatever it says.
+//!
 //! Boundaries are the straight lines rho_l parallel to the car (the paper's model assumes
 //! straight lanes along the driving direction), drawn from `near_m` to 3 `far_m`.
 
@@ -98,10 +108,15 @@ pub struct AdachiEstimate {
     pub r: usize,
     /// Posterior probability of each model.
     pub probabilities: [f64; 4],
-    /// Lane change this frame: -1 left, +1 right, 0 none.
+    /// Lane change this frame: +1 to the left, -1 to the right, 0 none (as `lee.change`).
     pub change: i8,
     /// Number of edge votes.
     pub votes: usize,
+    /// Vote support of the ego-left and ego-right boundaries of the estimate (the share of
+    /// the region's rows in which each one's edge voted).
+    pub support: [f64; 2],
+    /// Whether both ego boundaries have at least `valid_support` (see the module docs).
+    pub valid: bool,
     /// Effective sample size after the frame's weighing.
     pub ess: f64,
 }
@@ -170,13 +185,20 @@ impl AdachiTracker {
     }
 
     /// The per-frame maximum-likelihood baseline on the last frame's votes: (model 1..4, q,
-    /// w, log-likelihood), w searched in 2 cm steps.
+    /// w, log-likelihood), q searched in steps of the bin size and w in 2 cm steps.
     pub fn grid_estimate(&self) -> (usize, f64, f64, f64) {
+        self.grid_estimate_with(self.votes.bin_m(), 0.02)
+    }
+
+    /// [`AdachiTracker::grid_estimate`] with the grid's q and w steps in metres (steps under
+    /// 1 mm are taken as 1 mm).
+    pub fn grid_estimate_with(&self, q_step: f64, w_step: f64) -> (usize, f64, f64, f64) {
         grid::grid_search(
             &self.votes,
             &self.likelihood,
             self.config.width_range_m,
-            0.02,
+            q_step,
+            w_step,
         )
     }
 
@@ -319,13 +341,19 @@ impl AdachiTracker {
         let local = track - self.lane_index as f64 * w;
         let change = if local >= w / 2.0 + CHANGE_MARGIN_M {
             self.lane_index += 1;
-            -1
+            1
         } else if local < -w / 2.0 - CHANGE_MARGIN_M {
             self.lane_index -= 1;
-            1
+            -1
         } else {
             0
         };
+        let support = [
+            self.likelihood
+                .support(&self.votes, q + OFFSETS[0] * w / 2.0),
+            self.likelihood
+                .support(&self.votes, q + OFFSETS[1] * w / 2.0),
+        ];
         AdachiEstimate {
             q,
             w,
@@ -333,6 +361,8 @@ impl AdachiTracker {
             probabilities: self.probabilities,
             change,
             votes,
+            support,
+            valid: support[0].min(support[1]) >= self.config.valid_support,
             ess: self.filter.ess(),
         }
     }
@@ -381,6 +411,8 @@ impl AdachiTracker {
             ("adachi.p4", e.probabilities[3]),
             ("adachi.change", e.change as f64),
             ("adachi.votes", e.votes as f64),
+            ("adachi.support_left", e.support[0]),
+            ("adachi.support_right", e.support[1]),
             ("adachi.ess", e.ess),
         ]
         .into_iter()
@@ -388,7 +420,7 @@ impl AdachiTracker {
         .collect();
         LaneEstimate {
             frame: String::new(),
-            valid: e.votes > 0,
+            valid: e.valid,
             ms: 0.0,
             boundaries,
             lateral_offset_m: e.q,
@@ -503,13 +535,28 @@ mod tests {
 
     /// Runs the tracker over `frames` frames of a scenario; returns (truth, estimate) pairs.
     fn run(name: &str, frames: u32) -> Vec<(LaneEstimate, AdachiEstimate)> {
+        run_seeded(name, 1, 2, frames)
+    }
+
+    /// [`run`] with the scene's and the tracker's seeds.
+    fn run_seeded(
+        name: &str,
+        scene_seed: u64,
+        tracker_seed: u64,
+        frames: u32,
+    ) -> Vec<(LaneEstimate, AdachiEstimate)> {
         let mut scene = Scene::new(
             scenario(name).unwrap(),
             default_camera(320, 240).unwrap(),
-            1,
+            scene_seed,
         )
         .unwrap();
-        let mut tracker = AdachiTracker::new(&config("")).unwrap();
+        let cam = serde_json::to_string(&default_camera(320, 240).unwrap().to_file()).unwrap();
+        let config = TrackerConfig::from_json_str(&format!(
+            r#"{{"camera": {cam}, "particles": 400, "seed": {tracker_seed}}}"#
+        ))
+        .unwrap();
+        let mut tracker = AdachiTracker::new(&config).unwrap();
         let mut rgba = vec![0; 320 * 240 * 4];
         (0..frames)
             .map(|f| {
@@ -590,10 +637,145 @@ mod tests {
         assert_eq!(truth.len(), 2);
         assert_eq!(events.len(), 2, "{events:?} vs {truth:?}");
         // First to the right (lane 1 -> 2), then back to the left, each within 0.5 s.
-        assert_eq!((events[0].1, events[1].1), (1, -1));
+        assert_eq!((events[0].1, events[1].1), (-1, 1));
         for (e, t) in events.iter().zip(&truth) {
             assert!(e.0.abs_diff(*t) <= 15, "{events:?} vs {truth:?}");
         }
+    }
+
+    /// Error of q against the truth, modulo the lane width (q and q +- w describe the same
+    /// lanes).
+    fn q_error(t: &LaneEstimate, e: &AdachiEstimate) -> f64 {
+        let d = e.q - t.state["adachi.q"];
+        d - (d / e.w).round() * e.w
+    }
+
+    /// Share of `out` (among the frames `select` keeps) where `hit` holds, and how many
+    /// frames were kept.
+    fn share(
+        out: &[(LaneEstimate, AdachiEstimate)],
+        select: impl Fn(usize, &LaneEstimate) -> bool,
+        hit: impl Fn(&LaneEstimate, &AdachiEstimate) -> bool,
+    ) -> (f64, usize) {
+        let kept: Vec<_> = out
+            .iter()
+            .enumerate()
+            .filter(|(i, (t, _))| select(*i, t))
+            .collect();
+        let n = kept.iter().filter(|(_, (t, e))| hit(t, e)).count();
+        (n as f64 / kept.len().max(1) as f64, kept.len())
+    }
+
+    /// `multi-lane`: four lanes, the car in the second; the lane on its left is missing for
+    /// s = 90-200 m (frames 84-216), so the true model goes 4 -> 3 -> 4. Measured at 320x240
+    /// over all 300 frames, scene seeds 1-4 with tracker seeds 11-14 (2026-11-24): model r
+    /// right in 64-67 % of the frames (model 4: 80-83 %, model 3: 42-46 %), the presence of the
+    /// left lane right in 92-93 %. Thresholds: 60 % and 85 % (always answering 4 would give
+    /// 56 %, a left lane always present 56 %). What the tracker misses is the lane on the
+    /// right while its outer boundary, 5.4 m out, is a dashed line (s = 70-230): it votes only
+    /// in the far rows of the region and model 1 or 2 wins, the failure of the paper's
+    /// Fig. 5 (c).
+    #[test]
+    fn multi_lane_model_follows_the_adjacent_lanes() {
+        let out = run("multi-lane", 300);
+        let truth_r = |t: &LaneEstimate| t.state["adachi.r"] as usize;
+        let (model, _) = share(&out, |_, _| true, |t, e| e.r == truth_r(t));
+        // Models 2 and 4 have a lane on the left.
+        let (left, _) = share(
+            &out,
+            |_, _| true,
+            |t, e| (e.r % 2 == 0) == (truth_r(t) % 2 == 0),
+        );
+        let (without_left, n) = share(&out, |_, t| truth_r(t) == 3, |t, e| e.r == truth_r(t));
+        assert!(n > 100, "the left lane disappears for {n} frames");
+        assert!(
+            model >= 0.6 && left >= 0.85,
+            "model r {model:.3}, left lane {left:.3}, model 3 {without_left:.3}"
+        );
+    }
+
+    /// `worn-markings`, the paper's known failure (faded and dashed lines): all paint faded to
+    /// 35 % for s = 60-140 m, the ego-left line gone for s = 160-220 and the ego-right line for
+    /// s = 240-290, the inner lines dashed (3 m every 12 m) throughout. A line is gone from the
+    /// whole 6-22 m voting region in frames 161-213 (left) and 257-297 (right). Measured at
+    /// 320x240 over 300 frames, scene seeds 1-4 with tracker seeds 11-14 (2026-11-24): q error
+    /// (modulo w) RMSE 0.092-0.094 m and at most 0.23 m, w RMSE 0.011-0.013 m; model r right in
+    /// 69-70 % of the frames (4 is true throughout; while the paint is faded the dashed lines
+    /// 5.4 m out give too few votes and model 1 wins, as in the paper); valid in 95-99 % of
+    /// frames 0-143 and in none where an ego line is gone from the whole region. Thresholds:
+    /// RMSE 0.12 m, max 0.3 m, model 60 %, valid 85 % and at most 5 %.
+    #[test]
+    fn worn_and_dashed_markings_keep_the_position_and_lose_validity_where_a_line_is_gone() {
+        let out = run("worn-markings", 300);
+        let n = out.len() as f64;
+        let rmse_q = (out.iter().map(|(t, e)| q_error(t, e).powi(2)).sum::<f64>() / n).sqrt();
+        let max_q = out
+            .iter()
+            .map(|(t, e)| q_error(t, e).abs())
+            .fold(0.0, f64::max);
+        let (model, _) = share(&out, |_, _| true, |t, e| e.r as f64 == t.state["adachi.r"]);
+        let (valid_painted, _) = share(&out, |i, _| i < 144, |_, e| e.valid);
+        let gone = |i: usize| (161..=213).contains(&i) || (257..=297).contains(&i);
+        let (valid_gone, _) = share(&out, |i, _| gone(i), |_, e| e.valid);
+        // The gone line is the one without support.
+        assert!(out[161..=213]
+            .iter()
+            .all(|(_, e)| e.support[0] < e.support[1]));
+        assert!(out[257..=297]
+            .iter()
+            .all(|(_, e)| e.support[1] < e.support[0]));
+        assert!(
+            rmse_q < 0.12
+                && max_q < 0.3
+                && model >= 0.6
+                && valid_painted >= 0.85
+                && valid_gone <= 0.05,
+            "q RMSE {rmse_q:.3} max {max_q:.3}, model {model:.3}, valid {valid_painted:.3} \
+             painted, {valid_gone:.3} gone"
+        );
+    }
+
+    /// `valid` needs vote support on both ego lines: a marked road is valid, a blank, a black
+    /// and an occluded frame (a truck's flat back over the road region) are not.
+    #[test]
+    fn valid_means_both_ego_lines_have_votes() {
+        let mut c = scenario("highway-straight").unwrap();
+        c.ego.sway_amplitude_m = 0.0;
+        let mut scene = Scene::new(c, default_camera(320, 240).unwrap(), 1).unwrap();
+        let mut tracker = AdachiTracker::new(&config("")).unwrap();
+        let mut rgba = vec![0; 320 * 240 * 4];
+        for f in 0..10 {
+            scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+            let e = tracker.track(&rgba, 320, 240).unwrap();
+            assert!(e.valid, "frame {f}: support {:?}", e.support);
+            assert!(tracker.to_lane_estimate(&e).valid);
+        }
+        // The truck: rows from 40 % of the height down, columns 10-90 %.
+        let mut occluded = rgba.clone();
+        for v in 96..240 {
+            for u in 32..288 {
+                occluded[(v * 320 + u) * 4..(v * 320 + u) * 4 + 3].copy_from_slice(&[70, 70, 76]);
+            }
+        }
+        let black: Vec<u8> = (0..320 * 240 * 4)
+            .map(|i| if i % 4 == 3 { 255 } else { 0 })
+            .collect();
+        let blank = vec![120; 320 * 240 * 4];
+        for (name, frame) in [
+            ("occluded", &occluded),
+            ("black", &black),
+            ("blank", &blank),
+        ] {
+            let e = tracker.track(frame, 320, 240).unwrap();
+            assert!(
+                !e.valid && !tracker.to_lane_estimate(&e).valid,
+                "{name}: support {:?}",
+                e.support
+            );
+        }
+        // And the road again.
+        scene.render(10, Eye::Left, &mut rgba, None).unwrap();
+        assert!(tracker.track(&rgba, 320, 240).unwrap().valid);
     }
 
     /// q after 5 frames of `highway-curve` (seed 1, 320x240, 400 particles, seed 2), as
@@ -613,6 +795,10 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("bin_m"));
+        assert!(AdachiTracker::new(&config(r#", "valid_support": 1.5"#))
+            .unwrap_err()
+            .to_string()
+            .contains("valid_support"));
         assert!(AdachiTracker::new(&config(r#", "colour": 1"#))
             .unwrap_err()
             .to_string()

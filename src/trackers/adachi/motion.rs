@@ -4,7 +4,8 @@
 //! is kept in [-w/2, w/2): q = q' + w when q' < -w/2 (the lane centre is now more than half a
 //! lane to the left of the car: the car has moved into the lane on the right), q = q' - w when
 //! q' >= w/2 (a change to the left). The wrap is recorded on the particle as a lane-change
-//! event. The model index switches by the Markov chain of Table 1 before this (see
+//! event, with the sign convention of every tracker's `*.change`: +1 to the left, -1 to the
+//! right. The model index switches by the Markov chain of Table 1 before this (see
 //! [`crate::filter::SwitchingMotion`]).
 
 use crate::filter::{InitialDistribution, ModelMotion, Regime, Rng};
@@ -17,7 +18,7 @@ pub struct Lane {
     pub q: f64,
     /// Lane width w, metres.
     pub w: f64,
-    /// Lane change in the last prediction: -1 to the left, +1 to the right, 0 none.
+    /// Lane change in the last prediction: +1 to the left, -1 to the right, 0 none.
     pub change: i8,
 }
 
@@ -32,12 +33,12 @@ pub struct Motion {
     pub width_range: [f64; 2],
 }
 
-/// Eq. 9: wraps q' into [-w/2, w/2) and reports the lane change.
+/// Eq. 9: wraps q' into [-w/2, w/2) and reports the lane change (+1 left, -1 right).
 pub fn wrap(q: f64, w: f64) -> (f64, i8) {
     if q < -w / 2.0 {
-        (q + w, 1)
+        (q + w, -1)
     } else if q >= w / 2.0 {
-        (q - w, -1)
+        (q - w, 1)
     } else {
         (q, 0)
     }
@@ -85,12 +86,12 @@ mod tests {
         assert_eq!(wrap(0.3, 3.6), (0.3, 0));
         let (q, c) = wrap(-1.9, 3.6);
         assert!(
-            (q - 1.7).abs() < 1e-12 && c == 1,
+            (q - 1.7).abs() < 1e-12 && c == -1,
             "moved into the right lane"
         );
         let (q, c) = wrap(1.8, 3.6);
         assert!(
-            (q + 1.8).abs() < 1e-12 && c == -1,
+            (q + 1.8).abs() < 1e-12 && c == 1,
             "moved into the left lane"
         );
     }

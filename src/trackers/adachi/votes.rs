@@ -23,6 +23,8 @@ pub struct Votes {
     response: Vec<f32>,
     /// N_j normalised to sum 1.
     pub noise: Vec<f64>,
+    /// The first and last bin of each region row that covers any (for [`Votes::rows_crossing`]).
+    row_spans: Vec<(u32, u32)>,
     /// H_j of the last frame.
     pub histogram: Vec<f64>,
     bin_m: f64,
@@ -66,6 +68,14 @@ impl Votes {
                 noise[b as usize] += 1.0;
             }
         }
+        let row_spans = bins
+            .chunks(w.max(1))
+            .filter_map(|row| {
+                let mut span = row.iter().filter(|&&b| b != u32::MAX);
+                let first = *span.next()?;
+                Some(span.fold((first, first), |(lo, hi), &b| (lo.min(b), hi.max(b))))
+            })
+            .collect();
         let total: f64 = noise.iter().sum();
         if total > 0.0 {
             noise.iter_mut().for_each(|n| *n /= total);
@@ -77,6 +87,7 @@ impl Votes {
             gray: vec![0.0; (rows.len() + 2) * w],
             response: vec![0.0; w],
             noise,
+            row_spans,
             histogram: vec![0.0; bins_n],
             bin_m: config.bin_m,
             rho_min,
@@ -100,6 +111,23 @@ impl Votes {
     /// The lower end of the rho axis, metres.
     pub fn rho_min(&self) -> f64 {
         self.rho_min
+    }
+    /// The bin holding `rho`, clamped to the axis.
+    pub fn bin_of(&self, rho: f64) -> usize {
+        let j = ((rho - self.rho_min) / self.bin_m).floor();
+        if j.is_nan() || j < 0.0 {
+            0
+        } else {
+            (j as usize).min(self.bins().saturating_sub(1))
+        }
+    }
+    /// Number of region rows that cover any of the bins `lo..=hi`: a solid marking edge lying
+    /// in those bins can give at most that many votes (one per row).
+    pub fn rows_crossing(&self, lo: usize, hi: usize) -> usize {
+        self.row_spans
+            .iter()
+            .filter(|&&(a, b)| (a as usize) <= hi && (b as usize) >= lo)
+            .count()
     }
     /// Whether the region covers any pixel.
     pub fn is_empty(&self) -> bool {
@@ -161,14 +189,9 @@ mod tests {
     use super::*;
     use crate::synth::default_camera;
 
-    #[test]
-    fn a_painted_stripe_votes_into_the_bin_of_its_left_edge() {
-        let cam = default_camera(320, 240).unwrap();
-        let config = AdachiConfig::default();
-        let mut votes = Votes::new(&cam, &config).unwrap();
-        assert_eq!(votes.bins(), 320);
-        assert!((votes.noise.iter().sum::<f64>() - 1.0).abs() < 1e-9);
-        // Paint the road between rho = 1.50 and 1.65 m (y = -1.5 .. -1.65) white, grey elsewhere.
+    /// A grey road with the stripe rho = 1.50-1.65 m (y = -1.5 .. -1.65) painted white, seen
+    /// through the 320x240 default camera.
+    fn stripe_frame(cam: &Camera) -> Vec<u8> {
         let mut rgba = vec![90u8; 320 * 240 * 4];
         for v in 0..240 {
             for u in 0..320 {
@@ -180,7 +203,25 @@ mod tests {
                 }
             }
         }
-        let n = votes.vote(&rgba);
+        rgba
+    }
+
+    /// Votes in the bins whose centres lie in [lo, hi).
+    fn between(votes: &Votes, lo: f64, hi: f64) -> f64 {
+        (0..votes.bins())
+            .filter(|&j| (lo..hi).contains(&votes.rho(j)))
+            .map(|j| votes.histogram[j])
+            .sum()
+    }
+
+    #[test]
+    fn a_painted_stripe_votes_into_the_bin_of_its_left_edge() {
+        let cam = default_camera(320, 240).unwrap();
+        let config = AdachiConfig::default();
+        let mut votes = Votes::new(&cam, &config).unwrap();
+        assert_eq!(votes.bins(), 320);
+        assert!((votes.noise.iter().sum::<f64>() - 1.0).abs() < 1e-9);
+        let n = votes.vote(&stripe_frame(&cam));
         assert!(n > 20, "{n} votes");
         let peak = (0..votes.bins())
             .max_by(|&a, &b| votes.histogram[a].total_cmp(&votes.histogram[b]))
@@ -193,5 +234,43 @@ mod tests {
         // Left edges only: nothing near the right edge at 1.65 + a bin.
         let j = ((1.75 - votes.rho_min()) / votes.bin_m()) as usize;
         assert_eq!(votes.histogram[j], 0.0);
+        // Every vote is at the left edge, once per region row the stripe crosses.
+        let rows = votes.rows_crossing(votes.bin_of(1.45), votes.bin_of(1.55));
+        assert_eq!(between(&votes, 1.4, 1.6), n as f64);
+        assert!(
+            n <= rows && n as f64 >= 0.8 * rows as f64,
+            "{n} of {rows} rows"
+        );
+    }
+
+    #[test]
+    fn the_polarity_option_chooses_the_edge_that_votes() {
+        let cam = default_camera(320, 240).unwrap();
+        let rgba = stripe_frame(&cam);
+        let with = |polarity| {
+            let config = AdachiConfig {
+                polarity,
+                ..AdachiConfig::default()
+            };
+            let mut votes = Votes::new(&cam, &config).unwrap();
+            let n = votes.vote(&rgba) as f64;
+            // Split at the stripe's middle, 1.575 m: an edge point can fall a pixel (up to
+            // 1.5 bins in the far rows) to either side of its edge.
+            (n, between(&votes, 1.35, 1.575), between(&votes, 1.575, 1.8))
+        };
+        let (n_left, left_at_left, left_at_right) = with(Polarity::LeftEdge);
+        let (n_right, right_at_left, right_at_right) = with(Polarity::RightEdge);
+        let (n_both, both_at_left, both_at_right) = with(Polarity::Both);
+        assert!(n_left > 20.0 && left_at_left == n_left && left_at_right == 0.0);
+        // The right edge at 1.65 m votes, the left one at 1.5 m does not.
+        assert!(
+            n_right > 20.0 && right_at_right == n_right && right_at_left == 0.0,
+            "{n_right} votes: {right_at_left} at 1.5 m, {right_at_right} at 1.65 m"
+        );
+        // Both: each edge as often as alone, nothing else.
+        assert_eq!(
+            (both_at_left, both_at_right, n_both),
+            (n_left, n_right, n_left + n_right)
+        );
     }
 }
