@@ -28,10 +28,10 @@
 //! the table of [`super::exp_table`], pixels whose orientation term alone is beyond the table
 //! skipped, in G_pi the curve's orientation at the quadrature nodes taken to first order
 //! from the row's (the nodes are within 2 rows; the error is below 1e-6 rad), and each
-//! pixel's G_pi in f32 (added to an f64 sum): rounding of 6e-8 against the table's 3e-5, and
-//! four pixels per WebAssembly SIMD operation instead of two (11.3 ms per 640x480 frame in
-//! Chromium against 12.0 in f64).
-//!
+//! pixel's G_pi in f32 (added to an f64 sum): rounding of 6e-8 against the table's 3e-5.
+//! Natively the 3-node rule runs four pixels per SSE2 operation ([`super::lanes`]), gathered
+//! across rows; WebAssembly one pixel at a time (faster there); both give the same bits.
+
 //! Validity (Sec. IV-A, in metres): at the bottom row and at y_m, each boundary lies at least
 //! `min_spacing_m` to the right of its left neighbour, and neighbouring spacings differ by less
 //! than `max_spacing_difference_m`; other particles get weight 0 in stage 0.
