@@ -8,7 +8,7 @@ import { VideoSource, ImageSource, WebcamSource } from './media-source.js';
 import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from './camera-presets.js';
 import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
-import { drawFrame, drawBoundaries, drawHypotheses, drawTopView, drawLayer } from './render.js';
+import { drawFrame, drawBoundaries, drawDelimiters, drawHypotheses, drawTopView, drawLayer } from './render.js';
 import { toJsonLines, toCsv, download } from './export.js';
 import { Plots } from './plots.js';
 import { Departure } from './departure.js';
@@ -87,7 +87,7 @@ function draw(frame, result, redraw = false) {
   const byGroup = controls.colourGroups.checked;
   drawHypotheses(ctx, hypotheses, null, byGroup);
   if (truth) drawBoundaries(ctx, truth.boundaries, { dashed: true, width: 2 });
-  if (estimate) drawBoundaries(ctx, estimate.boundaries, { width: 4 });
+  if (estimate) drawEstimate(ctx, estimate);
   calibration?.draw(ctx, estimate);
   const top = controls.showTop.checked ? result?.top : null;
   document.getElementById('top-figure').hidden = !top;
@@ -127,6 +127,12 @@ function draw(frame, result, redraw = false) {
   controls.setProgress(state.source?.progress ?? null);
 }
 
+/** An estimate's boundaries; with marking widths (danescu-*), the markings' bands under thin centre lines. */
+function drawEstimate(context, estimate) {
+  drawDelimiters(context, estimate.delimiters);
+  drawBoundaries(context, estimate.boundaries, { width: estimate.delimiters?.length ? 2 : 4 });
+}
+
 /** The second tracker's view: the same frame with its boundaries and particles. */
 function drawCompare(frame, compared, truth, byGroup) {
   document.getElementById('compare-figure').hidden = !compared;
@@ -134,7 +140,7 @@ function drawCompare(frame, compared, truth, byGroup) {
   drawFrame(ctx2, frame.rgba, frame.width, frame.height);
   drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
   if (truth) drawBoundaries(ctx2, truth.boundaries, { dashed: true, width: 2 });
-  if (compared.estimate) drawBoundaries(ctx2, compared.estimate.boundaries, { width: 4 });
+  if (compared.estimate) drawEstimate(ctx2, compared.estimate);
   let text = `${compared.trackerId} · track ${compared.trackMs.toFixed(1)} ms`;
   if (compared.estimate && !compared.estimate.valid) text += ' · not valid';
   if (compared.estimate && frame.truth) {
