@@ -3,9 +3,10 @@
 //! lane width W_0 (inner edges; also its mean absolute error, in mm and in % of the true
 //! width, the paper's measure in Fig. 10), width change W_l, vertical curvature C_V, pitch,
 //! roll and height offset Y_0, the mean absolute error of each marking width W_L, W_R, the
-//! valid rate, the median effective sample size after weighing and the median ms/frame (indicative: the runs share the machine). Each scenario
-//! runs twice: with the marking-width model and the gradient cue (the paper's new approach)
-//! and without (`marking_widths: false`, its previous approach, Fig. 10).
+//! valid rate, the median effective sample size after weighing and the median ms/frame
+//! (indicative: the runs share the machine). Each scenario runs twice: with the marking-width
+//! model and the gradient cue (the paper's new approach) and without (`marking_widths:
+//! false`, its previous approach, Fig. 10).
 //! `cargo run --release --example danescu_sweep -- [--config JSON] [--new-only] [ID] [SEEDS]
 //! [FRAMES] [SCENARIO...]`: `--config` adds options to every run (e.g. `{"sigma_density": 1}`),
 //! `--new-only` skips the previous approach.
