@@ -137,10 +137,10 @@ async function readCluster(reader, cluster, parentEnd, blocks) {
     if (cluster.size === null && !CLUSTER_CHILDREN.has(h.id)) return pos;
     if (h.size === null) throw new Error(`element ${hex(h.id)} at byte ${pos} in a Cluster has an unknown size`);
     const stop = h.start + h.size;
-    if (stop > end) throw new Error(`element ${hex(h.id)} at byte ${pos} overruns its Cluster (the file is corrupt)`);
     if (stop > reader.size) {
-      throw new TruncatedError(`the file is truncated: a block at byte ${pos} ends at byte ${stop}, past the file's end at byte ${reader.size}`);
+      throw new TruncatedError(`the file is truncated: element ${hex(h.id)} at byte ${pos} ends at byte ${stop}, past the file's end at byte ${reader.size}`);
     }
+    if (stop > end) throw new Error(`element ${hex(h.id)} at byte ${pos} overruns its Cluster (the file is corrupt)`);
     if (h.id === ID.Timecode) {
       timecode = uint(await reader.read(h.start, h.size, 'a Cluster Timecode'));
     } else if (h.id === ID.SimpleBlock || h.id === ID.BlockGroup) {

@@ -38,9 +38,9 @@ export class VideoFile {
       await fallback.open();
     } catch (err) {
       fallback.close();
-      throw new Error(`${err.message} (WebCodecs: ${why}.)`);
+      throw new Error(`${err.message} (Not WebCodecs: ${why}.)`);
     }
-    fallback.label += `, read by seeking a <video> element (WebCodecs: ${why})`;
+    fallback.label += `, by seeking a <video> element (not WebCodecs: ${why})`;
     return fallback;
   }
 }

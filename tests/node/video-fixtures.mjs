@@ -27,11 +27,22 @@ export const VIDEOS = {
   'mpeg4.mp4': ['-c:v', 'mpeg4', '-pix_fmt', 'yuv420p'],
 };
 
-/** Makes `names` (keys of VIDEOS) in a new temporary folder; returns { dir, path(name) }. */
-export function makeVideos(names = Object.keys(VIDEOS), { size = '160x120', frames = FRAMES, fps = FPS } = {}) {
+/**
+ * Frame k of a `ramp` is flat grey of luma 16 + 5k (limited range): about 5.82 k in RGB, so a
+ * frame's index can be read from any pixel.
+ */
+export const RAMP_STEP = 255 / 219 * 5;
+
+/**
+ * Makes `names` (keys of VIDEOS) in a new temporary folder, from `testsrc` or, with `ramp`,
+ * the grey ramp; returns { dir, path(name) }.
+ */
+export function makeVideos(names = Object.keys(VIDEOS), { size = '160x120', frames = FRAMES, fps = FPS, ramp = false } = {}) {
   const dir = mkdtempSync(join(tmpdir(), 'lanepf-videos-'));
+  const input = ramp ? `color=c=black:s=${size}:r=${fps},format=yuv420p,geq=lum='16+5*N':cb=128:cr=128`
+    : `testsrc=size=${size}:rate=${fps}`;
   for (const name of names) {
-    execFileSync('ffmpeg', ['-v', 'error', '-y', '-f', 'lavfi', '-i', `testsrc=size=${size}:rate=${fps}`,
+    execFileSync('ffmpeg', ['-v', 'error', '-y', '-f', 'lavfi', '-i', input,
       '-frames:v', `${frames}`, ...VIDEOS[name], join(dir, name)]);
   }
   return { dir, path: (name) => join(dir, name) };
