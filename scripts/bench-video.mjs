@@ -2,12 +2,12 @@
 // (www/webcodecs-source.js) and by seeking a <video> element (www/media-source.js), each frame
 // drawn to the tracker's canvas and read back as RGBA, as the demo does; no tracker. With a
 // tracker id, also the demo's whole run of the uploaded file to its end, both ways.
-//   node scripts/bench-video.mjs [FILE (default: the bundled clip)] [TRACKER]
+//   node scripts/bench-video.mjs [FILE (default or "": the bundled clip)] [TRACKER]
 import { fileURLToPath } from 'node:url';
 import { start, open } from '../tests/e2e/browser.mjs';
 
-const file = process.argv[2] ?? fileURLToPath(new URL('../www/clips/udacity-project-640x360.webm', import.meta.url));
-const tracker = process.argv[3] ?? '';
+const file = process.argv[2] || fileURLToPath(new URL('../www/clips/udacity-project-640x360.webm', import.meta.url));
+const tracker = process.argv[3] || '';
 const env = await start();
 
 /** Reads every frame of the chosen file with `kind`; returns { frames, ms, label }. */

@@ -38,7 +38,9 @@ export class WebCodecsVideoSource {
   async open() {
     if (typeof VideoDecoder === 'undefined') throw new Error('this browser has no WebCodecs VideoDecoder');
     const track = await demux(this.blob);
-    const config = { codec: track.codec, codedWidth: track.codedWidth, codedHeight: track.codedHeight };
+    const config = { codec: track.codec };
+    // A size of 0 (a container that gives none) is invalid in a config: left out, the decoder finds it.
+    if (track.codedWidth > 0 && track.codedHeight > 0) Object.assign(config, { codedWidth: track.codedWidth, codedHeight: track.codedHeight });
     if (track.description) config.description = track.description;
     let support;
     try {
