@@ -4,7 +4,8 @@
 // never interleave with a frame in flight.
 import { WorkerClient } from './worker-client.js';
 import { SceneSource, TestRoadSource } from './source.js';
-import { VideoSource, ImageSource, WebcamSource } from './media-source.js';
+import { ImageSource, WebcamSource } from './media-source.js';
+import { VideoFile } from './video-select.js';
 import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from './camera-presets.js';
 import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
@@ -283,7 +284,9 @@ async function cameraFor(source) {
 }
 
 async function openSource(next, name) {
-  await next.open();
+  // A video picks its reader as it opens: WebCodecs where it can, else seeking (video-select.js).
+  if (next instanceof VideoFile) next = await next.pick();
+  else await next.open();
   state.source?.close();
   state.source = next;
   state.sourceName = name;
@@ -309,7 +312,7 @@ async function openSource(next, name) {
 
 async function sourceFor(value, scenarios) {
   if (value === 'clip') {
-    return new VideoSource({ url: CLIP.url, name: CLIP.name, fps: CLIP.fps, camera: await loadClipCamera() });
+    return new VideoFile({ url: CLIP.url, name: CLIP.name, fps: CLIP.fps, camera: await loadClipCamera() });
   }
   if (value === 'webcam') return new WebcamSource();
   if (value === 'test-road') return new TestRoadSource(client);
@@ -324,7 +327,7 @@ function filesSource(files) {
   if (videos.length > 1) throw new Error('Drop one video at a time (or a set of images).');
   if (videos.length === 1) {
     if (files.length > 1) throw new Error('Drop either one video or a set of images, not both.');
-    return new VideoSource({ file: videos[0], name: videos[0].name, sideBySide: stereo });
+    return new VideoFile({ file: videos[0], name: videos[0].name, sideBySide: stereo });
   }
   return new ImageSource(files, { stereo });
 }
