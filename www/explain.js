@@ -68,6 +68,7 @@ export const TRACKERS = {
       { path: 'diffusion.8', label: 'diffusion of ψ (rad)', min: 0.0005, max: 0.02, step: 0.0005 },
       { path: 'diffusion.0', label: 'diffusion of W₀ (m)', min: 0.005, max: 0.15, step: 0.005 },
       { path: 'sigma_edge_px', label: 'σ of the edge distance (px)', min: 0.5, max: 10, step: 0.5 },
+      { path: 'sigma_density', label: 'σ_D of the density distance (cells; stereo only)', min: 0.25, max: 8, step: 0.25 },
       { path: 'marking_widths', label: 'marking widths and gradient cue (off: the previous approach)', kind: 'bool' },
     ],
   },

@@ -392,7 +392,7 @@ export interface DanescuOptions {
   sigma_marking_px?: number;
   /** sigma_G of the gradient likelihood (30). */
   sigma_gradient?: number;
-  /** sigma_D of the density likelihood, cells (0.5). */
+  /** sigma_D of the density likelihood, cells (1). */
   sigma_density?: number;
   /** Negative points lie this far inside the lane, metres (0.3). */
   negative_offset_m?: number;
