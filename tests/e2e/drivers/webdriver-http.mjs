@@ -68,7 +68,7 @@ async function request(base, method, path, body) {
   const text = await res.text();
   let json;
   try { json = JSON.parse(text); } catch { throw new Error(`WebDriver ${method} ${path}: HTTP ${res.status}: ${text.slice(0, 200)}`); }
-  if (!res.ok || json.value?.error) {
+  if (!res.ok) {
     const v = json.value ?? {};
     throw new Error(`WebDriver ${method} ${path}: ${v.error ?? res.status}: ${v.message ?? text.slice(0, 200)}`);
   }

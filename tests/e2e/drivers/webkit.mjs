@@ -150,8 +150,17 @@ export async function launch() {
       proxy: { proxyType: 'manual', httpProxy: proxyAt, sslProxy: proxyAt },
       'webkitgtk:browserOptions': {
         binary: miniBrowser(),
-        // The webcam: WebKit's mock camera (a moving test picture), granted without a prompt.
-        args: ['--automation', '--enable-media-stream=true', '--enable-mock-capture-devices=true'],
+        args: ['--automation',
+          // The webcam: WebKit's mock camera (a moving test picture), granted without a prompt.
+          '--enable-media-stream=true', '--enable-mock-capture-devices=true',
+          // No GPU here: an accelerated 2D canvas runs on Mesa's software GL in Xvfb, where
+          // each putImageData of the demo's frame costs ~25 ms (0.1 ms unaccelerated) and the
+          // demo plays at 3 frames/s on a synthetic scene (9 unaccelerated; Firefox 21). The
+          // compositor stays accelerated, as in Safari: without it WebKitGTK never calls
+          // requestVideoFrameCallback (~20 frames/s, but a video's rate cannot be measured).
+          '--enable-2d-canvas-acceleration=false',
+          // More MiniBrowser options for a diagnosis, e.g. WEBKIT_ARGS=--enable-webgl=false.
+          ...(process.env.WEBKIT_ARGS?.split(' ').filter(Boolean) ?? [])],
       },
     });
     await session.setTimeouts({ script: 120_000, pageLoad: 60_000 });
@@ -210,8 +219,8 @@ class WebKitPage {
   async eval(fn, ...args) {
     const r = await this.session.executeAsync(`const done = arguments[arguments.length - 1];
       Promise.resolve().then(() => (${fn})(...arguments[0]))
-        .then((v) => done({ ok: v === undefined ? null : v }), (e) => done({ error: String(e?.stack ?? e) }));`, [args]);
-    if (r && 'error' in r) throw new Error(`in the page: ${r.error}`);
+        .then((v) => done({ ok: v === undefined ? null : v }), (e) => done({ thrown: String(e) + '\\n' + (e?.stack ?? '') }));`, [args]);
+    if (r && 'thrown' in r) throw new Error(`in the page: ${r.thrown}`);
     return r.ok;
   }
 
