@@ -275,6 +275,12 @@ for (const driver of DRIVERS) {
       await page.setFiles('#file', [writeFile('broken.png', 'nope')]);
       await page.waitFor(() => /broken\.png/.test(document.getElementById('status').textContent));
       assert.match(await text(page, '#status'), /Cannot decode “broken\.png”/);
+      // A browser that does not report presented frames: the rate is assumed, and says so.
+      await page.eval(() => { delete HTMLVideoElement.prototype.requestVideoFrameCallback; });
+      await page.setFiles('#file', [CLIP]);
+      await page.waitFor(() => /Video “udacity-project-640x360\.webm”/.test(
+        document.getElementById('status').textContent));
+      assert.match(await text(page, '#status'), /read at 30 frames\/s \(assumed: the browser did not report its frames\)/);
       assert.deepEqual(await page.errors(), []);
       await page.close();
     });
