@@ -140,7 +140,15 @@ export async function launch() {
     try { process.kill(-driver.pid, 'SIGKILL'); } catch { /* already gone */ }
     xvfb.process.kill('SIGKILL');
   };
+  // (Also when the test runner stops this process with a signal: the driver's process group
+  // is its own, so it would outlive this one.)
+  const onSignal = (signal) => {
+    kill();
+    process.kill(process.pid, signal);
+  };
   process.once('exit', kill);
+  process.once('SIGINT', onSignal);
+  process.once('SIGTERM', onSignal);
   const url = `http://127.0.0.1:${port}`;
   let session;
   try {
@@ -183,6 +191,8 @@ export async function launch() {
       await session.delete().catch(() => {});
       kill();
       process.removeListener('exit', kill);
+      process.removeListener('SIGINT', onSignal);
+      process.removeListener('SIGTERM', onSignal);
       proxy.close();
       server.close();
       rmSync(home, { recursive: true, force: true });
