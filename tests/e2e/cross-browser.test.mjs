@@ -1,26 +1,28 @@
-// End-to-end in the browsers besides Chromium, one suite over a list of drivers
-// (drivers/firefox.mjs: Debian's Firefox ESR over WebDriver BiDi; drivers/webkit.mjs: WebKitGTK,
-// Safari's engine, over classic WebDriver), each exposing the same page operations. The
-// Chromium suites' checks, with the same thresholds and no page errors: the bundled clip
-// tracked and drawn; the test road under its ground truth; every tracker on a synthetic scene
+// End-to-end in every browser, one suite over a list of drivers (drivers/chromium.mjs: Debian's
+// Chromium with playwright-core; drivers/firefox.mjs: Debian's Firefox ESR over WebDriver BiDi;
+// drivers/webkit.mjs: WebKitGTK, Safari's engine, over classic WebDriver), each exposing the
+// same page operations. The same checks and thresholds in each, and no page errors: the
+// bundled clip tracked and drawn; the test road under its ground truth; every tracker on a synthetic scene
 // within 0.3 m with a clock finer than whole milliseconds; an uploaded video read at its
 // measured rate to its end, undecodable files explained; an image sequence with an imported
-// camera; the webcam (the browser's fake camera); the calibration helper's drag; bench.html;
-// the keyboard; the per-step mode stage by stage; two trackers side by side; export; the
-// teaching panel; stereo input. Only in Chromium: a refused camera permission (it needs a
-// script before the page's own), the npm package's fixture apps.
+// camera; the webcam (the browser's fake camera); the calibration helper's drag; bench.html
+// and its bad parameters; a refused camera permission; the keyboard; the per-step mode stage
+// by stage; two trackers side by side; export; the teaching panel; stereo input. Only in
+// Chromium (the other files): the npm package's fixture apps, the real download of an export,
+// scenario switching, tracker cue views, bad camera fields, and sources.test.mjs.
 //   E2E_BROWSERS=webkit node --test tests/e2e/cross-browser.test.mjs   runs one browser
 import { describe, test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdirSync, mkdtempSync, readFileSync, writeFileSync, rmSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, writeFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import * as chromium from './drivers/chromium.mjs';
 import * as firefox from './drivers/firefox.mjs';
 import * as webkit from './drivers/webkit.mjs';
 import { readCanvas, lum, peak, countColour, countNear } from './pixels.mjs';
 
-const DRIVERS = [firefox, webkit].filter((d) => !process.env.E2E_BROWSERS
+const DRIVERS = [chromium, firefox, webkit].filter((d) => !process.env.E2E_BROWSERS
   || process.env.E2E_BROWSERS.split(',').includes(d.name.toLowerCase()));
 const CLIP = fileURLToPath(new URL('../../www/clips/udacity-project-640x360.webm', import.meta.url));
 const TRACKERS = ['adachi-mmpf', 'danescu-mono', 'danescu-stereo', 'lee-cpf', 'liu-ppf', 'liu-ppf-nokernel'];
@@ -31,7 +33,17 @@ const text = (page, selector) => page.eval((s) => document.querySelector(s).text
 const visible = (page, selector) => page.eval((s) => document.querySelector(s).checkVisibility(), selector);
 const enabled = (page, selector) => page.eval((s) => !document.querySelector(s).disabled, selector);
 const demo = (page, key) => page.eval((k) => window.lanepfDemo[k], key);
-const running = (page) => page.waitFor(() => document.body.dataset.state === 'running');
+/** Waits for the page's data-state `state`; a timeout says the state and status line instead. */
+const pageState = async (page, state, timeout = 30_000) => {
+  try {
+    await page.waitFor((s) => document.body.dataset.state === s, { arg: state, timeout });
+  } catch (e) {
+    const now = await page.eval(() => `${document.body.dataset.state}: ${document.getElementById('status')?.textContent}`)
+      .catch(() => 'unknown');
+    throw new Error(`the page did not reach state ${state} in ${timeout} ms (it is ${now})`, { cause: e });
+  }
+};
+const running = (page) => pageState(page, 'running');
 const framesAtLeast = (page, n, timeout = 30_000) => page.waitFor((n) => window.lanepfDemo.frames >= n, { arg: n, timeout });
 const idle = (page) => page.waitFor(() => window.lanepfDemo.pending === 0);
 /** Sets checkbox `selector` to `on` with a click, as a person would. */
@@ -231,6 +243,9 @@ for (const driver of DRIVERS) {
         await page.click('#play'); // pause while switching
         await page.click('#restart');
         await page.select('#tracker', id);
+        // (The restart and the new tracker wait in the page's queue; until they have run, the
+        // previous tracker's errors are still there.)
+        await idle(page);
         await page.click('#play');
         await page.waitFor(() => window.lanepfDemo.offsetErrors.length >= 30, { timeout: 60_000 });
         const errs = await page.eval(() => window.lanepfDemo.offsetErrors.slice(20, 30));
@@ -270,7 +285,7 @@ for (const driver of DRIVERS) {
       assert.match(await text(page, '#status'), /End of .* 300 frames tracked/);
 
       await page.setFiles('#file', [writeFile('holiday.mp4', 'this is a text file, not a video\n')]);
-      await page.waitFor(() => document.body.dataset.state === 'error');
+      await pageState(page, 'error');
       assert.match(await text(page, '#status'), /Cannot open “holiday\.mp4”: .*Try an H\.264 MP4 or a VP9 WebM/);
       await page.setFiles('#file', [writeFile('broken.png', 'nope')]);
       await page.waitFor(() => /broken\.png/.test(document.getElementById('status').textContent));
@@ -323,6 +338,25 @@ for (const driver of DRIVERS) {
       await page.close();
     });
 
+    test(`${N}: a refused camera permission is explained and the page keeps working`, async () => {
+      const page = await b.open(`${b.base}/?source=test-road&tracker=`);
+      await running(page);
+      // What getUserMedia rejects with when a person clicks "Block" (the fake cameras here are
+      // granted without asking).
+      await page.eval(() => {
+        navigator.mediaDevices.getUserMedia = () => Promise.reject(new DOMException('denied', 'NotAllowedError'));
+      });
+      await page.select('#source', 'webcam');
+      await pageState(page, 'error');
+      assert.match(await text(page, '#status'), /Camera permission was refused/);
+      // The test road is still drawn.
+      const n = await demo(page, 'frames');
+      await page.click('#play');
+      await page.waitFor((n) => window.lanepfDemo.frames > n + 2, { arg: n });
+      assert.deepEqual(await page.errors(), []);
+      await page.close();
+    });
+
     test(`${N}: dragging the calibration helper's lines gives the scene camera's pose`, async () => {
       const page = await b.open(`${b.base}/?source=highway-straight&tracker=`);
       await running(page);
@@ -338,6 +372,7 @@ for (const driver of DRIVERS) {
       const fields = () => page.eval(() => Object.fromEntries(
         [...document.querySelectorAll('#camera-fields input')].map((i) => [i.name, Number(i.value)]),
       ));
+      assert.equal((await fields()).pitch_deg, camera.pitch_deg);
       await page.click('#calibration summary');
       await setChecked(page, '#vp-helper', true);
       const at = (role, y) => {
@@ -361,12 +396,18 @@ for (const driver of DRIVERS) {
         await idle(page);
       }
       const got = await fields();
+      // The lane heads psi left of the car: its vanishing point is psi to the left, so the
+      // helper reads a yaw of camera yaw - psi (there is no car sway it could tell apart).
       const psiDeg = (truth.heading_rad * 180) / Math.PI;
+      // Danescu's alpha is the camera's pitch over the road, body pitch included.
       const pitchTruth = (truth.state['danescu.alpha'] * 180) / Math.PI;
+      console.log(`${N} helper: pitch ${got.pitch_deg} (truth ${pitchTruth}), yaw ${got.yaw_deg} `
+        + `(${camera.yaw_deg - psiDeg}), height ${got.height_m} (${camera.height_m})`);
       assert.ok(Math.abs(got.pitch_deg - pitchTruth) < 0.5, `pitch ${got.pitch_deg} vs ${pitchTruth}`);
       assert.ok(Math.abs(got.yaw_deg - (camera.yaw_deg - psiDeg)) < 0.5, `yaw ${got.yaw_deg}`);
       assert.ok(Math.abs(got.height_m / camera.height_m - 1) < 0.1, `height ${got.height_m}`);
       assert.match(await text(page, '#status'), /Camera applied: pitch/);
+      assert.match(await text(page, '#vp-readout'), /vanishing point \(\d+, \d+\)/);
       // Remembered for this source (localStorage): a reload uses it.
       await page.reload();
       await running(page);
@@ -389,7 +430,11 @@ for (const driver of DRIVERS) {
         assert.ok(Number.isFinite(r.median_ms) && r.median_ms > 0, `${r.tracker}: median ${r.median_ms}`);
         assert.ok(Number.isFinite(r.p95_ms) && r.p95_ms >= r.median_ms, `${r.tracker}: p95 ${r.p95_ms}`);
         assert.equal(r.frames, 3, `${r.tracker}: 8 frames, the first 5 untimed`);
+        assert.deepEqual([r.width, r.height], [320, 240]);
       }
+      // The table and the JSON on the page say the same.
+      assert.equal(await page.eval(() => document.querySelectorAll('#table tbody tr').length), TRACKERS.length);
+      assert.deepEqual(JSON.parse(await text(page, '#result')).rows, bench.rows);
       // Sub-millisecond trackers at this size read as 0 or 1 ms on a whole-millisecond clock.
       assert.ok(bench.rows.some((r) => !Number.isInteger(r.median_ms)),
         `medians ${bench.rows.map((r) => r.median_ms).join(', ')} are not all whole milliseconds`);
@@ -398,6 +443,15 @@ for (const driver of DRIVERS) {
       const foreign = requests.filter((u) => !u.startsWith(b.base) && !u.startsWith('data:') && u !== 'about:blank');
       assert.ok(requests.some((u) => u.endsWith('/pkg/web/lanepf_bg.wasm')), 'requests are seen');
       assert.deepEqual(foreign, [], 'no requests beyond the page\'s own files');
+      await page.close();
+    });
+
+    test(`${N}: bench.html reports bad parameters as an error`, async () => {
+      const page = await b.open(`${b.base}/bench.html?frames=3&warmup=5`);
+      await page.waitFor(() => window.lanepfBench?.done);
+      const bench = await page.eval(() => window.lanepfBench);
+      assert.match(bench.error, /frames=3 must exceed warmup=5/);
+      assert.equal(await page.eval(() => document.body.dataset.state), 'error');
       await page.close();
     });
 
@@ -572,7 +626,7 @@ for (const driver of DRIVERS) {
     test(`${N}: danescu-stereo tracks left/right image pairs and side-by-side images`, async () => {
       const page = await b.open(`${b.base}/?source=test-road&tracker=danescu-stereo`);
       // The test road's camera is not a stereo rig: the page says so and keeps going.
-      await page.waitFor(() => document.body.dataset.state === 'error');
+      await pageState(page, 'error');
       assert.match(await text(page, '#status'), /needs `baseline_m`.*import a camera file with baseline_m/);
       // Sixteen stereo frames of a simulator scene, as PNGs, and its camera (with the baseline).
       // (danescu-stereo starts 0.5 m off on this scene and needs about ten frames to settle.)
@@ -589,7 +643,7 @@ for (const driver of DRIVERS) {
       // Mono images to a stereo tracker: the error says what to do in this page.
       await page.setFiles('#file', [png('only-left.png', left[0])]);
       await play();
-      await page.waitFor(() => document.body.dataset.state === 'error');
+      await pageState(page, 'error');
       assert.match(await text(page, '#status'), /needs the right image.*tick Stereo/);
 
       await setChecked(page, '#stereo', true);

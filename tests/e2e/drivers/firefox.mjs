@@ -4,6 +4,7 @@
 // installed). The same page operations as webkit.mjs.
 import puppeteer from 'puppeteer-core';
 import { serve } from '../../../scripts/serve.mjs';
+import { EventPage } from './event-page.mjs';
 
 export const name = 'Firefox';
 
@@ -79,42 +80,14 @@ export async function launch() {
   };
 }
 
-class FirefoxPage {
-  constructor(page) {
-    this.page = page;
-    this.errorList = [];
-    this.requestList = [];
-    page.on('pageerror', (e) => this.errorList.push(`pageerror: ${e.message}`));
-    page.on('console', (m) => { if (m.type() === 'error') this.errorList.push(`console: ${m.text()}`); });
-    page.on('request', (r) => this.requestList.push(r.url()));
-  }
-
-  goto(url) { return this.page.goto(url); }
-  reload() { return this.page.reload(); }
+class FirefoxPage extends EventPage {
   /** Runs `fn(...args)` in the page (it may be async) and resolves to its value. */
   eval(fn, ...args) { return this.page.evaluate(fn, ...args); }
   /** Waits until `fn(arg)` is truthy in the page; resolves to that value. */
   async waitFor(fn, { arg, timeout = 30_000 } = {}) {
-    const handle = await this.page.waitForFunction(fn, { timeout }, arg);
-    const value = await handle.jsonValue();
-    await handle.dispose();
-    return value;
+    return EventPage.valueOf(await this.page.waitForFunction(fn, { timeout }, arg));
   }
-  click(selector) { return this.page.click(selector); }
   select(selector, value) { return this.page.select(selector, value); }
   /** Sets files (paths on disk) on <input type=file> `selector`. */
   async setFiles(selector, paths) { await (await this.page.$(selector)).uploadFile(...paths); }
-  press(key) { return this.page.keyboard.press(key); }
-  clickAt(x, y) { return this.page.mouse.click(x, y); }
-  /** Drags the mouse from viewport point `from` to `to` in `steps` moves. */
-  async drag(from, to, steps = 4) {
-    await this.page.mouse.move(...from);
-    await this.page.mouse.down();
-    await this.page.mouse.move(...to, { steps });
-    await this.page.mouse.up();
-  }
-  screenshot(path) { return this.page.screenshot({ path, fullPage: true }); }
-  async errors() { return this.errorList; }
-  requests() { return this.requestList; }
-  close() { return this.page.close(); }
 }
