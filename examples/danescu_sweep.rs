@@ -3,10 +3,13 @@
 //! lane width W_0 (inner edges; also its mean absolute error, in mm and in % of the true
 //! width, the paper's measure in Fig. 10), width change W_l, vertical curvature C_V, pitch,
 //! roll and height offset Y_0, the mean absolute error of each marking width W_L, W_R, the
-//! valid rate and the median ms/frame (indicative: the runs share the machine). Each scenario
-//! runs twice: with the marking-width model and the gradient cue (the paper's new approach)
-//! and without (`marking_widths: false`, its previous approach, Fig. 10).
-//! `cargo run --release --example danescu_sweep -- [ID] [SEEDS] [FRAMES] [SCENARIO...]`
+//! valid rate, the median effective sample size after weighing and the median ms/frame
+//! (indicative: the runs share the machine). Each scenario runs twice: with the marking-width
+//! model and the gradient cue (the paper's new approach) and without (`marking_widths:
+//! false`, its previous approach, Fig. 10).
+//! `cargo run --release --example danescu_sweep -- [--config JSON] [--new-only] [ID] [SEEDS]
+//! [FRAMES] [SCENARIO...]`: `--config` adds options to every run (e.g. `{"sigma_density": 1}`),
+//! `--new-only` skips the previous approach.
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
 use lanepf::trackers::{create, EgoMotion, TrackerConfig};
@@ -28,10 +31,29 @@ struct Sums {
     marks: [f64; 2],
     valid: f64,
     ms: Vec<f64>,
+    ess: Vec<f64>,
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().collect();
+    let mut args: Vec<String> = std::env::args().collect();
+    let mut extra = String::new();
+    if let Some(k) = args.iter().position(|a| a == "--config") {
+        let json = args
+            .get(k + 1)
+            .ok_or("--config needs a JSON object")?
+            .clone();
+        let options: serde_json::Map<String, serde_json::Value> = serde_json::from_str(&json)?;
+        for (key, value) in options {
+            extra.push_str(&format!(", {}: {value}", serde_json::Value::String(key)));
+        }
+        args.drain(k..k + 2);
+    }
+    let models: &[bool] = if let Some(k) = args.iter().position(|a| a == "--new-only") {
+        args.remove(k);
+        &[true]
+    } else {
+        &[true, false]
+    };
     let id = args
         .get(1)
         .map_or("danescu-mono", String::as_str)
@@ -55,18 +77,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let camera = default_camera(640, 480)?;
     let cam = serde_json::to_string(&camera.to_file())?;
     println!(
-        "{id}: {seeds} seeds x {frames} frames, N = 500, 640x480, first 30 frames of each run skipped"
+        "{id}: {seeds} seeds x {frames} frames, N = 500, 640x480, first 30 frames of each run skipped{}",
+        if extra.is_empty() { String::new() } else { format!(", options{extra}") }
     );
     println!();
-    println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | W_0 MAE (mm, %) | W_l RMSE | C_V RMSE (1/m) | pitch RMSE (mrad) | roll RMSE (mrad) | Y_0 RMSE (cm) | W_L MAE (mm) | W_R MAE (mm) | valid | ms/frame (median) |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | W_0 MAE (mm, %) | W_l RMSE | C_V RMSE (1/m) | pitch RMSE (mrad) | roll RMSE (mrad) | Y_0 RMSE (cm) | W_L MAE (mm) | W_R MAE (mm) | valid | ESS (median) | ms/frame (median) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for name in &names {
-        for marking_widths in [true, false] {
+        for &marking_widths in models {
             let mut s = Sums::default();
             for seed in 1..=seeds {
                 let mut scene = Scene::new(scenario(name)?, camera.clone(), seed)?;
                 let config = TrackerConfig::from_json_str(&format!(
-                    r#"{{"camera": {cam}, "seed": {seed}, "marking_widths": {marking_widths}}}"#
+                    r#"{{"camera": {cam}, "seed": {seed}, "marking_widths": {marking_widths}{extra}}}"#
                 ))?;
                 let mut tracker = create(&id, &config)?;
                 let mut rgba = vec![0; 640 * 480 * 4];
@@ -111,12 +134,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         *m += (t.state[k] - e.state[k]).abs();
                     }
                     s.valid += f64::from(u8::from(e.valid));
+                    s.ess.push(e.state["danescu.ess"]);
                 }
             }
             s.ms.sort_by(f64::total_cmp);
+            s.ess.sort_by(f64::total_cmp);
             let r = |x: f64| (x / s.n).sqrt();
             println!(
-                "| {name} | {} | {:.3} | {:.4} | {:.5} | {:.3} | {:.1}, {:.2} % | {:.4} | {:.5} | {:.1} | {:.2} | {:.1} | {:.1} | {:.1} | {:.1} % | {:.1} |",
+                "| {name} | {} | {:.3} | {:.4} | {:.5} | {:.3} | {:.1}, {:.2} % | {:.4} | {:.5} | {:.1} | {:.2} | {:.1} | {:.1} | {:.1} | {:.1} % | {:.0} | {:.1} |",
                 if marking_widths {
                     "marking widths + gradient"
                 } else {
@@ -136,6 +161,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 1e3 * s.marks[0] / s.n,
                 1e3 * s.marks[1] / s.n,
                 100.0 * s.valid / s.n,
+                s.ess[s.ess.len() / 2],
                 s.ms[s.ms.len() / 2],
             );
         }

@@ -4,11 +4,12 @@
 // never interleave with a frame in flight.
 import { WorkerClient } from './worker-client.js';
 import { SceneSource, TestRoadSource } from './source.js';
-import { VideoSource, ImageSource, WebcamSource } from './media-source.js';
+import { ImageSource, WebcamSource } from './media-source.js';
+import { VideoFile } from './video-select.js';
 import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from './camera-presets.js';
 import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
-import { drawFrame, drawBoundaries, drawHypotheses, drawTopView, drawLayer } from './render.js';
+import { drawFrame, drawBoundaries, drawDelimiters, drawHypotheses, drawTopView, drawLayer } from './render.js';
 import { toJsonLines, toCsv, download } from './export.js';
 import { Plots } from './plots.js';
 import { Departure } from './departure.js';
@@ -87,7 +88,7 @@ function draw(frame, result, redraw = false) {
   const byGroup = controls.colourGroups.checked;
   drawHypotheses(ctx, hypotheses, null, byGroup);
   if (truth) drawBoundaries(ctx, truth.boundaries, { dashed: true, width: 2 });
-  if (estimate) drawBoundaries(ctx, estimate.boundaries, { width: 4 });
+  if (estimate) drawEstimate(ctx, estimate);
   calibration?.draw(ctx, estimate);
   const top = controls.showTop.checked ? result?.top : null;
   document.getElementById('top-figure').hidden = !top;
@@ -127,6 +128,12 @@ function draw(frame, result, redraw = false) {
   controls.setProgress(state.source?.progress ?? null);
 }
 
+/** An estimate's boundaries; with marking widths (danescu-*), the markings' bands under thin centre lines. */
+function drawEstimate(context, estimate) {
+  drawDelimiters(context, estimate.delimiters);
+  drawBoundaries(context, estimate.boundaries, { width: estimate.delimiters?.length ? 2 : 4 });
+}
+
 /** The second tracker's view: the same frame with its boundaries and particles. */
 function drawCompare(frame, compared, truth, byGroup) {
   document.getElementById('compare-figure').hidden = !compared;
@@ -134,7 +141,7 @@ function drawCompare(frame, compared, truth, byGroup) {
   drawFrame(ctx2, frame.rgba, frame.width, frame.height);
   drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
   if (truth) drawBoundaries(ctx2, truth.boundaries, { dashed: true, width: 2 });
-  if (compared.estimate) drawBoundaries(ctx2, compared.estimate.boundaries, { width: 4 });
+  if (compared.estimate) drawEstimate(ctx2, compared.estimate);
   let text = `${compared.trackerId} · track ${compared.trackMs.toFixed(1)} ms`;
   if (compared.estimate && !compared.estimate.valid) text += ' · not valid';
   if (compared.estimate && frame.truth) {
@@ -277,7 +284,9 @@ async function cameraFor(source) {
 }
 
 async function openSource(next, name) {
-  await next.open();
+  // A video picks its reader as it opens: WebCodecs where it can, else seeking (video-select.js).
+  if (next instanceof VideoFile) next = await next.pick();
+  else await next.open();
   state.source?.close();
   state.source = next;
   state.sourceName = name;
@@ -303,7 +312,7 @@ async function openSource(next, name) {
 
 async function sourceFor(value, scenarios) {
   if (value === 'clip') {
-    return new VideoSource({ url: CLIP.url, name: CLIP.name, fps: CLIP.fps, camera: await loadClipCamera() });
+    return new VideoFile({ url: CLIP.url, name: CLIP.name, fps: CLIP.fps, camera: await loadClipCamera() });
   }
   if (value === 'webcam') return new WebcamSource();
   if (value === 'test-road') return new TestRoadSource(client);
@@ -318,7 +327,7 @@ function filesSource(files) {
   if (videos.length > 1) throw new Error('Drop one video at a time (or a set of images).');
   if (videos.length === 1) {
     if (files.length > 1) throw new Error('Drop either one video or a set of images, not both.');
-    return new VideoSource({ file: videos[0], name: videos[0].name, sideBySide: stereo });
+    return new VideoFile({ file: videos[0], name: videos[0].name, sideBySide: stereo });
   }
   return new ImageSource(files, { stereo });
 }

@@ -16,7 +16,7 @@ function workSize(width, height) {
  * picture holds the left camera's frame on its left half and the right camera's on its right
  * half; `grab` then returns both.
  */
-class Grabber {
+export class Grabber {
   constructor(width, height, sideBySide = false) {
     this.canvas = new OffscreenCanvas(sideBySide ? 2 * width : width, height);
     this.ctx = this.canvas.getContext('2d', { willReadFrequently: true });
@@ -34,8 +34,14 @@ class Grabber {
 }
 
 /** The frame size of a picture, halved across for side-by-side stereo. */
-function frameSize(width, height, sideBySide) {
+export function frameSize(width, height, sideBySide) {
   return workSize(sideBySide ? width / 2 : width, height);
+}
+
+/** The label's note on the frame size the tracker gets, when it is not the picture's own. */
+export function sizeNote(size, width, sideBySide) {
+  if (sideBySide) return `, side-by-side stereo of ${size.width}x${size.height}`;
+  return size.width !== width ? `, tracked at ${size.width}x${size.height}` : '';
 }
 
 /** Waits for `ok` on `target`; rejects on `bad` or after `ms` milliseconds. */
@@ -155,8 +161,7 @@ export class VideoSource {
     this.frames = Math.max(1, Math.floor(video.duration * this.fps));
     this.label = `Video “${this.name}”: ${video.videoWidth}x${video.videoHeight}, `
       + `${video.duration.toFixed(1)} s, read at ${this.fps} frames/s${this.fpsNote}`
-      + (this.sideBySide ? `, side-by-side stereo of ${this.size.width}x${this.size.height}` : '')
-      + (!this.sideBySide && this.size.width !== video.videoWidth ? `, tracked at ${this.size.width}x${this.size.height}` : '');
+      + sizeNote(this.size, video.videoWidth, this.sideBySide);
   }
 
   restart() {

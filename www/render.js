@@ -35,6 +35,44 @@ export function drawBoundaries(ctx, boundaries, { dashed = false, width = 3 } = 
   ctx.restore();
 }
 
+/**
+ * Draws the markings of a tracker that models their widths (`LaneEstimate.delimiters`,
+ * danescu-*): each boundary's marking as a translucent band of its role's colour between the
+ * marking's inner and outer edge, the edges as thin lines. Image polylines, or the road
+ * polylines through `map` (road point -> canvas point) for the top view.
+ */
+export function drawDelimiters(ctx, delimiters, map = null) {
+  if (!delimiters?.length) return;
+  const pts = (d) => (map ? d.road_points.map(map) : d.points);
+  ctx.save();
+  for (const role of new Set(delimiters.map((d) => d.role))) {
+    const inner = delimiters.find((d) => d.role === role && d.side === 'inner');
+    const outer = delimiters.find((d) => d.role === role && d.side === 'outer');
+    if (!inner || !outer) continue;
+    const [a, b] = [pts(inner), pts(outer)];
+    if (a.length < 2 || b.length < 2) continue;
+    const colour = ROLE_COLOURS[role] ?? '#ffffff';
+    // The band: along the inner edge, back along the outer one.
+    ctx.beginPath();
+    ctx.moveTo(a[0][0], a[0][1]);
+    for (const [x, y] of [...a.slice(1), ...[...b].reverse()]) ctx.lineTo(x, y);
+    ctx.closePath();
+    ctx.globalAlpha = 0.35;
+    ctx.fillStyle = colour;
+    ctx.fill();
+    ctx.globalAlpha = 0.9;
+    ctx.strokeStyle = colour;
+    ctx.lineWidth = 1;
+    for (const line of [a, b]) {
+      ctx.beginPath();
+      ctx.moveTo(line[0][0], line[0][1]);
+      for (const [x, y] of line.slice(1)) ctx.lineTo(x, y);
+      ctx.stroke();
+    }
+  }
+  ctx.restore();
+}
+
 /** Colours of particle groups (Adachi's models, Lee's stages, Danescu's clusters; -1 grey). */
 export const GROUP_COLOURS = ['#e0e0e0', '#ff8a65', '#4dd0e1', '#aed581', '#f06292', '#ffd54f', '#9575cd'];
 export const groupColour = (g) => (g < 0 ? '#757575' : GROUP_COLOURS[g % GROUP_COLOURS.length]);
@@ -80,7 +118,10 @@ export function drawTopView(ctx, top, { truth = null, estimate = null, hypothese
   const asImage = (boundaries) => boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }));
   drawHypotheses(ctx, hypotheses, map, byGroup);
   if (truth) drawBoundaries(ctx, asImage(truth.boundaries), { dashed: true, width: 2 });
-  if (estimate) drawBoundaries(ctx, asImage(estimate.boundaries), { width: 3 });
+  if (estimate) {
+    drawDelimiters(ctx, estimate.delimiters, map);
+    drawBoundaries(ctx, asImage(estimate.boundaries), { width: estimate.delimiters?.length ? 1 : 3 });
+  }
 }
 
 /** Heat colour of a value in [0, 1]: red grows linearly, then yellow and white show the top. */

@@ -1,15 +1,17 @@
 // End-to-end in Chromium only: a simulator scenario chosen from the page drawn under its ground
-// truth, adachi-mmpf's lanes on the truth, liu-ppf's cue view, and an export's real download.
+// truth, adachi-mmpf's lanes on the truth, liu-ppf's cue view, danescu-mono's marking bands,
+// and an export's real download.
 // Checked on the canvas pixels, not on the DOM. (The checks every browser runs, Chromium
 // included, are in cross-browser.test.mjs.)
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { mkdirSync, readFileSync } from 'node:fs';
 import { start, open } from './browser.mjs';
 import { readCanvas, peak, xAt } from './pixels.mjs';
 
 const env = await start();
 test.after(() => env.close());
+mkdirSync('test-results', { recursive: true });
 
 test('demo switches to a simulator scenario and draws it under its ground truth', async () => {
   const { page, errors } = await open(env.browser, `${env.base}/?tracker=`);
@@ -109,6 +111,53 @@ test('demo runs liu-ppf and shows its measurement pixels as the tracker cue view
     for (let c = col + 8; c < col + 12; c++) background = Math.max(background, red(c));
   }
   assert.ok(best > 150 && best > background + 50, `marking ${best} vs asphalt ${background}`);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('demo draws danescu-mono\'s markings as bands between their inner and outer edges', async () => {
+  const { page, errors } = await open(env.browser, `${env.base}/?source=highway-straight&tracker=danescu-mono`);
+  await page.waitForFunction(() => document.body.dataset.state === 'running'
+    && window.lanepfDemo.lastEstimate?.valid && window.lanepfDemo.frames > 20, null, { timeout: 60000 });
+  // Freeze, hide the particles and the truth, and draw one frame with the estimate alone.
+  await page.click('#play');
+  await page.uncheck('#show-particles');
+  await page.uncheck('#show-truth');
+  const before = await page.evaluate(() => window.lanepfDemo.frames);
+  await page.click('#step');
+  await page.waitForFunction((n) => window.lanepfDemo.frames > n, before, { timeout: 30000 });
+  const { estimate, raw } = await page.evaluate(() => ({
+    estimate: window.lanepfDemo.lastEstimate,
+    raw: JSON.stringify(Array.from(window.lanepfDemo.lastRgba)),
+  }));
+  const frame = { width: 640, data: JSON.parse(raw) };
+  const img = await readCanvas(page);
+  const px = (im, x, y) => Array.from(im.data.slice(4 * (y * im.width + x), 4 * (y * im.width + x) + 3));
+  const yellow = [0xff, 0xd5, 0x4f];
+  const edges = (side) => estimate.delimiters.find((d) => d.role === 'ego-left' && d.side === side).points;
+  const [inner, outer] = [edges('inner'), edges('outer')];
+  // Rows where the left marking is at least 16 px wide: a quarter of the way in from each edge
+  // (clear of the 1 px edge lines and the 2 px centre line, some 1.5 and 3 px across on a
+  // marking slanted at 45 degrees) the frame is tinted 35 % towards the role colour; 3 px
+  // beyond both edges it is untouched.
+  let rows = 0;
+  for (let y = 300; y < 480; y += 6) {
+    const [a, b] = [xAt(inner, y), xAt(outer, y)];
+    if (a === null || b === null || Math.abs(a - b) < 16) continue;
+    rows += 1;
+    const s = Math.sign(a - b);
+    for (const x of [b + (a - b) / 4, a - (a - b) / 4].map(Math.round)) {
+      const [got, under] = [px(img, x, y), px(frame, x, y)];
+      got.forEach((v, k) => assert.ok(Math.abs(v - (0.35 * yellow[k] + 0.65 * under[k])) <= 3,
+        `row ${y}, x ${x}: ${got} is not ${under} tinted towards the ego-left colour`));
+    }
+    for (const x of [Math.round(b - 3 * s), Math.round(a + 3 * s)]) {
+      assert.deepEqual(px(img, x, y), px(frame, x, y), `row ${y}, x ${x} outside the marking is drawn on`);
+    }
+  }
+  assert.ok(rows >= 5, `the left marking is at least 16 px wide on ${rows} sampled rows`);
+  await page.check('#show-particles');
+  await page.screenshot({ path: 'test-results/danescu-markings.png' });
   assert.deepEqual(errors, []);
   await page.close();
 });

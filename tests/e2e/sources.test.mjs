@@ -1,6 +1,7 @@
 // End-to-end: the demo's frame sources. The bundled clip (the default), an uploaded video run
-// to its end, uploaded still images with an imported camera file, a file the browser cannot
-// decode, and the webcam (Chromium's fake camera).
+// to its end by seeking (without WebCodecs; webcodecs.test.mjs has the WebCodecs path),
+// uploaded still images with an imported camera file, a file the browser cannot decode, and
+// the webcam (Chromium's fake camera).
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, statSync } from 'node:fs';
@@ -24,7 +25,7 @@ test('the page opens on the bundled Udacity clip and draws the tracked lane on i
   assert.ok(statSync(CLIP).size < 5e6, 'the bundled clip is well under 5 MB');
   const { page, errors } = await open(env.browser, `${env.base}/`);
   await running(page);
-  assert.match(await status(page), /Udacity project_video\.mp4.*640x360.*25 frames\/s/);
+  assert.match(await status(page), /Udacity project_video\.mp4.*640x360.*300 frames at 25 frames\/s, decoded with WebCodecs/);
   await framesAtLeast(page, 40);
   await page.click('#play');
   await page.waitForFunction(() => window.lanepfDemo.lastRgba?.length > 0);
@@ -61,14 +62,19 @@ test('the page opens on the bundled Udacity clip and draws the tracked lane on i
   await page.close();
 });
 
-test('an uploaded video is processed frame by frame to its end with a progress bar', async () => {
-  const { page, errors } = await open(env.browser, `${env.base}/?source=highway-straight&tracker=adachi-mmpf`);
+test('without WebCodecs, an uploaded video is read by seeking, frame by frame to its end with a progress bar', async () => {
+  // A browser without VideoDecoder (webcodecs.test.mjs covers the WebCodecs path).
+  const page = await env.browser.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(`pageerror: ${e.message}`));
+  await page.addInitScript(() => { delete window.VideoDecoder; });
+  await page.goto(`${env.base}/?source=highway-straight&tracker=adachi-mmpf`);
   await running(page);
   await page.setInputFiles('#file', CLIP);
   await page.waitForFunction(() => /Video “udacity-project-640x360\.webm”/.test(
     document.getElementById('status').textContent), null, { timeout: 30000 });
   // The rate is measured from the video (25 frames/s), so every frame is read once.
-  assert.match(await status(page), /read at 25 frames\/s \(measured\)/);
+  assert.match(await status(page), /read at 25 frames\/s \(measured\), by seeking a <video> element \(not WebCodecs: this browser has no WebCodecs VideoDecoder\)/);
   assert.match(await status(page), /camera assumed/);
   await page.waitForFunction(() => window.lanepfDemo.frames > 30, null, { timeout: 30000 });
   const midway = await page.evaluate(() => document.getElementById('progress').value);
