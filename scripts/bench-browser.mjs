@@ -1,4 +1,4 @@
-// Times every tracker in headless Chromium and natively on the same synthetic sequence, and
+// Times every tracker in headless Chromium (or Firefox, or WebKit: --browser) and natively on the same synthetic sequence, and
 // prints median and 95th-percentile ms/frame with the wasm/native ratio per tracker.
 //
 // Browser: www/bench.html (a Web Worker renders FRAMES frames of SCENARIO with seed 1, then steps
@@ -9,19 +9,27 @@
 //
 // Usage (after `make pkg`; `make bench-browser` does both):
 //   node scripts/bench-browser.mjs [FRAMES=60] [WIDTH=640] [HEIGHT=480] [SCENARIO=highway-curve] [--no-native] [--json]
+//        [--browser=chromium|firefox|webkit]
+// --browser=firefox and --browser=webkit run the page in Debian's Firefox ESR or in WebKitGTK
+// (Safari's engine) through the cross-browser suite's drivers (tests/e2e/drivers/).
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { start, open } from '../tests/e2e/browser.mjs';
 
 const WARMUP = 5;
+const USAGE = 'usage: node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO] [--no-native] [--json] [--browser=chromium|firefox|webkit]';
 const flags = process.argv.slice(2).filter((a) => a.startsWith('--'));
 const positional = process.argv.slice(2).filter((a) => !a.startsWith('--'));
+let browserName = 'chromium';
 for (const f of flags) {
-  if (!['--no-native', '--json'].includes(f)) {
-    console.error(`unknown option ${f}; usage: node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO] [--no-native] [--json]`);
+  const m = /^--browser=(chromium|firefox|webkit)$/.exec(f);
+  if (m) browserName = m[1];
+  else if (!['--no-native', '--json'].includes(f)) {
+    console.error(`unknown option ${f}; ${USAGE}`);
     process.exit(2);
   }
 }
+const browserLabel = { chromium: 'Chromium', firefox: 'Firefox', webkit: 'WebKit' }[browserName];
 const [frames = 60, width = 640, height = 480] = positional.slice(0, 3).map(Number);
 const scenario = positional[3] ?? 'highway-curve';
 for (const [name, v] of [['FRAMES', frames], ['WIDTH', width], ['HEIGHT', height]]) {
@@ -35,8 +43,29 @@ if (frames <= WARMUP) {
   process.exit(2);
 }
 
+/** The browser figures (window.lanepfBench of www/bench.html) in Firefox or WebKit. */
+async function driverBench(query) {
+  const driver = await import(`../tests/e2e/drivers/${browserName}.mjs`);
+  const env = await driver.launch();
+  try {
+    const page = await env.open(`${env.base}/bench.html?${query}`);
+    await page.waitFor(() => window.lanepfBench?.done, { timeout: 30 * 60_000 });
+    const bench = await page.eval(() => window.lanepfBench);
+    if (bench.error) throw new Error(`bench.html: ${bench.error}`);
+    const errors = await page.errors();
+    if (errors.length) throw new Error(errors.join('\n'));
+    const foreign = page.requests().filter((u) => !u.startsWith(env.base) && !u.startsWith('data:'));
+    if (foreign.length) throw new Error(`bench.html made requests beyond its own files: ${foreign.join(', ')}`);
+    return { ...bench, engine: env.version };
+  } finally {
+    await env.close();
+  }
+}
+
 /** The browser figures: window.lanepfBench of www/bench.html. */
 async function browserBench() {
+  const query = new URLSearchParams({ frames, width, height, scenario, seed: 1, warmup: WARMUP });
+  if (browserName !== 'chromium') return driverBench(query);
   const env = await start();
   try {
     const { page, errors } = await open(env.browser, 'about:blank');
@@ -44,14 +73,13 @@ async function browserBench() {
     page.on('request', (r) => {
       if (!r.url().startsWith(env.base) && !r.url().startsWith('data:')) foreign.push(r.url());
     });
-    const query = new URLSearchParams({ frames, width, height, scenario, seed: 1, warmup: WARMUP });
     await page.goto(`${env.base}/bench.html?${query}`);
     await page.waitForFunction(() => window.lanepfBench?.done, null, { timeout: 30 * 60_000, polling: 500 });
     const bench = await page.evaluate(() => window.lanepfBench);
     if (bench.error) throw new Error(`bench.html: ${bench.error}`);
     if (errors.length) throw new Error(errors.join('\n'));
     if (foreign.length) throw new Error(`bench.html made requests beyond its own files: ${foreign.join(', ')}`);
-    return bench;
+    return { ...bench, engine: `Chromium ${env.browser.version()}` };
   } finally {
     await env.close();
   }
@@ -73,7 +101,7 @@ function nativeBench() {
   return { rows: JSON.parse(r.stdout), note: `native: lanepf bench --warmup ${WARMUP} --motion (release build)` };
 }
 
-console.error(`[bench-browser] Chromium: ${scenario} ${width}x${height}, ${frames} frames, first ${WARMUP} not timed`);
+console.error(`[bench-browser] ${browserLabel}: ${scenario} ${width}x${height}, ${frames} frames, first ${WARMUP} not timed`);
 const browser = await browserBench();
 const native = nativeBench();
 const byId = new Map((native.rows ?? []).map((r) => [r.tracker, r]));
@@ -90,12 +118,12 @@ const rows = browser.rows.map((b) => {
 });
 
 if (flags.includes('--json')) {
-  console.log(JSON.stringify({ scenario, width, height, frames, warmup: WARMUP, render_ms: browser.render_ms,
+  console.log(JSON.stringify({ browser: browser.engine, scenario, width, height, frames, warmup: WARMUP, render_ms: browser.render_ms,
     note: native.note, rows }, null, 2));
 } else {
   const f = (v, w) => (v === null ? '-' : v.toFixed(2)).padStart(w);
   console.log(`${scenario} ${width}x${height}, seed 1, ${frames} frames (first ${WARMUP} not timed); `
-    + `Chromium ${browser.version ? `lanepf ${browser.version}` : ''} in a Web Worker`);
+    + `${browser.engine}${browser.version ? `, lanepf ${browser.version}` : ''}, in a Web Worker`);
   console.log(native.note);
   console.log('tracker            wasm median  wasm p95  native median  native p95  wasm/native');
   for (const r of rows) {

@@ -61,9 +61,11 @@ function once(target, ok, bad, ms, what) {
 }
 
 /**
- * The video's frame rate, measured: play it muted for a few frames and take the shortest
- * interval between the media times of presented frames (requestVideoFrameCallback). Null when
- * the browser lacks that callback or the video does not play.
+ * The video's frame rate, measured: play it muted at quarter speed for a few frames and take the
+ * shortest interval between the media times of presented frames (requestVideoFrameCallback).
+ * (At full speed a slow compositor presents only some frames: WebKit on a loaded machine
+ * showed every 4th, and the rate read as 6.25 instead of 25.) Null when the browser lacks that
+ * callback or the video does not play.
  */
 async function measureFps(video) {
   if (!('requestVideoFrameCallback' in video)) return null;
@@ -77,12 +79,14 @@ async function measureFps(video) {
     video.requestVideoFrameCallback(onFrame);
   });
   try {
+    video.playbackRate = 0.25;
     await video.play();
-    await Promise.race([measured, new Promise((r) => setTimeout(r, 2000))]);
+    await Promise.race([measured, new Promise((r) => setTimeout(r, 3000))]);
   } catch {
     return null;
   } finally {
     video.pause();
+    video.playbackRate = 1;
   }
   let best = Infinity;
   for (let i = 1; i < times.length; i++) {
@@ -144,11 +148,12 @@ export class VideoSource {
     if (!(duration > 0) || !Number.isFinite(duration)) {
       throw new Error(`Cannot open “${this.name}”: it has no known duration (a live stream?).`);
     }
-    // Unknown rate: measure it; failing that, read 30 frames per second.
+    // Unknown rate: measure it; failing that, read 30 frames per second (and say so).
     this.fpsNote = '';
     if (!this.fps) {
-      this.fps = (await measureFps(video)) ?? 30;
-      this.fpsNote = ' (measured)';
+      const measured = await measureFps(video);
+      this.fps = measured ?? 30;
+      this.fpsNote = measured ? ' (measured)' : ' (assumed: the browser did not report its frames)';
     }
     this.video = video;
     this.size = frameSize(video.videoWidth, video.videoHeight, this.sideBySide);

@@ -1,9 +1,10 @@
 // Reading the demo's canvases in the end-to-end tests.
 
-/** Reads canvas `id` as { width, height, data: number[] } inside the page (playwright-core or
- * puppeteer-core). The pixels cross as one JSON string: as an array of numbers they take ~10 s
- * per 640x480 canvas over WebDriver BiDi (Firefox), where each number is its own object. */
-export const readCanvas = async (page, id = 'view') => JSON.parse(await page.evaluate((id) => {
+/** Reads canvas `id` as { width, height, data: number[] } inside the page (a playwright-core
+ * page, or a page of the cross-browser drivers, drivers/*.mjs). The pixels cross as one JSON
+ * string: as an array of numbers they take ~10 s per 640x480 canvas over WebDriver BiDi
+ * (Firefox), where each number is its own object. */
+export const readCanvas = async (page, id = 'view') => JSON.parse(await (page.eval ?? page.evaluate).call(page, (id) => {
   const c = document.getElementById(id);
   const d = c.getContext('2d').getImageData(0, 0, c.width, c.height);
   return JSON.stringify({ width: d.width, height: d.height, data: Array.from(d.data) });

@@ -1,8 +1,12 @@
-// Shared set-up for the Firefox end-to-end test: the demo server and Debian's Firefox ESR,
-// driven over WebDriver BiDi by puppeteer-core (playwright-core's Firefox is Playwright's own
-// patched build, which is a download; this drives the browser apt installed).
+// The Firefox driver of the cross-browser end-to-end suite: the demo server and Debian's
+// Firefox ESR, headless, driven over WebDriver BiDi by puppeteer-core (playwright-core's Firefox
+// is Playwright's own patched build, which is a download; this drives the browser apt
+// installed). The same page operations as webkit.mjs.
 import puppeteer from 'puppeteer-core';
-import { serve } from '../../scripts/serve.mjs';
+import { serve } from '../../../scripts/serve.mjs';
+import { EventPage } from './event-page.mjs';
+
+export const name = 'Firefox';
 
 export const FIREFOX = process.env.FIREFOX ?? '/usr/bin/firefox-esr';
 
@@ -50,8 +54,8 @@ const PREFS = {
   'media.navigator.permission.disabled': true,
 };
 
-/** Starts the server and headless Firefox (a fresh temporary profile); returns { base, browser, close }. */
-export async function startFirefox() {
+/** Starts the server and headless Firefox (a fresh temporary profile). */
+export async function launch() {
   const server = await serve(0);
   const base = `http://127.0.0.1:${server.address().port}`;
   const browser = await puppeteer.launch({
@@ -60,8 +64,15 @@ export async function startFirefox() {
     env: { ...process.env, MOZ_HEADLESS: '1' },
   });
   return {
+    name,
+    version: `Firefox ${(await browser.version()).replace(/^firefox\//i, '')}`,
     base,
-    browser,
+    /** Opens `url` in a new tab that records page errors, console errors and requests. */
+    async open(url) {
+      const page = new FirefoxPage(await browser.newPage());
+      await page.page.goto(url);
+      return page;
+    },
     async close() {
       await browser.close();
       server.close();
@@ -69,12 +80,14 @@ export async function startFirefox() {
   };
 }
 
-/** Opens `url` in a new tab that records page errors and console errors. */
-export async function openFirefox(browser, url) {
-  const page = await browser.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(`pageerror: ${e.message}`));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
-  await page.goto(url);
-  return { page, errors };
+class FirefoxPage extends EventPage {
+  /** Runs `fn(...args)` in the page (it may be async) and resolves to its value. */
+  eval(fn, ...args) { return this.page.evaluate(fn, ...args); }
+  /** Waits until `fn(arg)` is truthy in the page; resolves to that value. */
+  async waitFor(fn, { arg, timeout = 30_000 } = {}) {
+    return EventPage.valueOf(await this.page.waitForFunction(fn, { timeout }, arg));
+  }
+  select(selector, value) { return this.page.select(selector, value); }
+  /** Sets files (paths on disk) on <input type=file> `selector`. */
+  async setFiles(selector, paths) { await (await this.page.$(selector)).uploadFile(...paths); }
 }
