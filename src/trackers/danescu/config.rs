@@ -60,7 +60,7 @@ pub struct DanescuConfig {
     pub sigma_gradient: f64,
     /// sigma_D of eq. 14, cells (the paper gives no value). 1 cell: with 0.5 the density
     /// cue alone left a median effective sample size of 19 of 500 particles, and the
-    /// parameters it does not see (marking widths, W_l) wandered.
+    /// parameters it does not see (the marking widths above all) wandered.
     pub sigma_density: f64,
     /// Negative points lie this far inside the lane from the inner edges, metres.
     pub negative_offset_m: f64,
