@@ -55,13 +55,7 @@ mod tests {
             let j = votes.bin_of(rho - config.marking_width_m / 2.0);
             votes.histogram[j] = 30.0;
         }
-        let mut likelihood = Likelihood::new(
-            config.polarity,
-            config.marking_width_m,
-            config.edge_sigma_m,
-            config.bin_m,
-            config.beta,
-        );
+        let mut likelihood = Likelihood::new(&config);
         likelihood.prepare(&votes);
         for (q_step, w_step) in [
             (0.05, 0.02),

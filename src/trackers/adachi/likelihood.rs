@@ -19,7 +19,7 @@
 //! alpha = 1 / (sum_l c_{r,l} mass_l + beta), with mass_l the part of the template inside the
 //! axis (an error-function integral), since N sums to 1.
 
-use super::config::Polarity;
+use super::config::{AdachiConfig, Polarity};
 use super::votes::Votes;
 use crate::math;
 
@@ -45,9 +45,12 @@ pub struct Likelihood {
 }
 
 impl Likelihood {
-    /// A likelihood for marking width `m`, edge spread `edge_sigma`, noise weight `beta`.
-    pub fn new(polarity: Polarity, m: f64, edge_sigma: f64, bin: f64, beta: f64) -> Self {
-        let edges = match polarity {
+    /// The likelihood of `config`: its polarity, marking width m, edge spread, histogram bin
+    /// and noise weight beta.
+    pub fn new(config: &AdachiConfig) -> Self {
+        let m = config.marking_width_m;
+        let (edge_sigma, bin) = (config.edge_sigma_m, config.bin_m);
+        let edges = match config.polarity {
             Polarity::LeftEdge => vec![(-m / 2.0, 1.0)],
             Polarity::RightEdge => vec![(m / 2.0, 1.0)],
             Polarity::Both => vec![(-m / 2.0, 0.5), (m / 2.0, 0.5)],
@@ -55,7 +58,7 @@ impl Likelihood {
         Self {
             edges,
             sd: (edge_sigma * edge_sigma + bin * bin / 12.0).sqrt(),
-            beta,
+            beta: config.beta,
             voted: Vec::new(),
         }
     }
@@ -155,7 +158,6 @@ mod tests {
     use super::*;
     use crate::filter::Rng;
     use crate::synth::default_camera;
-    use crate::trackers::adachi::config::AdachiConfig;
 
     /// Grid steps for q and w, metres.
     const Q_STEP: f64 = 0.025;
@@ -195,13 +197,7 @@ mod tests {
         let cam = default_camera(320, 240).unwrap();
         let config = AdachiConfig::default();
         let mut votes = Votes::new(&cam, &config).unwrap();
-        let mut likelihood = Likelihood::new(
-            config.polarity,
-            config.marking_width_m,
-            config.edge_sigma_m,
-            config.bin_m,
-            config.beta,
-        );
+        let mut likelihood = Likelihood::new(&config);
         // q = 0.1 and w = 3.6 put every boundary's edge on a bin centre.
         let (kq, iw) = (4, 12);
         let (q, w) = (grid_q(kq), grid_w(iw));

@@ -137,13 +137,7 @@ impl AdachiTracker {
                 adachi.near_m, adachi.far_m
             )));
         }
-        let likelihood = Likelihood::new(
-            adachi.polarity,
-            adachi.marking_width_m,
-            adachi.edge_sigma_m,
-            adachi.bin_m,
-            adachi.beta,
-        );
+        let likelihood = Likelihood::new(&adachi);
         let initial = Initial {
             width_range: adachi.width_range_m,
         };
