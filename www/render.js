@@ -55,7 +55,8 @@ export function drawDelimiters(ctx, delimiters, map = null) {
     // The band: along the inner edge, back along the outer one.
     ctx.beginPath();
     ctx.moveTo(a[0][0], a[0][1]);
-    for (const [x, y] of [...a.slice(1), ...[...b].reverse()]) ctx.lineTo(x, y);
+    for (let k = 1; k < a.length; k++) ctx.lineTo(a[k][0], a[k][1]);
+    for (let k = b.length - 1; k >= 0; k--) ctx.lineTo(b[k][0], b[k][1]);
     ctx.closePath();
     ctx.globalAlpha = 0.35;
     ctx.fillStyle = colour;
