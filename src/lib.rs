@@ -18,6 +18,7 @@
 
 #![deny(missing_docs)]
 
+pub mod calib;
 pub mod camera;
 pub mod error;
 pub mod eval;

@@ -4,6 +4,9 @@
 //! lanepf synth --scenario NAME --seed N --frames N [--width W --height H] [--stereo] --out DIR
 //! lanepf track --tracker ID --camera FILE --frames DIR [--right DIR] [--seed N] [--config FILE]
 //!              [--still K] --out FILE.jsonl
+//!     (--camera auto estimates the camera from the frames first, as `calibrate` does)
+//! lanepf calibrate --frames DIR [--intrinsics FILE | --hfov DEG] [--lane-width M] [--stills]
+//!              [--seconds N [--fps F]] [--json] --out camera.json
 //! lanepf eval --pred FILE.jsonl --gt PATH --format synthetic|caltech|tusimple|culane [--json]
 //! lanepf bench [--tracker ID|all] [--frames N] [--width W --height H] [--json]
 //! ```
@@ -12,6 +15,7 @@
 //! exit with 2 (clap's convention).
 
 mod bench;
+mod calibrate;
 mod eval;
 mod frames;
 mod synth;
@@ -34,6 +38,8 @@ enum Command {
     Synth(synth::Args),
     /// Run a tracker on a folder of frames and write one JSON line per frame.
     Track(track::Args),
+    /// Estimate the camera's pitch, yaw and height from the lane markings of a folder of frames.
+    Calibrate(calibrate::Args),
     /// Score tracker output against ground truth (synthetic, Caltech, TuSimple, CULane).
     Eval(eval::Args),
     /// Time trackers on a standard synthetic sequence.
@@ -62,6 +68,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Synth(args) => synth::run(args),
         Command::Track(args) => track::run(args),
+        Command::Calibrate(args) => calibrate::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Bench(args) => bench::run(args),
     };

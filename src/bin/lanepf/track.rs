@@ -15,9 +15,12 @@ pub struct Args {
     /// Tracker id.
     #[arg(long)]
     tracker: String,
-    /// camera.json of the frames.
+    /// camera.json of the frames, or `auto` to estimate it from the frames first (see
+    /// `lanepf calibrate`; the estimate is printed on stderr).
     #[arg(long)]
-    camera: PathBuf,
+    camera: String,
+    #[command(flatten)]
+    calibration: super::calibrate::CalibrationArgs,
     /// Folder of PNG/JPEG frames, processed in file-name order.
     #[arg(long)]
     frames: PathBuf,
@@ -46,7 +49,17 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<()> {
-    let camera = CameraFile::read(&args.camera)?;
+    let files = frames::list(&args.frames)?;
+    let camera = if args.camera == "auto" {
+        let estimate = super::calibrate::calibrate(&files, &args.calibration)?;
+        eprintln!(
+            "lanepf: camera auto: {}",
+            super::calibrate::summary(&estimate)
+        );
+        estimate.camera
+    } else {
+        CameraFile::read(std::path::Path::new(&args.camera))?
+    };
     let mut options = match &args.config {
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
@@ -88,7 +101,6 @@ pub fn run(args: Args) -> Result<()> {
             "must be at least 1 iteration",
         ));
     }
-    let files = frames::list(&args.frames)?;
     let motion = match &args.motion {
         Some(path) => Some(read_motion(path, files.len())?),
         None => None,

@@ -1,0 +1,657 @@
+//! The online calibrator: frames in, a camera estimate with its confidence out.
+
+use super::hough::{bend, Hough, HoughParams, LineFit};
+use super::marking_image::{marking_intensity, working_scale};
+use super::pose::{lateral_at_unit_height, pose_from_vanishing_point, vanishing_point, Pinhole};
+use super::ridges::{find_ridges, keep_continuous, RidgePixel};
+use super::vp_votes::VpVotes;
+use crate::camera::{Camera, CameraFile, Distortion};
+use crate::error::{require_within, Error, Result};
+use crate::image::{check_dimensions, Image};
+use crate::math;
+use serde::Serialize;
+use std::collections::VecDeque;
+
+/// Options of the [`Calibrator`]; every field has a documented range, checked by
+/// [`Calibrator::new`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CalibratorConfig {
+    /// Lane width prior W, metres (2.5 to 5): the camera height is W / w_1.
+    pub lane_width_m: f64,
+    /// Horizontal field of view, degrees (20 to 150), used for the focal length when the
+    /// intrinsics are not given: fx = fy = (width / 2) / tan(hfov / 2).
+    pub hfov_deg: f64,
+    /// Frames (1 to 120) whose vanishing points must agree for a frame to count as straight
+    /// road; 1 accepts every frame on its own (independent still images).
+    pub stable_frames: usize,
+    /// Largest common bend of the ego boundaries on straight road, in working pixels (0.1 to
+    /// 10; see [`super::hough`]).
+    pub max_bend_px: f64,
+}
+
+impl Default for CalibratorConfig {
+    fn default() -> Self {
+        Self {
+            lane_width_m: 3.6,
+            hfov_deg: 60.0,
+            stable_frames: 5,
+            max_bend_px: 1.5,
+        }
+    }
+}
+
+impl CalibratorConfig {
+    /// Checks every option against its range.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] naming the option.
+    pub fn validate(&self) -> Result<()> {
+        require_within(
+            "lane_width_m",
+            self.lane_width_m,
+            2.5..=5.0,
+            "must be 2.5 to 5 metres",
+        )?;
+        require_within(
+            "hfov_deg",
+            self.hfov_deg,
+            20.0..=150.0,
+            "must be 20 to 150 degrees",
+        )?;
+        require_within(
+            "max_bend_px",
+            self.max_bend_px,
+            0.1..=10.0,
+            "must be 0.1 to 10 pixels",
+        )?;
+        if !(1..=120).contains(&self.stable_frames) {
+            return Err(Error::parameter(
+                "stable_frames",
+                self.stable_frames,
+                "must be 1 to 120 frames",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What one frame showed.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct FrameObservation {
+    /// Lines through marking pixels, in undistorted pixels, strongest first.
+    pub lines: Vec<LineFit>,
+    /// Indices in `lines` of the ego boundaries (left, right).
+    pub ego: Option<[usize; 2]>,
+    /// Where the ego boundaries meet, undistorted pixels.
+    pub vanishing_point: Option<[f64; 2]>,
+    /// The ego boundaries are straight: their common bend is at most `max_bend_px`, their
+    /// opposite bend (a crest or a dip) at most three times that.
+    pub straight: bool,
+    /// The vanishing points of the last `stable_frames` frames agree.
+    pub stable: bool,
+    /// The frame was used for the estimate.
+    pub used: bool,
+}
+
+/// One straight, stable frame's measurement.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Sample {
+    pitch: f64,
+    yaw: f64,
+    /// Lane width seen from one metre above the road.
+    width_at_unit_height: f64,
+}
+
+/// The calibrator's current answer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CalibrationEstimate {
+    /// The estimated camera (pitch, yaw, height; roll 0; intrinsics given or from the field of
+    /// view).
+    pub camera: CameraFile,
+    /// 0 (nothing known) to 1 (pitch and yaw known to well within 0.5 degrees and the height
+    /// to well within 10 %): see the module docs.
+    pub confidence: f64,
+    /// Frames that measured the camera (straight road, stable vanishing point).
+    pub frames_used: usize,
+    /// Frames fed in.
+    pub frames_seen: usize,
+    /// Spread (1.4826 MAD) of the per-frame pitch, degrees.
+    pub pitch_sd_deg: f64,
+    /// Spread of the per-frame yaw, degrees.
+    pub yaw_sd_deg: f64,
+    /// Spread of the per-frame height, metres.
+    pub height_sd_m: f64,
+    /// Vanishing point of the estimate, undistorted pixels.
+    pub vanishing_point: [f64; 2],
+    /// Whether the intrinsics were given (false: focal length from `hfov_deg`).
+    pub intrinsics_known: bool,
+}
+
+/// Most samples kept (the oldest go first): about a minute of straight road at 30 fps.
+pub const MAX_SAMPLES: usize = 2000;
+/// Samples for full confidence by count.
+const FULL_COUNT: f64 = 30.0;
+
+/// Estimates a camera's pitch, yaw and height from the lane markings of the frames it is fed
+/// (see the [module docs](super)).
+#[derive(Debug, Clone)]
+pub struct Calibrator {
+    config: CalibratorConfig,
+    width: usize,
+    height: usize,
+    pinhole: Pinhole,
+    distortion: Distortion,
+    intrinsics_known: bool,
+    scale: usize,
+    /// Working pixel -> undistorted pixel / scale, when the lens distorts.
+    undistort: Option<Vec<[f32; 2]>>,
+    work: Image<u8>,
+    sums: Vec<u32>,
+    ridge_scratch: Vec<i32>,
+    ridges: Vec<RidgePixel>,
+    points: Vec<[f32; 2]>,
+    weights: Vec<u8>,
+    hough: Hough,
+    votes: VpVotes,
+    recent: VecDeque<Option<[f64; 2]>>,
+    samples: VecDeque<Sample>,
+    frames_seen: usize,
+    last: FrameObservation,
+}
+
+impl Calibrator {
+    /// A calibrator for `width` x `height` frames. `intrinsics`, when given, supplies fx, fy,
+    /// cx, cy and the lens distortion (its pose fields are ignored); without it the focal length
+    /// comes from `config.hfov_deg`, the principal point is the image centre and the lens is
+    /// taken as distortion-free.
+    ///
+    /// # Errors
+    /// [`Error::Dimensions`] for an unusable size or one that does not match `intrinsics`;
+    /// [`Error::Parameter`] for an option out of range or invalid intrinsics.
+    pub fn new(
+        width: usize,
+        height: usize,
+        intrinsics: Option<&CameraFile>,
+        config: CalibratorConfig,
+    ) -> Result<Self> {
+        check_dimensions(width, height)?;
+        config.validate()?;
+        let scale = working_scale(width);
+        if height < scale * 16 || width < scale * 32 {
+            return Err(Error::Dimensions(format!(
+                "{width}x{height}: the calibrator needs frames of at least 32x16 pixels"
+            )));
+        }
+        let (pinhole, distortion) = match intrinsics {
+            Some(file) => {
+                if (file.width, file.height) != (width, height) {
+                    return Err(Error::Dimensions(format!(
+                        "the intrinsics are for {}x{} frames, not {width}x{height}",
+                        file.width, file.height
+                    )));
+                }
+                let cam = Camera::from_file(file)?;
+                let [fx, fy] = cam.focal();
+                let [cx, cy] = cam.principal_point();
+                (Pinhole { fx, fy, cx, cy }, *cam.distortion())
+            }
+            None => {
+                let f = 0.5 * width as f64 / math::tan(math::deg_to_rad(0.5 * config.hfov_deg));
+                let pinhole = Pinhole {
+                    fx: f,
+                    fy: f,
+                    cx: 0.5 * (width as f64 - 1.0),
+                    cy: 0.5 * (height as f64 - 1.0),
+                };
+                (pinhole, Distortion::default())
+            }
+        };
+        let mut calibrator = Self {
+            config,
+            width,
+            height,
+            pinhole,
+            distortion,
+            intrinsics_known: intrinsics.is_some(),
+            scale,
+            undistort: None,
+            work: Image::new(width / scale, height / scale)?,
+            sums: Vec::new(),
+            ridge_scratch: Vec::new(),
+            ridges: Vec::new(),
+            points: Vec::new(),
+            weights: Vec::new(),
+            hough: Hough::default(),
+            votes: VpVotes::new(width, height),
+            recent: VecDeque::with_capacity(config.stable_frames + 1),
+            samples: VecDeque::with_capacity(MAX_SAMPLES),
+            frames_seen: 0,
+            last: FrameObservation::default(),
+        };
+        if !distortion.is_none() {
+            calibrator.undistort = Some(calibrator.undistortion_table());
+        }
+        Ok(calibrator)
+    }
+
+    /// Working pixel (x, y) -> its undistorted full-resolution pixel divided by the scale;
+    /// NaN where the lens model cannot be inverted.
+    fn undistortion_table(&self) -> Vec<[f32; 2]> {
+        let (w, h, s) = (self.work.width(), self.work.height(), self.scale as f64);
+        let k = self.pinhole;
+        let mut table = Vec::with_capacity(w * h);
+        for y in 0..h {
+            for x in 0..w {
+                let (u, v) = (self.full(x as f64), self.full(y as f64));
+                let entry = match self
+                    .distortion
+                    .undistort((u - k.cx) / k.fx, (v - k.cy) / k.fy)
+                {
+                    Ok([xn, yn]) => [
+                        ((k.cx + k.fx * xn) / s) as f32,
+                        ((k.cy + k.fy * yn) / s) as f32,
+                    ],
+                    Err(_) => [f32::NAN, f32::NAN],
+                };
+                table.push(entry);
+            }
+        }
+        table
+    }
+
+    /// Full-resolution coordinate of the centre of working pixel `i`.
+    fn full(&self, i: f64) -> f64 {
+        let s = self.scale as f64;
+        s * i + 0.5 * (s - 1.0)
+    }
+
+    /// The options.
+    pub fn config(&self) -> &CalibratorConfig {
+        &self.config
+    }
+
+    /// Frame size, pixels.
+    pub fn size(&self) -> [usize; 2] {
+        [self.width, self.height]
+    }
+
+    /// What the last frame showed.
+    pub fn last_observation(&self) -> &FrameObservation {
+        &self.last
+    }
+
+    /// The last frame's marking pixels, in undistorted pixels.
+    pub fn marking_pixels(&self) -> impl Iterator<Item = [f64; 2]> + '_ {
+        let s = self.scale as f64;
+        self.points
+            .iter()
+            .map(move |p| [p[0] as f64 * s, p[1] as f64 * s])
+    }
+
+    /// Forgets every frame.
+    pub fn reset(&mut self) {
+        self.recent.clear();
+        self.samples.clear();
+        self.votes.clear();
+        self.frames_seen = 0;
+        self.last = FrameObservation::default();
+    }
+
+    /// Feeds one RGBA frame; returns what it showed.
+    ///
+    /// # Errors
+    /// [`Error::Dimensions`] / [`Error::BufferSize`] when the frame is not `width` x `height`
+    /// RGBA; the calibrator is unchanged then.
+    pub fn feed_rgba(
+        &mut self,
+        rgba: &[u8],
+        width: usize,
+        height: usize,
+    ) -> Result<&FrameObservation> {
+        if (width, height) != (self.width, self.height) {
+            return Err(Error::Dimensions(format!(
+                "{width}x{height}: this calibrator takes {}x{} frames",
+                self.width, self.height
+            )));
+        }
+        marking_intensity(
+            rgba,
+            width,
+            height,
+            self.scale,
+            &mut self.sums,
+            &mut self.work,
+        )?;
+        self.frames_seen += 1;
+        self.observe();
+        Ok(&self.last)
+    }
+
+    /// Rows (working pixels) searched for markings: from just below the estimated horizon (or
+    /// a quarter of the way down before there is one) to 5 % above the bottom.
+    fn search_rows(&self) -> (usize, usize) {
+        let h = self.work.height();
+        let bottom = (0.95 * h as f64) as usize;
+        let top = match self.prior_vanishing_point() {
+            Some(vp) => {
+                let v = vp[1] / self.scale as f64 + 0.03 * h as f64;
+                v.clamp(0.0, 0.8 * h as f64) as usize
+            }
+            None => h / 4,
+        };
+        (top, bottom.max(top + 1))
+    }
+
+    fn observe(&mut self) {
+        let (top, bottom) = self.search_rows();
+        self.ridges.clear();
+        find_ridges(
+            &self.work,
+            top..bottom,
+            12,
+            &mut self.ridge_scratch,
+            &mut self.ridges,
+        );
+        keep_continuous(&mut self.ridges, 2);
+        self.points.clear();
+        self.weights.clear();
+        let (w, s) = (self.work.width(), self.scale as f64);
+        for p in &self.ridges {
+            let (x, y) = (p.x as usize, p.y as usize);
+            let q = match &self.undistort {
+                Some(table) => table[y * w + x],
+                None => [
+                    (self.full(x as f64) / s) as f32,
+                    (self.full(y as f64) / s) as f32,
+                ],
+            };
+            if q[0].is_finite() && q[1].is_finite() {
+                self.points.push(q);
+                self.weights.push(p.contrast);
+            }
+        }
+        let span = (bottom - top) as f64;
+        let params = HoughParams {
+            width: w,
+            y_ref: 0.5 * (top + bottom) as f64,
+            min_support: ((0.08 * span) as usize).max(8),
+            min_extent: 0.15 * span,
+            max_lines: 8,
+        };
+        let mut lines = Vec::new();
+        self.hough
+            .detect(&self.points, &self.weights, &params, &mut lines);
+        let full = |l: &LineFit| LineFit {
+            x_ref: l.x_ref * s,
+            y_ref: l.y_ref * s,
+            y_top: l.y_top * s,
+            y_bottom: l.y_bottom * s,
+            bend: l.bend * s,
+            ..*l
+        };
+        let mut lines: Vec<LineFit> = lines.iter().map(full).collect();
+        let bottom_row = bottom as f64 * s;
+        let ego = self.ego_pair(&lines, bottom_row);
+        self.vote_crossings(&lines);
+        let vanishing_point = ego.and_then(|[l, r]| crossing(&lines[l], &lines[r]));
+        if let (Some([l, r]), Some(vp)) = (ego, vanishing_point) {
+            // Bends over the rows from 15 % of the way down from the vanishing point.
+            let from = (vp[1] + 0.15 * (bottom_row - vp[1])) / s;
+            for i in [l, r] {
+                let working = LineFit {
+                    x_ref: lines[i].x_ref / s,
+                    y_ref: lines[i].y_ref / s,
+                    ..lines[i]
+                };
+                lines[i].bend = bend(&self.points, &working, (from, bottom as f64)) * s;
+            }
+        }
+        // A bend in the road bends both boundaries the same way; a crest or a dip bends them
+        // in opposite ways (and matters less: it tilts the near road, which is what a tracker
+        // looks at).
+        let straight = ego.is_some_and(|[l, r]| {
+            let (bl, br) = (lines[l].bend, lines[r].bend);
+            let limit = self.config.max_bend_px * s;
+            (bl + br).abs() / 2.0 <= limit && (bl - br).abs() / 2.0 <= 3.0 * limit
+        });
+        let vp_straight = vanishing_point.filter(|_| straight);
+        self.recent.push_back(vp_straight);
+        while self.recent.len() > self.config.stable_frames {
+            self.recent.pop_front();
+        }
+        let stable = self.stable();
+        let mut used = false;
+        if let (Some(vp), true, Some([l, r])) = (vp_straight, stable, ego) {
+            if let Some(sample) = self.sample(vp, &lines[l], &lines[r], bottom_row) {
+                if self.samples.len() == MAX_SAMPLES {
+                    self.samples.pop_front();
+                }
+                self.samples.push_back(sample);
+                used = true;
+            }
+        }
+        self.last = FrameObservation {
+            lines,
+            ego,
+            vanishing_point,
+            straight,
+            stable,
+            used,
+        };
+    }
+
+    /// Where the road vanishes, as far as is known before this frame: the mode of the recent
+    /// line crossings once it holds a fair share of them (it follows the road and cannot lock
+    /// onto the calibrator's own earlier choices), else the estimate once it has a few frames.
+    fn prior_vanishing_point(&self) -> Option<[f64; 2]> {
+        match self.votes.mode() {
+            Some((mode, share))
+                if self.frames_seen > 5 && share >= 0.15 && self.votes.total() >= 50.0 =>
+            {
+                Some(mode)
+            }
+            _ if self.samples.len() >= 5 => self.current_vanishing_point(),
+            _ => None,
+        }
+    }
+
+    /// The strong left-leaning (dx/dy < 0) and right-leaning lines.
+    fn sides(lines: &[LineFit]) -> (Vec<usize>, Vec<usize>) {
+        let strongest = lines.iter().map(|l| l.support).max().unwrap_or(0);
+        let strong = |l: &LineFit| 4 * l.support >= strongest;
+        let pick = |left: bool| {
+            (0..lines.len())
+                .filter(|&i| strong(&lines[i]) && (lines[i].slope < 0.0) == left)
+                .collect()
+        };
+        (pick(true), pick(false))
+    }
+
+    /// Where `left` and `right` meet, if that is a possible vanishing point: above most of the
+    /// points of both, and not absurdly far off the image.
+    fn meeting(&self, left: &LineFit, right: &LineFit) -> Option<[f64; 2]> {
+        let vp = crossing(left, right)?;
+        let (w, h) = (self.width as f64, self.height as f64);
+        let mid = |l: &LineFit| 0.5 * (l.y_top + l.y_bottom);
+        let above = vp[1] <= mid(left).min(mid(right));
+        (above && vp[1] > -0.5 * h && (vp[0] - 0.5 * w).abs() < w).then_some(vp)
+    }
+
+    /// Every left/right pair votes where it meets (see [`VpVotes`]).
+    fn vote_crossings(&mut self, lines: &[LineFit]) {
+        self.votes.decay();
+        let (left, right) = Self::sides(lines);
+        for &l in &left {
+            for &r in &right {
+                if let Some(vp) = self.meeting(&lines[l], &lines[r]) {
+                    let weight = lines[l].support.min(lines[r].support) as f32;
+                    self.votes.vote(vp, weight);
+                }
+            }
+        }
+    }
+
+    /// The ego boundaries. With a prior vanishing point: of the lines passing within 6 % of the
+    /// width of it, the left-leaning and the right-leaning one nearest the middle at the bottom
+    /// row. Without one: the pair with the most support that meets where a road can vanish.
+    fn ego_pair(&self, lines: &[LineFit], bottom_row: f64) -> Option<[usize; 2]> {
+        let (left, right) = Self::sides(lines);
+        let pair = match self.prior_vanishing_point() {
+            Some(vp) => {
+                let tol = 0.06 * self.width as f64;
+                let near = |&&i: &&usize| (lines[i].x_at(vp[1]) - vp[0]).abs() <= tol;
+                let at_bottom = |&i: &usize| lines[i].x_at(bottom_row);
+                let l = *left
+                    .iter()
+                    .filter(near)
+                    .max_by(|a, b| at_bottom(a).total_cmp(&at_bottom(b)))?;
+                let r = *right
+                    .iter()
+                    .filter(near)
+                    .min_by(|a, b| at_bottom(a).total_cmp(&at_bottom(b)))?;
+                [l, r]
+            }
+            None => {
+                let mut best = None;
+                for &l in &left {
+                    for &r in &right {
+                        let score = lines[l].support + lines[r].support;
+                        if self.meeting(&lines[l], &lines[r]).is_some()
+                            && best.is_none_or(|(s, _)| score > s)
+                        {
+                            best = Some((score, [l, r]));
+                        }
+                    }
+                }
+                best?.1
+            }
+        };
+        self.meeting(&lines[pair[0]], &lines[pair[1]]).map(|_| pair)
+    }
+
+    /// The last `stable_frames` frames all had straight boundaries whose vanishing points lie
+    /// within 1.5 % of the image width of their median.
+    fn stable(&self) -> bool {
+        if self.recent.len() < self.config.stable_frames {
+            return false;
+        }
+        let vps: Option<Vec<[f64; 2]>> = self.recent.iter().copied().collect();
+        let Some(vps) = vps else { return false };
+        let mut us: Vec<f64> = vps.iter().map(|p| p[0]).collect();
+        let mut vs: Vec<f64> = vps.iter().map(|p| p[1]).collect();
+        let (mu, mv) = (median(&mut us), median(&mut vs));
+        let tol = 0.015 * self.width as f64;
+        vps.iter()
+            .all(|p| (p[0] - mu).abs() <= tol && (p[1] - mv).abs() <= tol)
+    }
+
+    fn sample(&self, vp: [f64; 2], left: &LineFit, right: &LineFit, row: f64) -> Option<Sample> {
+        let [pitch, yaw] = pose_from_vanishing_point(&self.pinhole, vp);
+        let k = &self.pinhole;
+        let yl = lateral_at_unit_height(k, pitch, yaw, [left.x_at(row), row])?;
+        let yr = lateral_at_unit_height(k, pitch, yaw, [right.x_at(row), row])?;
+        let width_at_unit_height = yl - yr;
+        (width_at_unit_height > 0.05).then_some(Sample {
+            pitch,
+            yaw,
+            width_at_unit_height,
+        })
+    }
+
+    fn current_vanishing_point(&self) -> Option<[f64; 2]> {
+        self.estimate_angles()
+            .map(|(pitch, yaw, ..)| vanishing_point(&self.pinhole, pitch, yaw))
+    }
+
+    /// Median pitch, yaw and width at unit height, and their spreads (1.4826 MAD).
+    fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3])> {
+        if self.samples.is_empty() {
+            return None;
+        }
+        let column = |f: fn(&Sample) -> f64| -> (f64, f64) {
+            let mut v: Vec<f64> = self.samples.iter().map(f).collect();
+            let m = median(&mut v);
+            let mut dev: Vec<f64> = v.iter().map(|x| (x - m).abs()).collect();
+            (m, 1.4826 * median(&mut dev))
+        };
+        let (pitch, sp) = column(|s| s.pitch);
+        let (yaw, sy) = column(|s| s.yaw);
+        let (w1, sw) = column(|s| s.width_at_unit_height);
+        Some((pitch, yaw, w1, [sp, sy, sw]))
+    }
+
+    /// The current estimate, or `None` before any frame has measured the camera.
+    ///
+    /// Confidence = min(1, n / 30) exp(-(e_pitch^2 + e_yaw^2) / (2 (0.25 deg)^2) - e_h^2 /
+    /// (2 (5 %)^2)), where n is the number of frames used and e = 1.2533 sd / sqrt(n) is the
+    /// standard error of each median: it nears 1 when the estimate is well inside the goal
+    /// (0.5 degrees, 10 % of the height).
+    pub fn estimate(&self) -> Option<CalibrationEstimate> {
+        let (pitch, yaw, w1, [sp, sy, sw]) = self.estimate_angles()?;
+        let n = self.samples.len() as f64;
+        let height_m = self.config.lane_width_m / w1;
+        let height_sd_m = height_m * sw / w1;
+        let se = |sd: f64| 1.2533 * sd / n.sqrt();
+        let (ep, ey) = (math::rad_to_deg(se(sp)), math::rad_to_deg(se(sy)));
+        let eh = se(height_sd_m) / height_m;
+        let confidence = (n / FULL_COUNT).min(1.0)
+            * math::exp(-(ep * ep + ey * ey) / (2.0 * 0.25 * 0.25) - eh * eh / (2.0 * 0.05 * 0.05));
+        let k = self.pinhole;
+        let d = self.distortion;
+        let camera = CameraFile {
+            width: self.width,
+            height: self.height,
+            fx: k.fx,
+            fy: k.fy,
+            cx: k.cx,
+            cy: k.cy,
+            height_m,
+            pitch_deg: math::rad_to_deg(pitch),
+            yaw_deg: math::rad_to_deg(yaw),
+            roll_deg: 0.0,
+            k1: d.k1,
+            k2: d.k2,
+            p1: d.p1,
+            p2: d.p2,
+            k3: d.k3,
+            baseline_m: None,
+        };
+        Camera::from_file(&camera).ok()?;
+        Some(CalibrationEstimate {
+            camera,
+            confidence,
+            frames_used: self.samples.len(),
+            frames_seen: self.frames_seen,
+            pitch_sd_deg: math::rad_to_deg(sp),
+            yaw_sd_deg: math::rad_to_deg(sy),
+            height_sd_m,
+            vanishing_point: vanishing_point(&k, pitch, yaw),
+            intrinsics_known: self.intrinsics_known,
+        })
+    }
+}
+
+/// Where two lines x = x_ref + slope (y - y_ref) (same y_ref) cross; `None` when parallel.
+fn crossing(a: &LineFit, b: &LineFit) -> Option<[f64; 2]> {
+    let ds = a.slope - b.slope;
+    if ds.abs() < 1e-6 {
+        return None;
+    }
+    let y = a.y_ref + (b.x_ref - a.x_ref) / ds;
+    Some([a.x_at(y), y])
+}
+
+/// Median of `v` (reordered); NaN when empty.
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}

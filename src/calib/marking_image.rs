@@ -1,0 +1,98 @@
+//! The marking-intensity image at working resolution.
+//!
+//! Lane paint is white or yellow. White is bright in the luma Y; yellow on light concrete is
+//! not, but it is where blue is low, so each pixel's marking intensity is
+//!
+//! ```text
+//! m = max(Y, clamp(2 ((R + G) / 2 - B), 0, 255))
+//! ```
+//!
+//! (grey road and white paint have R = G = B, so the second term is zero on them). The image
+//! is then box-averaged over s x s blocks, with s the smallest integer that brings the width
+//! to at most [`MAX_WORK_WIDTH`]: the calibrator needs line directions, not fine detail, and
+//! this keeps its cost independent of the video's resolution.
+
+use crate::error::Result;
+use crate::image::{check_rgba, luma, Image};
+
+/// Widest working image, pixels.
+pub const MAX_WORK_WIDTH: usize = 480;
+
+/// The block size s for a frame `width` pixels wide.
+pub fn working_scale(width: usize) -> usize {
+    width.div_ceil(MAX_WORK_WIDTH).max(1)
+}
+
+/// Marking intensity of one RGBA pixel.
+#[inline]
+fn intensity(px: &[u8]) -> u32 {
+    let (r, g, b) = (px[0] as i32, px[1] as i32, px[2] as i32);
+    let yellow = (r + g - 2 * b).clamp(0, 255) as u32;
+    (luma(px[0], px[1], px[2]) as u32).max(yellow)
+}
+
+/// Writes the s x s block means of the marking intensity of `rgba` into `out`, resized to
+/// (width / s) x (height / s) (the last partial block of a row or column is dropped).
+///
+/// # Errors
+/// As [`check_rgba`]; [`crate::Error::Dimensions`] when the frame is smaller than one block.
+pub fn marking_intensity(
+    rgba: &[u8],
+    width: usize,
+    height: usize,
+    s: usize,
+    sums: &mut Vec<u32>,
+    out: &mut Image<u8>,
+) -> Result<()> {
+    check_rgba(rgba, width, height)?;
+    let (w, h) = (width / s, height / s);
+    if out.width() != w || out.height() != h {
+        out.resize(w, h)?;
+    }
+    sums.clear();
+    sums.resize(w, 0);
+    let area = (s * s) as u32;
+    for y in 0..h {
+        sums.iter_mut().for_each(|v| *v = 0);
+        for row in 0..s {
+            let start = ((y * s + row) * width) * 4;
+            let line = &rgba[start..start + w * s * 4];
+            for (x, block) in line.chunks_exact(s * 4).enumerate() {
+                sums[x] += block.chunks_exact(4).map(intensity).sum::<u32>();
+            }
+        }
+        for (o, &v) in out.row_mut(y).iter_mut().zip(sums.iter()) {
+            *o = ((v + area / 2) / area) as u8;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn yellow_is_bright_on_concrete_and_blocks_are_averaged() {
+        assert_eq!(working_scale(640), 2);
+        assert_eq!(working_scale(480), 1);
+        assert_eq!(working_scale(1280), 3);
+        assert_eq!(working_scale(1), 1);
+        // 4x2 frame, s = 2: left block light grey concrete, right block yellow paint.
+        let concrete = [170u8, 170, 170, 255];
+        let yellow = [220u8, 200, 50, 255];
+        let mut rgba = Vec::new();
+        for _ in 0..2 {
+            rgba.extend_from_slice(&concrete);
+            rgba.extend_from_slice(&concrete);
+            rgba.extend_from_slice(&yellow);
+            rgba.extend_from_slice(&yellow);
+        }
+        let mut out = Image::new(1, 1).unwrap();
+        marking_intensity(&rgba, 4, 2, 2, &mut Vec::new(), &mut out).unwrap();
+        assert_eq!((out.width(), out.height()), (2, 1));
+        assert_eq!(out.get(0, 0), 170);
+        assert_eq!(out.get(1, 0), 255, "yellow stands out on concrete");
+        assert!(marking_intensity(&rgba, 4, 3, 2, &mut Vec::new(), &mut out).is_err());
+    }
+}

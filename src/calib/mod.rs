@@ -1,0 +1,46 @@
+//! Camera auto-calibration: pitch, yaw and height of a camera over a flat road, estimated
+//! online from the lane markings, so that any video can be tracked without a `camera.json`.
+//!
+//! Not from the four papers: this is the project's own, after the vanishing-point calibration
+//! of openpilot's calibration daemon and the lane-width prior of "Online Extrinsic Camera
+//! Calibration for Temporally Consistent IPM Using Lane Boundary Observations with a Lane Width
+//! Prior" (arXiv 2008.03722). Per frame:
+//!
+//! 1. the marking intensity (white in luma, yellow where blue is low) is box-averaged to at
+//!    most 480 columns ([`marking_image`]);
+//! 2. marking pixels are the centres of narrow bright ridges along rows ([`ridges`]), taken
+//!    from just below the horizon (once it is known) to near the bottom, and undistorted when
+//!    the lens is known;
+//! 3. straight lines through them come from a Hough transform with least-squares refinement,
+//!    each with its bend ([`hough`]);
+//! 4. the ego boundaries are the strong lines nearest the middle at the bottom, the left one
+//!    leaning right and the right one leaning left; they meet at the frame's vanishing point.
+//!
+//! A frame measures the camera when both ego boundaries are straight (bend below
+//! `max_bend_px`) and the vanishing points of the last `stable_frames` frames agree within
+//! 1.5 % of the width: the stability of the vanishing point picks the straight stretches, as
+//! openpilot does with the car's yaw rate. From such a frame ([`pose`]):
+//!
+//! ```text
+//! pitch = atan((cy - v) / fy),   yaw = atan((u - cx) cos(pitch) / fx),   h = W / w_1
+//! ```
+//!
+//! with (u, v) the vanishing point, W the lane-width prior (3.6 m by default) and w_1 the
+//! distance between the ego boundaries seen from one metre above the road. The estimate is the
+//! median of each over the frames used, with its spread (1.4826 MAD) and a confidence (see
+//! [`Calibrator::estimate`]).
+//!
+//! What it cannot know: the focal length, which one vanishing point and parallel lines leave
+//! undetermined (a wrong f stretches the road lengthwise, not across), comes from the field of
+//! view when not given (`hfov_deg`, 60 degrees by default); roll, which one vanishing point does
+//! not determine either, is taken as zero; the height is only as right as the lane-width prior.
+
+pub mod calibrator;
+pub mod hough;
+pub mod marking_image;
+pub mod pose;
+pub mod ridges;
+pub mod vp_votes;
+
+pub use calibrator::{CalibrationEstimate, Calibrator, CalibratorConfig, FrameObservation};
+pub use hough::LineFit;
