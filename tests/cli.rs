@@ -350,3 +350,133 @@ fn a_closed_output_pipe_ends_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(out.status.success(), "{stderr}");
 }
+
+#[test]
+fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
+    let out = temp("calibrate");
+    std::fs::create_dir_all(&out).unwrap();
+    let truth = lanepf::camera::CameraFile {
+        width: 640,
+        height: 480,
+        fx: 480.0,
+        fy: 480.0,
+        cx: 322.0,
+        cy: 236.0,
+        height_m: 1.6,
+        pitch_deg: 3.0,
+        yaw_deg: 1.0,
+        roll_deg: 0.0,
+        k1: 0.0,
+        k2: 0.0,
+        p1: 0.0,
+        p2: 0.0,
+        k3: 0.0,
+        baseline_m: None,
+    };
+    let cam = out.join("truth.json");
+    truth.write(&cam).unwrap();
+    let d = out.join("scene");
+    let (code, _, err) = lanepf(&[
+        "synth",
+        "--scenario",
+        "highway-straight",
+        "--seed",
+        "3",
+        "--frames",
+        "40",
+        "--camera",
+        cam.to_str().unwrap(),
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let frames = d.join("frames");
+    let estimate = out.join("estimate.json");
+    let (code, stdout, err) = lanepf(&[
+        "calibrate",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--intrinsics",
+        cam.to_str().unwrap(),
+        "--json",
+        "--out",
+        estimate.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert!(report["confidence"].as_f64().unwrap() > 0.0, "{stdout}");
+    assert_eq!(report["frames_seen"], 40);
+    let est = lanepf::camera::CameraFile::read(&estimate).unwrap();
+    assert!((est.pitch_deg - 3.0).abs() < 0.5, "{est:?}");
+    assert!((est.yaw_deg - 1.0).abs() < 0.5, "{est:?}");
+    assert!((est.height_m / 1.6 - 1.0).abs() < 0.1, "{est:?}");
+
+    let pred = out.join("p.jsonl");
+    let (code, _, err) = lanepf(&[
+        "track",
+        "--tracker",
+        "adachi-mmpf",
+        "--camera",
+        "auto",
+        "--intrinsics",
+        cam.to_str().unwrap(),
+        "--frames",
+        frames.to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("camera auto: pitch"),
+        "the estimate is reported: {err}"
+    );
+    let lines = std::fs::read_to_string(&pred).unwrap();
+    assert_eq!(lines.lines().count(), 40);
+
+    // --intrinsics without --camera auto, and frames with no markings, are clear errors.
+    let (code, _, err) = lanepf(&[
+        "track",
+        "--tracker",
+        "adachi-mmpf",
+        "--camera",
+        cam.to_str().unwrap(),
+        "--intrinsics",
+        cam.to_str().unwrap(),
+        "--frames",
+        frames.to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("--intrinsics is for --camera auto"), "{err}");
+    let blank = out.join("blank");
+    std::fs::create_dir_all(&blank).unwrap();
+    let grey = vec![100u8; 320 * 240 * 4];
+    for i in 0..3 {
+        let path = blank.join(format!("{i}.png"));
+        lanepf::image::write_rgba_png(&path, &grey, 320, 240).unwrap();
+    }
+    let (code, _, err) = lanepf(&[
+        "calibrate",
+        "--frames",
+        blank.to_str().unwrap(),
+        "--out",
+        estimate.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("no straight lane markings found in the 3 frames"),
+        "{err}"
+    );
+    let (code, _, err) = lanepf(&[
+        "calibrate",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--lane-width",
+        "NaN",
+        "--out",
+        estimate.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("lane_width_m"), "{err}");
+}

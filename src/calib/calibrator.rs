@@ -101,6 +101,8 @@ struct Sample {
     yaw: f64,
     /// Lane width seen from one metre above the road.
     width_at_unit_height: f64,
+    /// How far the boundaries bent: |common bend| + |opposite bend| / 3, working pixels.
+    bend: f64,
 }
 
 /// The calibrator's current answer.
@@ -423,7 +425,9 @@ impl Calibrator {
         let stable = self.stable();
         let mut used = false;
         if let (Some(vp), true, Some([l, r])) = (vp_straight, stable, ego) {
-            if let Some(sample) = self.sample(vp, &lines[l], &lines[r], bottom_row) {
+            if let Some(mut sample) = self.sample(vp, &lines[l], &lines[r], bottom_row) {
+                let (bl, br) = (lines[l].bend / s, lines[r].bend / s);
+                sample.bend = (bl + br).abs() / 2.0 + (bl - br).abs() / 6.0;
                 if self.samples.len() == MAX_SAMPLES {
                     self.samples.pop_front();
                 }
@@ -556,6 +560,7 @@ impl Calibrator {
             pitch,
             yaw,
             width_at_unit_height,
+            bend: 0.0,
         })
     }
 
@@ -564,13 +569,26 @@ impl Calibrator {
             .map(|(pitch, yaw, ..)| vanishing_point(&self.pinhole, pitch, yaw))
     }
 
-    /// Median pitch, yaw and width at unit height, and their spreads (1.4826 MAD).
-    fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3])> {
+    /// The samples the estimate uses: from ten on, the straighter half (a gentle bend that
+    /// passed as straight shifts the vanishing point sideways).
+    fn chosen_samples(&self) -> Vec<&Sample> {
+        let mut chosen: Vec<&Sample> = self.samples.iter().collect();
+        if chosen.len() >= 10 {
+            chosen.sort_by(|a, b| a.bend.total_cmp(&b.bend));
+            chosen.truncate(chosen.len().div_ceil(2));
+        }
+        chosen
+    }
+
+    /// Median pitch, yaw and width at unit height over the chosen samples, their spreads
+    /// (1.4826 MAD) and the number of samples.
+    fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3], usize)> {
         if self.samples.is_empty() {
             return None;
         }
+        let chosen = self.chosen_samples();
         let column = |f: fn(&Sample) -> f64| -> (f64, f64) {
-            let mut v: Vec<f64> = self.samples.iter().map(f).collect();
+            let mut v: Vec<f64> = chosen.iter().map(|s| f(s)).collect();
             let m = median(&mut v);
             let mut dev: Vec<f64> = v.iter().map(|x| (x - m).abs()).collect();
             (m, 1.4826 * median(&mut dev))
@@ -578,18 +596,19 @@ impl Calibrator {
         let (pitch, sp) = column(|s| s.pitch);
         let (yaw, sy) = column(|s| s.yaw);
         let (w1, sw) = column(|s| s.width_at_unit_height);
-        Some((pitch, yaw, w1, [sp, sy, sw]))
+        Some((pitch, yaw, w1, [sp, sy, sw], chosen.len()))
     }
 
     /// The current estimate, or `None` before any frame has measured the camera.
     ///
     /// Confidence = min(1, n / 30) exp(-(e_pitch^2 + e_yaw^2) / (2 (0.25 deg)^2) - e_h^2 /
-    /// (2 (5 %)^2)), where n is the number of frames used and e = 1.2533 sd / sqrt(n) is the
+    /// (2 (5 %)^2)), where n is the number of samples the estimate uses and e = 1.2533 sd /
+    /// sqrt(n) is the
     /// standard error of each median: it nears 1 when the estimate is well inside the goal
     /// (0.5 degrees, 10 % of the height).
     pub fn estimate(&self) -> Option<CalibrationEstimate> {
-        let (pitch, yaw, w1, [sp, sy, sw]) = self.estimate_angles()?;
-        let n = self.samples.len() as f64;
+        let (pitch, yaw, w1, [sp, sy, sw], n) = self.estimate_angles()?;
+        let n = n as f64;
         let height_m = self.config.lane_width_m / w1;
         let height_sd_m = height_m * sw / w1;
         let se = |sd: f64| 1.2533 * sd / n.sqrt();

@@ -44,3 +44,6 @@ pub mod vp_votes;
 
 pub use calibrator::{CalibrationEstimate, Calibrator, CalibratorConfig, FrameObservation};
 pub use hough::LineFit;
+
+#[cfg(test)]
+mod tests;

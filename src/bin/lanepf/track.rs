@@ -50,6 +50,12 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> Result<()> {
     let files = frames::list(&args.frames)?;
+    if args.camera != "auto" && args.calibration.intrinsics.is_some() {
+        return Err(Error::Config(
+            "--intrinsics is for --camera auto; with a camera file the file's intrinsics are used"
+                .into(),
+        ));
+    }
     let camera = if args.camera == "auto" {
         let estimate = super::calibrate::calibrate(&files, &args.calibration)?;
         eprintln!(

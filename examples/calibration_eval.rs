@@ -1,0 +1,187 @@
+//! How well auto-calibration recovers a camera, and what it costs a tracker.
+//!
+//! `cargo run --release --example calibration_eval -- [SEED_FROM SEED_TO] [FRAMES] [SCENARIOS]`
+//! (defaults: seeds 101..=112, 150 frames, scenarios highway-straight,highway-curve,s-curve,
+//! shadows,worn-markings,multi-lane cycled over the seeds).
+//!
+//! For each seed a camera pose is drawn (pitch -2..8 deg, yaw -3..3 deg, height 1.1..2.4 m,
+//! horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
+//! calibrator is fed every frame, once with the true intrinsics and once with none (focal
+//! length from its 60 degree default); the pose errors are printed. Then every mono tracker
+//! runs on the same frames with the true camera and with the estimated one (true intrinsics),
+//! and the image-space boundary accuracy of both is printed (`lanepf eval --format synthetic`'s
+//! "boundaries" figure), with the detection rate.
+
+use lanepf::calib::{Calibrator, CalibratorConfig};
+use lanepf::camera::{Camera, CameraFile};
+use lanepf::eval::synthetic::evaluate;
+use lanepf::filter::Rng;
+use lanepf::lane::LaneEstimate;
+use lanepf::synth::{scenario, Eye, Scene};
+use lanepf::trackers::{self, TrackerConfig};
+
+const TRACKERS: [&str; 4] = ["adachi-mmpf", "danescu-mono", "lee-cpf", "liu-ppf"];
+
+fn draw_camera(rng: &mut Rng) -> CameraFile {
+    let (w, h) = (640usize, 480usize);
+    let hfov: f64 = 50.0 + 40.0 * rng.uniform();
+    let f = 0.5 * w as f64 / lanepf::math::tan((0.5 * hfov).to_radians());
+    CameraFile {
+        width: w,
+        height: h,
+        fx: f,
+        fy: f,
+        cx: 0.5 * w as f64 + 10.0 * (rng.uniform() - 0.5),
+        cy: 0.5 * h as f64 + 10.0 * (rng.uniform() - 0.5),
+        height_m: 1.1 + 1.3 * rng.uniform(),
+        pitch_deg: -2.0 + 10.0 * rng.uniform(),
+        yaw_deg: -3.0 + 6.0 * rng.uniform(),
+        roll_deg: 0.0,
+        k1: 0.0,
+        k2: 0.0,
+        p1: 0.0,
+        p2: 0.0,
+        k3: 0.0,
+        baseline_m: None,
+    }
+}
+
+fn track(
+    id: &str,
+    camera: &CameraFile,
+    frames: &[Vec<u8>],
+) -> Result<Vec<LaneEstimate>, Box<dyn std::error::Error>> {
+    let config = TrackerConfig {
+        camera: camera.clone(),
+        particles: None,
+        seed: 1,
+        options: Default::default(),
+    };
+    let mut tracker = trackers::create(id, &config)?;
+    let mut out = Vec::with_capacity(frames.len());
+    for f in frames {
+        out.push(tracker.step(f, camera.width, camera.height)?);
+    }
+    Ok(out)
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let from: u64 = args.get(1).map_or(Ok(101), |s| s.parse())?;
+    let to: u64 = args.get(2).map_or(Ok(112), |s| s.parse())?;
+    let n_frames: u32 = args.get(3).map_or(Ok(150), |s| s.parse())?;
+    let names: Vec<String> = args.get(4).map_or_else(
+        || {
+            [
+                "highway-straight",
+                "highway-curve",
+                "s-curve",
+                "shadows",
+                "worn-markings",
+                "multi-lane",
+            ]
+            .map(String::from)
+            .to_vec()
+        },
+        |s| s.split(',').map(String::from).collect(),
+    );
+    println!(
+        "| seed | scenario | true pitch / yaw / h / hfov | pitch err | yaw err | h err | conf | used | no-intrinsics pitch / yaw err | {} |",
+        TRACKERS.map(|t| format!("{t} true / auto")).join(" | ")
+    );
+    println!("|{}", "---|".repeat(9 + TRACKERS.len()));
+    let (mut ep, mut ey, mut eh) = (Vec::new(), Vec::new(), Vec::new());
+    let mut losses: Vec<Vec<f64>> = vec![Vec::new(); TRACKERS.len()];
+    for seed in from..=to {
+        let name = &names[(seed - from) as usize % names.len()];
+        let mut rng = Rng::new(seed);
+        let truth_cam = draw_camera(&mut rng);
+        let camera = Camera::from_file(&truth_cam)?;
+        let mut config = scenario(name)?;
+        config.frames = n_frames;
+        let mut scene = Scene::new(config, camera, seed)?;
+        let (w, h) = (scene.width(), scene.height());
+        let mut frames = Vec::new();
+        let mut gt = Vec::new();
+        for i in 0..n_frames {
+            let mut rgba = vec![0u8; w * h * 4];
+            scene.render(i, Eye::Left, &mut rgba, None)?;
+            frames.push(rgba);
+            gt.push(scene.truth(i));
+        }
+        let mut known = Calibrator::new(w, h, Some(&truth_cam), CalibratorConfig::default())?;
+        let mut unknown = Calibrator::new(w, h, None, CalibratorConfig::default())?;
+        for f in &frames {
+            known.feed_rgba(f, w, h)?;
+            unknown.feed_rgba(f, w, h)?;
+        }
+        let Some(est) = known.estimate() else {
+            println!("| {seed} | {name} | no estimate |");
+            continue;
+        };
+        let c = &est.camera;
+        let (dp, dy) = (
+            c.pitch_deg - truth_cam.pitch_deg,
+            c.yaw_deg - truth_cam.yaw_deg,
+        );
+        let dh = (c.height_m - truth_cam.height_m) / truth_cam.height_m;
+        ep.push(dp.abs());
+        ey.push(dy.abs());
+        eh.push(dh.abs());
+        let no_intr = unknown.estimate().map_or("-".to_string(), |u| {
+            format!(
+                "{:+.2} / {:+.2}",
+                u.camera.pitch_deg - truth_cam.pitch_deg,
+                u.camera.yaw_deg - truth_cam.yaw_deg
+            )
+        });
+        let hfov = 2.0 * lanepf::math::atan(0.5 * w as f64 / truth_cam.fx).to_degrees();
+        let mut cells = Vec::new();
+        for (k, id) in TRACKERS.iter().enumerate() {
+            let score = |preds: &[LaneEstimate]| -> Result<(f64, f64), Box<dyn std::error::Error>> {
+                let refs: Vec<Option<&LaneEstimate>> = preds.iter().map(Some).collect();
+                let r = evaluate(&gt, &refs)?;
+                Ok((
+                    100.0 * r.boundaries.accuracy.unwrap_or(0.0),
+                    100.0 * r.params.detection_rate.unwrap_or(0.0),
+                ))
+            };
+            let (a_true, d_true) = score(&track(id, &truth_cam, &frames)?)?;
+            let (a_auto, d_auto) = score(&track(id, c, &frames)?)?;
+            losses[k].push(a_true - a_auto);
+            cells.push(format!(
+                "{a_true:.1} / {a_auto:.1} (det {d_true:.0} / {d_auto:.0})"
+            ));
+        }
+        println!(
+            "| {seed} | {name} | {:.2} / {:.2} / {:.2} / {hfov:.0} | {dp:+.2} | {dy:+.2} | {:+.1} % | {:.2} | {} | {no_intr} | {} |",
+            truth_cam.pitch_deg,
+            truth_cam.yaw_deg,
+            truth_cam.height_m,
+            100.0 * dh,
+            est.confidence,
+            est.frames_used,
+            cells.join(" | ")
+        );
+    }
+    let summary = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        if n == 0 {
+            return "-".to_string();
+        }
+        format!("median {:.2}, max {:.2}", v[n / 2], v[n - 1])
+    };
+    println!();
+    println!("|pitch| error deg: {}", summary(&mut ep));
+    println!("|yaw| error deg: {}", summary(&mut ey));
+    println!("|height| error (fraction): {}", summary(&mut eh));
+    for (k, id) in TRACKERS.iter().enumerate() {
+        let mean = losses[k].iter().sum::<f64>() / losses[k].len().max(1) as f64;
+        println!(
+            "{id}: boundary accuracy true - auto camera, mean {mean:+.2} points, {}",
+            summary(&mut losses[k])
+        );
+    }
+    Ok(())
+}

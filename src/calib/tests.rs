@@ -1,0 +1,139 @@
+//! The calibrator against the simulator's known cameras, and its input checks.
+
+use super::*;
+use crate::camera::{Camera, CameraFile};
+use crate::filter::Rng;
+use crate::synth::{scenario, Eye, Scene};
+
+/// A camera with a pose drawn from `seed`: pitch -2..8 deg, yaw -3..3 deg, height 1.1..2.4 m,
+/// horizontal field of view 50..90 deg, 640x480.
+fn drawn_camera(seed: u64) -> CameraFile {
+    let mut rng = Rng::new(seed);
+    let hfov = 50.0 + 40.0 * rng.uniform();
+    let f = 320.0 / crate::math::tan(crate::math::deg_to_rad(0.5 * hfov));
+    CameraFile {
+        width: 640,
+        height: 480,
+        fx: f,
+        fy: f,
+        cx: 320.0 + 10.0 * (rng.uniform() - 0.5),
+        cy: 240.0 + 10.0 * (rng.uniform() - 0.5),
+        height_m: 1.1 + 1.3 * rng.uniform(),
+        pitch_deg: -2.0 + 10.0 * rng.uniform(),
+        yaw_deg: -3.0 + 6.0 * rng.uniform(),
+        roll_deg: 0.0,
+        k1: 0.0,
+        k2: 0.0,
+        p1: 0.0,
+        p2: 0.0,
+        k3: 0.0,
+        baseline_m: None,
+    }
+}
+
+/// Feeds `frames` frames of `name` seen through `truth` and returns the estimate.
+fn calibrate(name: &str, truth: &CameraFile, seed: u64, frames: u32) -> CalibrationEstimate {
+    let mut config = scenario(name).unwrap();
+    config.frames = frames;
+    let mut scene = Scene::new(config, Camera::from_file(truth).unwrap(), seed).unwrap();
+    let mut cal = Calibrator::new(640, 480, Some(truth), CalibratorConfig::default()).unwrap();
+    let mut rgba = vec![0u8; 640 * 480 * 4];
+    for i in 0..frames {
+        scene.render(i, Eye::Left, &mut rgba, None).unwrap();
+        cal.feed_rgba(&rgba, 640, 480).unwrap();
+    }
+    cal.estimate().expect("an estimate")
+}
+
+#[test]
+fn pose_and_height_are_recovered_for_drawn_cameras() {
+    // Scene lane width 3.6 m, the prior's default, so the height is checked without bias.
+    for (seed, name) in [
+        (11, "highway-straight"),
+        (12, "multi-lane"),
+        (13, "shadows"),
+    ] {
+        let truth = drawn_camera(seed);
+        let est = calibrate(name, &truth, seed, 100);
+        let c = &est.camera;
+        let (dp, dy) = (c.pitch_deg - truth.pitch_deg, c.yaw_deg - truth.yaw_deg);
+        let dh = (c.height_m - truth.height_m) / truth.height_m;
+        let what = format!("seed {seed} {name}: {est:?} vs {truth:?}");
+        assert!(dp.abs() < 0.5 && dy.abs() < 0.5 && dh.abs() < 0.1, "{what}");
+        // 30 used frames, of which the straighter 15 count: min(1, 15 / 30) caps it at 0.5.
+        assert!(est.frames_used >= 20 && est.confidence > 0.3, "{what}");
+        assert!(est.intrinsics_known && c.roll_deg == 0.0);
+        assert_eq!(
+            (c.fx, c.cy),
+            (truth.fx, truth.cy),
+            "given intrinsics are kept"
+        );
+    }
+}
+
+#[test]
+fn bad_input_is_refused_and_the_calibrator_keeps_working() {
+    let truth = drawn_camera(11);
+    let bad = |c: CalibratorConfig| Calibrator::new(640, 480, None, c).unwrap_err().to_string();
+    let base = CalibratorConfig::default();
+    assert!(bad(CalibratorConfig {
+        lane_width_m: f64::NAN,
+        ..base
+    })
+    .contains("lane_width_m"));
+    assert!(bad(CalibratorConfig {
+        hfov_deg: 180.0,
+        ..base
+    })
+    .contains("hfov_deg"));
+    assert!(bad(CalibratorConfig {
+        stable_frames: 0,
+        ..base
+    })
+    .contains("stable_frames"));
+    assert!(bad(CalibratorConfig {
+        max_bend_px: 1e300,
+        ..base
+    })
+    .contains("max_bend_px"));
+    assert!(Calibrator::new(0, 480, None, base).is_err());
+    assert!(
+        Calibrator::new(20, 10, None, base).is_err(),
+        "too small to find lines in"
+    );
+    let err = Calibrator::new(320, 240, Some(&truth), base).unwrap_err();
+    assert!(err.to_string().contains("640x480"), "{err}");
+
+    let mut cal = Calibrator::new(640, 480, Some(&truth), base).unwrap();
+    assert!(cal.feed_rgba(&[0; 16], 2, 2).is_err());
+    assert!(cal.feed_rgba(&[0; 100], 640, 480).is_err());
+    // A blank frame shows no lines and gives no estimate, and does not count as used.
+    let blank = vec![90u8; 640 * 480 * 4];
+    let obs = cal.feed_rgba(&blank, 640, 480).unwrap();
+    assert!(obs.lines.is_empty() && !obs.used);
+    assert!(cal.estimate().is_none());
+}
+
+#[test]
+fn a_wrong_lane_width_prior_scales_the_height_and_nothing_else() {
+    // h = W / w_1: the same frames with a prior 10 % wider give a height 10 % larger.
+    let truth = drawn_camera(14);
+    let mut config = scenario("highway-straight").unwrap();
+    config.frames = 60;
+    let mut scene = Scene::new(config, Camera::from_file(&truth).unwrap(), 14).unwrap();
+    let wide = CalibratorConfig {
+        lane_width_m: 3.96,
+        ..CalibratorConfig::default()
+    };
+    let mut a = Calibrator::new(640, 480, Some(&truth), CalibratorConfig::default()).unwrap();
+    let mut b = Calibrator::new(640, 480, Some(&truth), wide).unwrap();
+    let mut rgba = vec![0u8; 640 * 480 * 4];
+    for i in 0..60 {
+        scene.render(i, Eye::Left, &mut rgba, None).unwrap();
+        a.feed_rgba(&rgba, 640, 480).unwrap();
+        b.feed_rgba(&rgba, 640, 480).unwrap();
+    }
+    let (a, b) = (a.estimate().unwrap().camera, b.estimate().unwrap().camera);
+    assert!((b.height_m / a.height_m - 1.1).abs() < 1e-9, "{a:?} {b:?}");
+    assert_eq!((a.pitch_deg, a.yaw_deg), (b.pitch_deg, b.yaw_deg));
+}
