@@ -38,6 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     files.sort();
     let mut cal: Option<Calibrator> = None;
+    let mut feed_ms = Vec::new();
     for (i, path) in files.iter().enumerate() {
         let mut f = read_rgba(path)?;
         let c = match &mut cal {
@@ -49,7 +50,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 config(),
             )?),
         };
+        let t = std::time::Instant::now();
         let obs = c.feed_rgba(&f.data, f.width, f.height)?.clone();
+        feed_ms.push(t.elapsed().as_secs_f64() * 1e3);
         let est = c.estimate();
         println!(
             "{i:5} lines {} ego {:?} vp {:?} straight {} stable {} used {} bends {:?} | est {:?}",
@@ -111,6 +114,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         write_rgba_png(&Path::new(out).join(format!("{i:05}.png")), &f.data, w, h)?;
+    }
+    feed_ms.sort_by(f64::total_cmp);
+    if let Some(median) = feed_ms.get(feed_ms.len() / 2) {
+        eprintln!("calibrator: median {median:.2} ms a frame over {} frames", feed_ms.len());
     }
     Ok(())
 }
