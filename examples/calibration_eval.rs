@@ -7,7 +7,9 @@
 //! For each seed a camera pose is drawn (pitch -2..8 deg, yaw -3..3 deg, height 1.1..2.4 m,
 //! horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
 //! calibrator is fed every frame, once with the true intrinsics and once with none (focal
-//! length from its 60 degree default); the pose errors are printed. Then every mono tracker
+//! length from its 60 degree default); the pose errors are printed, the yaw error also against
+//! the yaw the vanishing point can show (the mount's yaw minus the car's mean heading relative
+//! to the lane over the frames). Then every mono tracker
 //! runs on the same frames with the true camera and with the estimated one (true intrinsics),
 //! and the image-space boundary accuracy of both is printed (`lanepf eval --format synthetic`'s
 //! "boundaries" figure), with the detection rate.
@@ -86,11 +88,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         |s| s.split(',').map(String::from).collect(),
     );
     println!(
-        "| seed | scenario | true pitch / yaw / h / hfov | pitch err | yaw err | h err | conf | used | no-intrinsics pitch / yaw err | {} |",
+        "| seed | scenario | true pitch / yaw / h / hfov | pitch err | yaw err | yaw err vs lane | h err | conf | used | no-intrinsics pitch / yaw err | {} |",
         TRACKERS.map(|t| format!("{t} true / auto")).join(" | ")
     );
     println!("|{}", "---|".repeat(9 + TRACKERS.len()));
-    let (mut ep, mut ey, mut eh) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut ep, mut ey, mut eh, mut eyl) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut losses: Vec<Vec<f64>> = vec![Vec::new(); TRACKERS.len()];
     for seed in from..=to {
         let name = &names[(seed - from) as usize % names.len()];
@@ -124,6 +126,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             c.pitch_deg - truth_cam.pitch_deg,
             c.yaw_deg - truth_cam.yaw_deg,
         );
+        // The car's mean heading relative to the lane: the vanishing point sees mount yaw minus it.
+        let heading = gt.iter().map(|g| g.heading_rad).sum::<f64>() / gt.len() as f64;
+        let dyl = dy + heading.to_degrees();
+        eyl.push(dyl.abs());
         let dh = (c.height_m - truth_cam.height_m) / truth_cam.height_m;
         ep.push(dp.abs());
         ey.push(dy.abs());
@@ -154,7 +160,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ));
         }
         println!(
-            "| {seed} | {name} | {:.2} / {:.2} / {:.2} / {hfov:.0} | {dp:+.2} | {dy:+.2} | {:+.1} % | {:.2} | {} | {no_intr} | {} |",
+            "| {seed} | {name} | {:.2} / {:.2} / {:.2} / {hfov:.0} | {dp:+.2} | {dy:+.2} | {dyl:+.2} | {:+.1} % | {:.2} | {} | {no_intr} | {} |",
             truth_cam.pitch_deg,
             truth_cam.yaw_deg,
             truth_cam.height_m,
@@ -175,6 +181,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!();
     println!("|pitch| error deg: {}", summary(&mut ep));
     println!("|yaw| error deg: {}", summary(&mut ey));
+    println!(
+        "|yaw| error relative to the lane, deg: {}",
+        summary(&mut eyl)
+    );
     println!("|height| error (fraction): {}", summary(&mut eh));
     for (k, id) in TRACKERS.iter().enumerate() {
         let mean = losses[k].iter().sum::<f64>() / losses[k].len().max(1) as f64;

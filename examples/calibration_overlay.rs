@@ -117,7 +117,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     feed_ms.sort_by(f64::total_cmp);
     if let Some(median) = feed_ms.get(feed_ms.len() / 2) {
-        eprintln!("calibrator: median {median:.2} ms a frame over {} frames", feed_ms.len());
+        eprintln!(
+            "calibrator: median {median:.2} ms a frame over {} frames",
+            feed_ms.len()
+        );
     }
     Ok(())
 }

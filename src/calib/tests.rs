@@ -31,18 +31,22 @@ fn drawn_camera(seed: u64) -> CameraFile {
     }
 }
 
-/// Feeds `frames` frames of `name` seen through `truth` and returns the estimate.
-fn calibrate(name: &str, truth: &CameraFile, seed: u64, frames: u32) -> CalibrationEstimate {
+/// Feeds `frames` frames of `name` seen through `truth` and returns the estimate and the car's
+/// mean heading relative to the lane over those frames, degrees.
+fn calibrate(name: &str, truth: &CameraFile, seed: u64, frames: u32) -> (CalibrationEstimate, f64) {
     let mut config = scenario(name).unwrap();
     config.frames = frames;
     let mut scene = Scene::new(config, Camera::from_file(truth).unwrap(), seed).unwrap();
     let mut cal = Calibrator::new(640, 480, Some(truth), CalibratorConfig::default()).unwrap();
     let mut rgba = vec![0u8; 640 * 480 * 4];
+    let mut heading = 0.0;
     for i in 0..frames {
         scene.render(i, Eye::Left, &mut rgba, None).unwrap();
         cal.feed_rgba(&rgba, 640, 480).unwrap();
+        heading += scene.truth(i).heading_rad;
     }
-    cal.estimate().expect("an estimate")
+    let mean_heading = crate::math::rad_to_deg(heading / frames as f64);
+    (cal.estimate().expect("an estimate"), mean_heading)
 }
 
 #[test]
@@ -54,12 +58,20 @@ fn pose_and_height_are_recovered_for_drawn_cameras() {
         (13, "shadows"),
     ] {
         let truth = drawn_camera(seed);
-        let est = calibrate(name, &truth, seed, 100);
+        let (est, heading) = calibrate(name, &truth, seed, 100);
         let c = &est.camera;
-        let (dp, dy) = (c.pitch_deg - truth.pitch_deg, c.yaw_deg - truth.yaw_deg);
+        // The vanishing point shows the yaw relative to the lane: the mount's yaw minus the
+        // car's mean heading over the frames (the scenes sway a few tenths of a degree).
+        let (dp, dy) = (
+            c.pitch_deg - truth.pitch_deg,
+            c.yaw_deg - (truth.yaw_deg - heading),
+        );
         let dh = (c.height_m - truth.height_m) / truth.height_m;
-        let what = format!("seed {seed} {name}: {est:?} vs {truth:?}");
-        assert!(dp.abs() < 0.5 && dy.abs() < 0.5 && dh.abs() < 0.1, "{what}");
+        let what = format!("seed {seed} {name}: {est:?} vs {truth:?}, heading {heading}");
+        assert!(
+            dp.abs() < 0.25 && dy.abs() < 0.25 && dh.abs() < 0.05,
+            "{what}"
+        );
         // 30 used frames, of which the straighter 15 count: min(1, 15 / 30) caps it at 0.5.
         assert!(est.frames_used >= 20 && est.confidence > 0.3, "{what}");
         assert!(est.intrinsics_known && c.roll_deg == 0.0);

@@ -137,10 +137,22 @@ pub fn calibrate(files: &[PathBuf], args: &CalibrationArgs) -> Result<Calibratio
         }
         cal.feed_rgba(&frame.data, frame.width, frame.height)?;
     }
-    calibrator
+    let estimate = calibrator
         .and_then(|c| c.estimate())
-        .ok_or_else(|| no_estimate(files, limit))
+        .ok_or_else(|| no_estimate(files, limit))?;
+    if estimate.confidence < LOW_CONFIDENCE {
+        eprintln!(
+            "lanepf: warning: the camera estimate has a low confidence ({:.2}, {} of {} frames \
+             used): few straight stretches with both lane boundaries were seen; check it, feed \
+             more frames, or give a camera.json",
+            estimate.confidence, estimate.frames_used, estimate.frames_seen
+        );
+    }
+    Ok(estimate)
 }
+
+/// Below this confidence `calibrate` and `track --camera auto` warn on stderr.
+pub const LOW_CONFIDENCE: f64 = 0.5;
 
 fn no_estimate(files: &[PathBuf], limit: usize) -> Error {
     let dir = files

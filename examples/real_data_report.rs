@@ -1,0 +1,359 @@
+//! The real-data regression report: every mono tracker on every labelled real dataset in
+//! `../shared/data`, and on the Udacity videos by eye, as one tracker x dataset table.
+//!
+//! `cargo run --release --example real_data_report -- [DATA_DIR] [OUT_DIR] [UDACITY_FRAMES]`
+//! (defaults `../shared/data`, `target/real-data`, 300 frames of each Udacity video). Writes
+//! OUT_DIR/report.md (the table, also printed) and OUT_DIR/sheet-<video>-<camera>.png: one
+//! row of sampled frames per tracker with its boundaries drawn (ego-left red, ego-right blue,
+//! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye.
+//! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/.
+//!
+//! Datasets and cameras (a camera the data ships, or `auto`: `lanepf::calib` on the same
+//! frames first, with the known intrinsics where there are some):
+//! - Caltech cordova1, 77 frames as a sequence: Aly's rule, ego lanes and all lanes;
+//! - CULane 06030819_0755, 60 frames 3 s apart: still mode (5 iterations a frame), auto camera
+//!   from the frames as stills, F1 at IoU 0.5 on 30 px lanes;
+//! - TuSimple, 6 frames: still mode, auto camera as stills, the official accuracy / FP / FN;
+//! - Udacity project_video and challenge_video (1280x720), the chessboard intrinsics with the
+//!   demo's pose and auto: valid rate, and the sheets.
+
+use lanepf::calib::{Calibrator, CalibratorConfig};
+use lanepf::camera::CameraFile;
+use lanepf::eval::{evaluate_with, EvalOptions, Format, Metrics};
+use lanepf::image::{read_rgba, write_rgba_png, RgbaFrame};
+use lanepf::lane::{LaneEstimate, Role};
+use lanepf::trackers::{self, TrackerConfig};
+use std::path::{Path, PathBuf};
+
+const TRACKERS: [&str; 5] = [
+    "adachi-mmpf",
+    "danescu-mono",
+    "lee-cpf",
+    "liu-ppf",
+    "liu-ppf-nokernel",
+];
+const STILL_ITERATIONS: u32 = 5;
+type Res<T> = Result<T, Box<dyn std::error::Error>>;
+
+/// Where a dataset's camera comes from.
+enum CameraSource {
+    File(PathBuf),
+    Auto {
+        intrinsics: Option<PathBuf>,
+        stills: bool,
+    },
+}
+
+struct Run {
+    label: String,
+    frames: Vec<PathBuf>,
+    camera: CameraSource,
+    still: bool,
+    eval: Option<(Format, PathBuf)>,
+    sheet: Option<String>,
+}
+
+fn list(dir: &Path, limit: usize) -> Res<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "png" || x == "jpg"))
+        .collect();
+    files.sort();
+    files.truncate(limit);
+    Ok(files)
+}
+
+fn camera(source: &CameraSource, frames: &[RgbaFrame]) -> Res<(CameraFile, String)> {
+    match source {
+        CameraSource::File(p) => Ok((CameraFile::read(p)?, "given".into())),
+        CameraSource::Auto { intrinsics, stills } => {
+            let intr = intrinsics.as_deref().map(CameraFile::read).transpose()?;
+            let config = CalibratorConfig {
+                stable_frames: if *stills {
+                    1
+                } else {
+                    CalibratorConfig::default().stable_frames
+                },
+                ..CalibratorConfig::default()
+            };
+            let f0 = frames.first().ok_or("no frames")?;
+            let mut cal = Calibrator::new(f0.width, f0.height, intr.as_ref(), config)?;
+            for f in frames {
+                cal.feed_rgba(&f.data, f.width, f.height)?;
+            }
+            let e = cal
+                .estimate()
+                .ok_or("auto-calibration found no straight lane markings")?;
+            let note = format!(
+                "auto: pitch {:.2}, yaw {:.2}, h {:.2} m, conf {:.2}, {} frames",
+                e.camera.pitch_deg,
+                e.camera.yaw_deg,
+                e.camera.height_m,
+                e.confidence,
+                e.frames_used
+            );
+            Ok((e.camera, note))
+        }
+    }
+}
+
+fn track(
+    id: &str,
+    camera: &CameraFile,
+    frames: &[RgbaFrame],
+    names: &[String],
+    still: bool,
+) -> Res<Vec<LaneEstimate>> {
+    let config = TrackerConfig {
+        camera: camera.clone(),
+        particles: None,
+        seed: 1,
+        options: Default::default(),
+    };
+    let mut tracker = trackers::create(id, &config)?;
+    let mut out = Vec::new();
+    for (f, name) in frames.iter().zip(names) {
+        let mut e = if still {
+            tracker.reset();
+            let mut last = tracker.step(&f.data, f.width, f.height)?;
+            for _ in 1..STILL_ITERATIONS {
+                last = tracker.step(&f.data, f.width, f.height)?;
+            }
+            last
+        } else {
+            tracker.step(&f.data, f.width, f.height)?
+        };
+        e.frame = name.clone();
+        out.push(e);
+    }
+    Ok(out)
+}
+
+fn summary(metrics: &Metrics) -> String {
+    let pct = |r: Option<f64>| r.map_or("n/a".into(), |r| format!("{:.1}", 100.0 * r));
+    match metrics {
+        Metrics::Caltech(r) => format!(
+            "ego {} / {} FP, all {}",
+            pct(r.ego_lanes.correct_rate),
+            pct(r.ego_lanes.false_positive_rate),
+            pct(r.all_lanes.correct_rate)
+        ),
+        Metrics::Culane(r) => format!(
+            "F1 {:.2} (P {} R {})",
+            r.f1.unwrap_or(0.0),
+            pct(r.precision),
+            pct(r.recall)
+        ),
+        Metrics::Tusimple(r) => format!(
+            "acc {:.1}, FP {:.2}, FN {:.2}",
+            100.0 * r.accuracy,
+            r.fp,
+            r.fn_rate
+        ),
+        Metrics::Synthetic(_) => String::new(),
+    }
+}
+
+fn draw(frame: &mut RgbaFrame, e: &LaneEstimate) {
+    let (w, h) = (frame.width, frame.height);
+    let r = if e.valid { 2i64 } else { 0 };
+    for b in &e.boundaries {
+        let c = match b.role {
+            Role::EgoLeft => [255, 40, 40],
+            Role::EgoRight => [40, 90, 255],
+            _ => [255, 220, 0],
+        };
+        for pair in b.points.windows(2) {
+            let (a, z) = (pair[0], pair[1]);
+            let n = ((z[0] - a[0]).abs().max((z[1] - a[1]).abs()).ceil() as usize).max(1);
+            for k in 0..=n {
+                let t = k as f64 / n as f64;
+                let (x, y) = (
+                    (a[0] + t * (z[0] - a[0])) as i64,
+                    (a[1] + t * (z[1] - a[1])) as i64,
+                );
+                for dy in -r..=r {
+                    for dx in -r..=r {
+                        let (px, py) = (x + dx, y + dy);
+                        if px >= 0 && py >= 0 && (px as usize) < w && (py as usize) < h {
+                            let i = (py as usize * w + px as usize) * 4;
+                            frame.data[i..i + 3].copy_from_slice(&c);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// One row per tracker of `samples` frames, each shrunk by `shrink`.
+fn sheet(
+    path: &Path,
+    frames: &[RgbaFrame],
+    runs: &[Vec<LaneEstimate>],
+    samples: &[usize],
+    shrink: usize,
+) -> Res<()> {
+    let (fw, fh) = (frames[0].width / shrink, frames[0].height / shrink);
+    let (cols, rows) = (samples.len(), runs.len());
+    let mut out = vec![0u8; cols * fw * rows * fh * 4];
+    for (row, run) in runs.iter().enumerate() {
+        for (col, &i) in samples.iter().enumerate() {
+            let mut f = frames[i].clone();
+            draw(&mut f, &run[i]);
+            for y in 0..fh {
+                for x in 0..fw {
+                    let src = ((y * shrink) * f.width + x * shrink) * 4;
+                    let dst = ((row * fh + y) * cols * fw + col * fw + x) * 4;
+                    out[dst..dst + 4].copy_from_slice(&f.data[src..src + 4]);
+                }
+            }
+        }
+    }
+    write_rgba_png(path, &out, cols * fw, rows * fh)?;
+    Ok(())
+}
+
+fn main() -> Res<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let data = PathBuf::from(args.get(1).map_or("../shared/data", |s| s.as_str()));
+    let out = PathBuf::from(args.get(2).map_or("target/real-data", |s| s.as_str()));
+    let udacity_frames: usize = args.get(3).map_or(Ok(300), |s| s.parse())?;
+    std::fs::create_dir_all(&out)?;
+    let caltech = data.join("caltech-cordova1");
+    let culane = data.join("culane/06030819_0755.MP4");
+    let udacity_cam = PathBuf::from("www/clips/udacity-1280x720.camera.json");
+    let mut runs = vec![
+        Run {
+            label: "Caltech, its camera".into(),
+            frames: list(&caltech.join("frames"), usize::MAX)?,
+            camera: CameraSource::File(caltech.join("camera.json")),
+            still: false,
+            eval: Some((Format::Caltech, caltech.join("labels.json"))),
+            sheet: None,
+        },
+        Run {
+            label: "Caltech, auto".into(),
+            frames: list(&caltech.join("frames"), usize::MAX)?,
+            camera: CameraSource::Auto {
+                intrinsics: Some(caltech.join("camera.json")),
+                stills: false,
+            },
+            still: false,
+            eval: Some((Format::Caltech, caltech.join("labels.json"))),
+            sheet: None,
+        },
+        Run {
+            label: "CULane, auto (stills)".into(),
+            frames: list(&culane, usize::MAX)?,
+            camera: CameraSource::Auto {
+                intrinsics: None,
+                stills: true,
+            },
+            still: true,
+            eval: Some((Format::Culane, culane.clone())),
+            sheet: None,
+        },
+        Run {
+            label: "TuSimple, auto (stills)".into(),
+            frames: list(&data.join("tusimple/images"), usize::MAX)?,
+            camera: CameraSource::Auto {
+                intrinsics: None,
+                stills: true,
+            },
+            still: true,
+            eval: Some((Format::Tusimple, data.join("tusimple/labels.json"))),
+            sheet: None,
+        },
+    ];
+    for video in ["project_video", "challenge_video"] {
+        let dir = out.join("frames").join(video);
+        if list(&dir, 1).map_or(true, |f| f.is_empty()) {
+            std::fs::create_dir_all(&dir)?;
+            let status = std::process::Command::new("ffmpeg")
+                .args(["-v", "error", "-y", "-i"])
+                .arg(data.join("udacity").join(format!("{video}.mp4")))
+                .args(["-frames:v", &udacity_frames.to_string(), "-q:v", "2"])
+                .arg(dir.join("%05d.jpg"))
+                .status()?;
+            if !status.success() {
+                return Err(format!("ffmpeg could not cut {video}").into());
+            }
+        }
+        for (cam, source) in [
+            ("demo camera", CameraSource::File(udacity_cam.clone())),
+            (
+                "auto",
+                CameraSource::Auto {
+                    intrinsics: Some(udacity_cam.clone()),
+                    stills: false,
+                },
+            ),
+        ] {
+            runs.push(Run {
+                label: format!("Udacity {video}, {cam}"),
+                frames: list(&dir, udacity_frames)?,
+                camera: source,
+                still: false,
+                eval: None,
+                sheet: Some(format!("sheet-{video}-{}.png", cam.replace(' ', "-"))),
+            });
+        }
+    }
+    let mut table = String::from("| tracker |");
+    for r in &runs {
+        table += &format!(" {} |", r.label);
+    }
+    table += &format!("\n|---|{}\n", "---|".repeat(runs.len()));
+    let mut rows: Vec<Vec<String>> = vec![Vec::new(); TRACKERS.len()];
+    let mut notes = Vec::new();
+    for run in &runs {
+        let frames: Vec<RgbaFrame> = run
+            .frames
+            .iter()
+            .map(|p| read_rgba(p))
+            .collect::<Result<_, _>>()?;
+        let names: Vec<String> = run
+            .frames
+            .iter()
+            .map(|p| {
+                p.file_name()
+                    .map_or(String::new(), |n| n.to_string_lossy().into_owned())
+            })
+            .collect();
+        let (cam, note) = camera(&run.camera, &frames)?;
+        notes.push(format!("- {}: {note}", run.label));
+        let mut all = Vec::new();
+        for (k, id) in TRACKERS.iter().enumerate() {
+            let preds = track(id, &cam, &frames, &names, run.still)?;
+            let valid = preds.iter().filter(|p| p.valid).count();
+            let cell = match &run.eval {
+                Some((format, gt)) => {
+                    let options = EvalOptions {
+                        tusimple_time_limit_ms: None,
+                        ..EvalOptions::default()
+                    };
+                    summary(&evaluate_with(*format, &preds, gt, &options)?.metrics)
+                }
+                None => format!(
+                    "valid {:.0} %",
+                    100.0 * valid as f64 / preds.len().max(1) as f64
+                ),
+            };
+            eprintln!("{} / {id}: {cell}", run.label);
+            rows[k].push(cell);
+            all.push(preds);
+        }
+        if let Some(name) = &run.sheet {
+            let samples: Vec<usize> = (0..8).map(|k| k * (frames.len() - 1) / 7).collect();
+            sheet(&out.join(name), &frames, &all, &samples, 4)?;
+        }
+    }
+    for (k, id) in TRACKERS.iter().enumerate() {
+        table += &format!("| {id} | {} |\n", rows[k].join(" | "));
+    }
+    let report = format!("{table}\nCameras:\n{}\n", notes.join("\n"));
+    std::fs::write(out.join("report.md"), &report)?;
+    println!("{report}");
+    Ok(())
+}
