@@ -86,18 +86,36 @@ fn copy_rgba(rgba: &JsValue, out: &mut Vec<u8>) -> Result<(), JsError> {
             a.length(),
         )
     } else {
-        let what = rgba
-            .js_typeof()
-            .as_string()
-            .unwrap_or_else(|| "unknown".into());
         return Err(JsError::new(&format!(
             "the frame must be a Uint8Array or Uint8ClampedArray of RGBA pixels \
-             (ImageData.data), not a {what}"
+             (ImageData.data), not {}",
+            describe(rgba)
         )));
     };
     out.resize(view.length() as usize, 0);
     view.copy_to(out);
     Ok(())
+}
+
+/// What a JS value is, for an error message: its constructor's name for an object, else its
+/// type (`null`, `undefined`, `string`, ...).
+fn describe(value: &JsValue) -> String {
+    if value.is_null() {
+        return "null".into();
+    }
+    if value.is_object() {
+        let name = js_sys::Reflect::get(value, &"constructor".into())
+            .and_then(|c| js_sys::Reflect::get(&c, &"name".into()))
+            .ok()
+            .and_then(|n| n.as_string());
+        if let Some(name) = name.filter(|n| !n.is_empty()) {
+            return name;
+        }
+    }
+    value
+        .js_typeof()
+        .as_string()
+        .unwrap_or_else(|| "unknown".into())
 }
 
 #[wasm_bindgen(js_class = Calibrator)]
