@@ -5,7 +5,9 @@
 //! seeded core gives bit-identical results in the browser.
 #![cfg(target_arch = "wasm32")]
 
-use lanepf::wasm::{scenarios, tracker_ids, version, JsCamera, JsScene, JsTestRoad, JsTracker};
+use lanepf::wasm::{
+    scenarios, tracker_ids, version, JsCalibrator, JsCamera, JsScene, JsTestRoad, JsTracker,
+};
 use wasm_bindgen::{JsCast, JsValue};
 use wasm_bindgen_test::*;
 
@@ -446,4 +448,232 @@ fn danescu_stereo_runs_in_the_browser_with_the_native_result() {
     let right = scene.render_right(0).unwrap().to_vec();
     let m = message(mono.set_right(&right, 320, 240));
     assert!(m.contains("one camera"), "{m}");
+}
+
+/// A field of a JS object as a number.
+fn num(value: &JsValue, key: &str) -> f64 {
+    js_sys::Reflect::get(value, &key.into())
+        .unwrap()
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} is not a number"))
+}
+
+/// A 320x240 camera 1.4 m above the road, 3 degrees down, 1 degree left, with the focal length
+/// of a 60-degree horizontal field of view (the calibrator's default guess).
+fn calibration_camera() -> JsValue {
+    let f = 160.0 / libm::tan(30f64.to_radians());
+    obj(&format!(
+        r#"{{"width": 320, "height": 240, "fx": {f}, "fy": {f}, "cx": 159.5, "cy": 119.5,
+            "height_m": 1.4, "pitch_deg": 3.0, "yaw_deg": 1.0}}"#
+    ))
+}
+
+/// Feeds the 300 frames of highway-straight (a whole sway period and more: the car's heading
+/// to the road, which the vanishing point also sees, averages out) to `calibrator`; returns the
+/// estimate and the number of frames that said they were used.
+fn calibrate_on_highway(camera: &JsValue, calibrator: &mut JsCalibrator) -> (JsValue, usize) {
+    let options = obj(r#"{"seed": 1}"#);
+    js_sys::Reflect::set(&options, &"camera".into(), camera).unwrap();
+    let mut scene = JsScene::new("highway-straight", options).unwrap();
+    let mut used = 0;
+    for f in 0..scene.frames() {
+        let status = calibrator.feed(scene.render(f).unwrap().into(), 320.0, 240.0);
+        let status = status.unwrap();
+        let flag = js_sys::Reflect::get(&status, &"used".into()).unwrap();
+        used += usize::from(flag.as_bool().unwrap());
+        assert_eq!(num(&status, "frames_seen"), f64::from(f + 1));
+        assert_eq!(num(&status, "frames_used"), used as f64);
+    }
+    (calibrator.estimate().unwrap(), used)
+}
+
+/// Pitch, yaw and height errors of an estimate against the camera it should have found.
+fn calibration_errors(estimate: &JsValue, truth: &JsValue) -> [f64; 3] {
+    let camera = js_sys::Reflect::get(estimate, &"camera".into()).unwrap();
+    [
+        (num(&camera, "pitch_deg") - num(truth, "pitch_deg")).abs(),
+        (num(&camera, "yaw_deg") - num(truth, "yaw_deg")).abs(),
+        (num(&camera, "height_m") / num(truth, "height_m") - 1.0).abs(),
+    ]
+}
+
+#[wasm_bindgen_test]
+fn calibrator_recovers_the_scene_camera_from_the_field_of_view() {
+    let truth = calibration_camera();
+    let mut calibrator = JsCalibrator::new(obj(r#"{"width": 320, "height": 240}"#)).unwrap();
+    assert_eq!((calibrator.width(), calibrator.height()), (320, 240));
+    assert!(calibrator.estimate().unwrap().is_null(), "no frame yet");
+    let (estimate, used) = calibrate_on_highway(&truth, &mut calibrator);
+    let [pitch, yaw, height] = calibration_errors(&estimate, &truth);
+    console_log!(
+        "{}",
+        format_args!(
+            "calibrator, 60-degree guess: pitch error {pitch:.3} deg, yaw error {yaw:.3} deg, \
+             height error {:.2} %, confidence {:.3}, {used} of 300 frames used",
+            100.0 * height,
+            num(&estimate, "confidence")
+        )
+    );
+    assert!(
+        pitch < 0.5 && yaw < 0.5 && height < 0.1,
+        "{pitch} {yaw} {height}"
+    );
+    assert!(num(&estimate, "confidence") > 0.5);
+    assert_eq!(num(&estimate, "frames_used"), used as f64);
+    assert_eq!(num(&estimate, "frames_seen"), 300.0);
+    let known = js_sys::Reflect::get(&estimate, &"intrinsics_known".into()).unwrap();
+    assert_eq!(known.as_bool(), Some(false));
+    // What the last frame showed: the two ego lines meeting at the vanishing point.
+    let observation = calibrator.observation().unwrap();
+    let lines: js_sys::Array = js_sys::Reflect::get(&observation, &"lines".into())
+        .unwrap()
+        .dyn_into()
+        .unwrap();
+    let ego = js_sys::Array::from(&js_sys::Reflect::get(&observation, &"ego".into()).unwrap());
+    assert_eq!(ego.length(), 2);
+    assert!(lines.length() >= 2);
+    assert!(calibrator.marking_pixels().length() > 100);
+    // The estimated camera goes straight into a tracker.
+    let camera = js_sys::Reflect::get(&estimate, &"camera".into()).unwrap();
+    let config = obj("{}");
+    js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
+    let mut tracker = JsTracker::new("lee-cpf", config).unwrap();
+    let options = obj(r#"{"seed": 1}"#);
+    js_sys::Reflect::set(&options, &"camera".into(), &truth).unwrap();
+    let mut scene = JsScene::new("highway-straight", options).unwrap();
+    let rgba = scene.render(0).unwrap().to_vec();
+    assert!(tracker.step(&rgba, 320, 240).is_ok());
+    // Reset forgets everything.
+    calibrator.reset();
+    assert!(calibrator.estimate().unwrap().is_null());
+}
+
+#[wasm_bindgen_test]
+fn calibrator_recovers_the_scene_camera_with_known_intrinsics() {
+    // The Caltech camera (the simulator's default: fx 309, fy 344, 14 degrees down, 2.18 m)
+    // at half size: its intrinsics given, so the focal lengths are not guessed.
+    let truth = obj(
+        r#"{"width": 320, "height": 240, "fx": 154.7181, "fy": 172.10805, "cx": 158.7017,
+            "cy": 128.0176, "height_m": 2.1798, "pitch_deg": 14.0, "yaw_deg": -0.5}"#,
+    );
+    let options = obj(r#"{"width": 320, "height": 240, "lane_width_m": 3.6}"#);
+    js_sys::Reflect::set(&options, &"intrinsics".into(), &truth).unwrap();
+    let mut calibrator = JsCalibrator::new(options).unwrap();
+    let (estimate, used) = calibrate_on_highway(&truth, &mut calibrator);
+    let [pitch, yaw, height] = calibration_errors(&estimate, &truth);
+    console_log!(
+        "{}",
+        format_args!(
+            "calibrator, intrinsics known: pitch error {pitch:.3} deg, yaw error {yaw:.3} deg, \
+             height error {:.2} %, confidence {:.3}, {used} of 300 frames used",
+            100.0 * height,
+            num(&estimate, "confidence")
+        )
+    );
+    assert!(
+        pitch < 0.5 && yaw < 0.5 && height < 0.1,
+        "{pitch} {yaw} {height}"
+    );
+    let known = js_sys::Reflect::get(&estimate, &"intrinsics_known".into()).unwrap();
+    assert_eq!(known.as_bool(), Some(true));
+    let camera = js_sys::Reflect::get(&estimate, &"camera".into()).unwrap();
+    assert_eq!(num(&camera, "fy"), 172.10805);
+}
+
+#[wasm_bindgen_test]
+fn calibrator_rejects_bad_options_by_name() {
+    let m = |options: JsValue| message(JsCalibrator::new(options));
+    let e = m(JsValue::from_str("640x480"));
+    assert!(e.contains("must be an object"), "{e}");
+    let e = m(obj("[320, 240]"));
+    assert!(e.contains("must be an object"), "{e}");
+    let e = m(JsValue::UNDEFINED);
+    assert!(e.contains("calibrator options is missing"), "{e}");
+    let e = m(obj(r#"{"width": 320}"#));
+    assert!(e.contains("missing field `height`"), "{e}");
+    let e = m(obj(r#"{"width": 320, "height": 240, "lane_widht_m": 3.5}"#));
+    assert!(e.contains("unknown field `lane_widht_m`"), "{e}");
+    let e = m(obj(r#"{"width": "320", "height": 240}"#));
+    assert!(e.contains("invalid type") && e.contains("320"), "{e}");
+    let e = m(with(
+        r#"{"width": 320, "height": 240}"#,
+        "hfov_deg",
+        JsValue::from_f64(f64::NAN),
+    ));
+    assert!(e.contains("calibrator options.hfov_deg is NaN"), "{e}");
+    let e = m(obj(r#"{"width": 320, "height": 240, "hfov_deg": 200}"#));
+    assert!(e.contains("hfov_deg") && e.contains("20 to 150"), "{e}");
+    let e = m(obj(r#"{"width": 320, "height": 240, "stable_frames": 0}"#));
+    assert!(e.contains("stable_frames"), "{e}");
+    let e = m(obj(r#"{"width": 0, "height": 240}"#));
+    assert!(e.contains("0x240"), "{e}");
+    let e = m(obj(r#"{"width": 100000, "height": 240}"#));
+    assert!(e.contains("at most"), "{e}");
+    let e = m(obj(r#"{"width": 20, "height": 10}"#));
+    assert!(e.contains("at least 32x16"), "{e}");
+    let e = m(with(
+        r#"{"width": 640, "height": 480}"#,
+        "intrinsics",
+        with(CAMERA, "fx", JsValue::from_f64(-1.0)),
+    ));
+    assert!(e.contains("fx"), "{e}");
+    let e = m(with(
+        r#"{"width": 640, "height": 480}"#,
+        "intrinsics",
+        calibration_camera(),
+    ));
+    assert!(e.contains("320x240") && e.contains("640x480"), "{e}");
+}
+
+#[wasm_bindgen_test]
+fn calibrator_rejects_bad_frames_and_keeps_working() {
+    let mut calibrator = JsCalibrator::new(obj(r#"{"width": 320, "height": 240}"#)).unwrap();
+    let mut scene = JsScene::new(
+        "highway-straight",
+        obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
+    )
+    .unwrap();
+    let frame = || js_sys::Uint8Array::new_with_length(320 * 240 * 4);
+    let e = message(calibrator.feed(js_sys::Uint8Array::new_with_length(12).into(), 320.0, 240.0));
+    assert!(e.contains("320x240"), "{e}");
+    let e = message(calibrator.feed(frame().into(), 640.0, 480.0));
+    assert!(e.contains("640x480") && e.contains("320x240"), "{e}");
+    let e = message(calibrator.feed(frame().into(), f64::NAN, 240.0));
+    assert!(e.contains("width = NaN"), "{e}");
+    let e = message(calibrator.feed(frame().into(), 320.5, 240.0));
+    assert!(e.contains("whole number"), "{e}");
+    let e = message(calibrator.feed(frame().into(), 320.0, 0.0));
+    assert!(e.contains("height = 0"), "{e}");
+    let e = message(calibrator.feed(frame().into(), 320.0, 1e9));
+    assert!(e.contains("16384"), "{e}");
+    let e = message(calibrator.feed(JsValue::from_str("pixels"), 320.0, 240.0));
+    assert!(e.contains("Uint8Array") && e.contains("not string"), "{e}");
+    let e = message(calibrator.feed(JsValue::NULL, 320.0, 240.0));
+    assert!(e.contains("Uint8Array"), "{e}");
+    let e = message(calibrator.feed(
+        js_sys::Float32Array::new_with_length(320 * 240 * 4).into(),
+        320.0,
+        240.0,
+    ));
+    assert!(e.contains("Uint8Array"), "{e}");
+    // Nothing was counted, and frames still go in: a Uint8ClampedArray (ImageData.data) and a
+    // Uint8Array view into a larger buffer.
+    for f in 0..3 {
+        let status = calibrator
+            .feed(scene.render(f).unwrap().into(), 320.0, 240.0)
+            .unwrap();
+        assert_eq!(num(&status, "frames_seen"), f64::from(f + 1));
+    }
+    let pixels = scene.render(3).unwrap();
+    let big = js_sys::Uint8Array::new_with_length(pixels.length() + 8);
+    big.subarray(8, pixels.length() + 8)
+        .set(&js_sys::Uint8Array::new(&pixels.buffer()), 0);
+    let view = big.subarray(8, pixels.length() + 8);
+    let status = calibrator.feed(view.into(), 320.0, 240.0).unwrap();
+    assert_eq!(num(&status, "frames_seen"), 4.0);
+    let ego = js_sys::Reflect::get(&status, &"ego_found".into()).unwrap();
+    assert_eq!(ego.as_bool(), Some(true), "the markings are found");
+    let options = calibrator.options().unwrap();
+    assert_eq!(num(&options, "lane_width_m"), 3.6);
+    assert_eq!(num(&options, "stable_frames"), 5.0);
 }

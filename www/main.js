@@ -1,7 +1,9 @@
 // The demo page: wires a frame source, the tracking worker, the renderer and the controls.
 // One frame at a time: take the next frame from the source, send its pixels to the worker
 // (transferred, not copied), draw what comes back. Every action runs in one queue, so clicks
-// never interleave with a frame in flight.
+// never interleave with a frame in flight. Videos, images and the webcam are auto-calibrated
+// (auto-calibration.js): the worker feeds their frames to the wasm Calibrator, and its camera
+// replaces the assumed one once it is confident, unless the user chose a camera.
 import { WorkerClient } from './worker-client.js';
 import { SceneSource, TestRoadSource } from './source.js';
 import { ImageSource, WebcamSource } from './media-source.js';
@@ -9,7 +11,8 @@ import { VideoFile } from './video-select.js';
 import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from './camera-presets.js';
 import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
-import { drawFrame, drawBoundaries, drawDelimiters, drawHypotheses, drawTopView, drawLayer } from './render.js';
+import { drawFrame, drawBoundaries, drawDelimiters, drawHypotheses, drawTopView, drawLayer, drawCalibrationLines } from './render.js';
+import { AutoCalibration } from './auto-calibration.js';
 import { toJsonLines, toCsv, download } from './export.js';
 import { Plots } from './plots.js';
 import { Departure } from './departure.js';
@@ -28,10 +31,15 @@ const client = new WorkerClient();
 const plots = new Plots(document.getElementById('plots'));
 const departure = new Departure();
 const panel = new ParamsPanel();
+const auto = new AutoCalibration();
+const autoText = document.getElementById('auto-calibration');
+const autoToggle = document.getElementById('auto-calibrate');
+const showCalibration = document.getElementById('show-calibration');
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
   lastHypotheses: null, lastRgba: null, results: [], droppedResults: 0, offsetErrors: [], ended: false, source: null, pending: 0,
+  auto, camera: null,
 });
 
 const state = {
@@ -73,6 +81,7 @@ const want = () => ({
   hypotheses: controls.showParticles.checked ? DRAWN_PARTICLES : 0,
   layers: controls.showCues.checked,
   top: controls.showTop.checked,
+  calibration: showCalibration.checked || auto.looking(),
 });
 
 /** Draws the frame and everything on it; `redraw`: the same frame again (no bookkeeping). */
@@ -89,6 +98,8 @@ function draw(frame, result, redraw = false) {
   drawHypotheses(ctx, hypotheses, null, byGroup);
   if (truth) drawBoundaries(ctx, truth.boundaries, { dashed: true, width: 2 });
   if (estimate) drawEstimate(ctx, estimate);
+  const seen = result?.calibration?.observation;
+  if (seen && (showCalibration.checked || auto.looking())) drawCalibrationLines(ctx, seen);
   calibration?.draw(ctx, estimate);
   const top = controls.showTop.checked ? result?.top : null;
   document.getElementById('top-figure').hidden = !top;
@@ -217,6 +228,29 @@ async function stepFrame() {
   const result = await toWorker('track', frame, { motion: frame.motion, right: frame.right });
   record(frame, result);
   draw(frame, result);
+  await autoCalibrate(result.calibration);
+}
+
+/** Shows what the auto-calibrator knows and applies its camera when it is time. */
+async function autoCalibrate(calibrationResult, canApply = true) {
+  const reason = auto.update(calibrationResult);
+  if (reason && canApply) await applyAuto(reason);
+  showAuto();
+}
+
+function showAuto() {
+  autoText.textContent = auto.text();
+  autoText.hidden = auto.mode === 'off' && !auto.error;
+}
+
+/** The tracker gets the auto-calibrated camera (rebuilt with it; the run log is kept). */
+async function applyAuto(reason) {
+  const camera = auto.estimate.camera;
+  state.camera = camera;
+  demo.camera = camera;
+  calibration.show(camera, state.sourceName);
+  await openTracker({ keepLog: true });
+  auto.markApplied(camera, reason);
 }
 
 /** Per-step (teaching) mode: the first click starts a frame, each next click runs one step. */
@@ -228,6 +262,8 @@ async function stepStage() {
     const result = await toWorker('beginFrame', frame, { motion: frame.motion, right: frame.right });
     state.inFrame = frame;
     draw(frame, result);
+    // Not in the middle of a stepped frame: the camera changes on the next whole frame.
+    await autoCalibrate(result.calibration, false);
     controls.updateStageButton(result.nextStep);
     return;
   }
@@ -247,8 +283,11 @@ async function finishStepping() {
   while (state.inFrame) await stepStage();
 }
 
-/** Builds the chosen tracker for the current camera with the panel's options and seed. */
-async function openTracker() {
+/**
+ * Builds the chosen tracker for the current camera with the panel's options and seed; with
+ * `keepLog` (a camera change mid-run) the run log, plots and frame count go on.
+ */
+async function openTracker({ keepLog = false } = {}) {
   state.inFrame = null;
   const trackerId = state.trackerId;
   const defaults = trackerId ? await client.request('defaults', { trackerId }) : null;
@@ -260,6 +299,8 @@ async function openTracker() {
     trackerId: trackerId ? state.compareId : '', camera: state.camera, options: { seed: options.seed },
   });
   controls.setStepNames(info.stepNames);
+  demo.camera = state.camera;
+  if (keepLog) return;
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
   demo.results = [];
   demo.droppedResults = 0;
@@ -279,8 +320,30 @@ async function cameraFor(source) {
   const clip = await loadClipCamera();
   return {
     camera: scaleCamera(clip, width, height),
-    note: ' · camera assumed: the Udacity clip’s, scaled (import a camera.json for yours)',
+    note: ' · camera assumed: the Udacity clip’s, scaled, until auto-calibration measures yours (or import a camera.json)',
   };
+}
+
+/**
+ * Opens the auto-calibrator for media (none for the simulator's sources). Its intrinsics: the
+ * source's own camera (the bundled clip) or an imported camera file, scaled; else the
+ * calibrator's field-of-view default. It applies its camera unless the user chose one.
+ */
+async function startAuto(source, userCamera) {
+  if (!source.size) {
+    await client.request('openCalibrator', {});
+    auto.start('off');
+    return;
+  }
+  const { width, height } = source.size;
+  const own = source.camera ? scaleCamera(source.camera, width, height) : null;
+  const imported = state.importedCamera ? scaleCamera(state.importedCamera, width, height) : null;
+  try {
+    await client.request('openCalibrator', { width, height, intrinsics: own ?? imported });
+    auto.start(own || userCamera || imported ? 'manual' : 'auto', { known: own });
+  } catch (err) {
+    auto.start('off', { error: err.message });
+  }
 }
 
 async function openSource(next, name) {
@@ -304,6 +367,10 @@ async function openSource(next, name) {
     state.camera = saved;
     note = ' · camera: as you calibrated it for this source';
   }
+  await startAuto(next, saved);
+  autoToggle.checked = auto.mode === 'auto';
+  autoToggle.disabled = auto.mode === 'off';
+  showAuto();
   calibration.show(state.camera, name);
   await openTracker();
   controls.say(next.label + note);
@@ -332,6 +399,10 @@ function filesSource(files) {
   return new ImageSource(files, { stereo });
 }
 
+function redrawLast() {
+  if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
+}
+
 async function main() {
   const { version, trackers, scenarios } = await client.request('hello');
   calibration = new Calibration(document, document.getElementById('view'), await loadPresets());
@@ -340,6 +411,10 @@ async function main() {
     if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
   };
   calibration.onApply = (camera) => run(async () => {
+    // A camera applied by hand wins over the auto-calibrated one.
+    auto.setMode('manual');
+    autoToggle.checked = false;
+    showAuto();
     state.camera = camera;
     await openTracker();
     calibration.save(camera);
@@ -370,6 +445,9 @@ async function main() {
   controls.onCameraFile = (file) => run(async () => {
     state.importedCamera = await readCameraFile(file);
     if (state.source?.size && !state.source.camera) {
+      auto.setMode('manual');
+      autoToggle.checked = false;
+      showAuto();
       state.camera = scaleCamera(state.importedCamera, state.source.size.width, state.source.size.height);
       calibration.show(state.camera, state.sourceName);
       await openTracker();
@@ -385,6 +463,13 @@ async function main() {
     state.compareId = id;
     await openTracker();
   });
+  autoToggle.addEventListener('change', () => run(async () => {
+    auto.setMode(autoToggle.checked ? 'auto' : 'manual');
+    // Back on: the estimate so far replaces the camera at once (if there is one yet).
+    if (auto.mode === 'auto' && auto.estimate) await applyAuto('chosen');
+    showAuto();
+  }));
+  showCalibration.addEventListener('change', redrawLast);
   controls.onStep = () => run(stepFrame);
   controls.onStepStage = () => run(stepStage);
   controls.onRestart = () => run(async () => {
@@ -410,11 +495,8 @@ async function main() {
         + 'were let go to bound the page\'s memory. Restart and export more often to keep them all.');
     }
   };
-  const redraw = () => {
-    if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
-  };
-  controls.cueLayer.addEventListener('change', redraw);
-  controls.colourGroups.addEventListener('change', redraw);
+  controls.cueLayer.addEventListener('change', redrawLast);
+  controls.colourGroups.addEventListener('change', redrawLast);
   controls.showPlots.addEventListener('change', () => {
     document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
   });

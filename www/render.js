@@ -206,3 +206,48 @@ export function drawLayer(ctx, layer, { hypotheses = null, probabilities = null 
     });
   }
 }
+
+/**
+ * Draws what the auto-calibrator saw in the last frame (`Calibrator.observation()`): the lines
+ * through marking pixels (thin), the two ego boundaries it measures from (thick, up to where
+ * they meet), the vanishing point and the horizon through it. Undistorted pixels: with a
+ * distorting lens the lines sit slightly off the markings near the image edges.
+ */
+export function drawCalibrationLines(ctx, observation) {
+  const { lines, ego, vanishing_point: vp } = observation;
+  const x = (l, y) => l.x_ref + l.slope * (y - l.y_ref);
+  ctx.save();
+  ctx.strokeStyle = 'rgba(255, 152, 0, 0.6)';
+  ctx.lineWidth = 1;
+  lines.forEach((l, i) => {
+    if (ego?.includes(i)) return;
+    ctx.beginPath();
+    ctx.moveTo(x(l, l.y_bottom), l.y_bottom);
+    ctx.lineTo(x(l, l.y_top), l.y_top);
+    ctx.stroke();
+  });
+  ctx.strokeStyle = '#ff9800';
+  ctx.lineWidth = 3;
+  for (const i of ego ?? []) {
+    const l = lines[i];
+    const top = vp ? vp[1] : l.y_top;
+    ctx.beginPath();
+    ctx.moveTo(x(l, l.y_bottom), l.y_bottom);
+    ctx.lineTo(x(l, top), top);
+    ctx.stroke();
+  }
+  if (vp) {
+    ctx.lineWidth = 1;
+    ctx.setLineDash([4, 6]);
+    ctx.beginPath();
+    ctx.moveTo(0, vp[1]);
+    ctx.lineTo(ctx.canvas.width, vp[1]);
+    ctx.stroke();
+    ctx.setLineDash([]);
+    ctx.lineWidth = 2;
+    ctx.beginPath();
+    ctx.arc(vp[0], vp[1], 6, 0, 2 * Math.PI);
+    ctx.stroke();
+  }
+  ctx.restore();
+}

@@ -1,10 +1,11 @@
 // The Web Worker that owns the WebAssembly module: it renders synthetic frames (the test road
-// or a named simulator scenario), runs the chosen tracker on frames from any source, and draws
-// nothing, so the page's main thread never waits on the filter.
+// or a named simulator scenario), runs the chosen tracker on frames from any source, feeds them
+// to the camera auto-calibrator when one is open, and draws nothing, so the page's main thread
+// never waits on the filter.
 // Protocol: { id, type, ...payload } (payload keys must not be `id` or `type`) ->
 // { id, ok: true, result } | { id, ok: false, error }. Frames travel as transferred buffers.
 import init, {
-  version, trackerIds, trackerDefaults, scenarios, Camera, Scene, TestRoad, Tracker,
+  version, trackerIds, trackerDefaults, scenarios, Calibrator, Camera, Scene, TestRoad, Tracker,
 } from '../pkg/web/lanepf.js';
 
 const ready = init();
@@ -12,6 +13,8 @@ let road = null;
 let tracker = null;
 // A second tracker run on the same frames, for comparison (null: none).
 let compare = null;
+// The camera auto-calibrator fed every tracked frame of a video, images or the webcam (null: none).
+let calibrator = null;
 // The right image of the scene's current frame, for a stereo tracker.
 let right = null;
 // Top view: road cells 0.1 m, 40 m ahead, +-8 m; LUT of camera pixel indices (-1: not seen).
@@ -95,6 +98,20 @@ function stepCompare(rgba, feed, want) {
   return { trackerId: compare.id, estimate, trackMs, hypotheses };
 }
 
+/**
+ * Feeds a frame to the auto-calibrator (when one is open for its size): its verdict on the
+ * frame, the estimate so far, and with `want.calibration` the lines it saw, for drawing.
+ */
+function calibrate(rgba, width, height, want) {
+  if (!calibrator || calibrator.width !== width || calibrator.height !== height) return null;
+  const status = calibrator.feed(rgba, width, height);
+  return {
+    status,
+    estimate: calibrator.estimate(),
+    observation: want?.calibration ? calibrator.observation() : null,
+  };
+}
+
 /** A result that carries the frame's pixels (and a top view) back, transferred, not copied. */
 function reply(result) {
   const transfer = [result.rgba.buffer];
@@ -130,6 +147,18 @@ const handlers = {
     tracker = new Tracker(trackerId, { ...(options ?? {}), camera });
     return { trackerId: tracker.id, stepNames: tracker.stepNames(), isStereo: tracker.isStereo };
   },
+  /**
+   * Opens the auto-calibrator for width x height frames (intrinsics: a camera of that size
+   * whose focal length and lens are known, or null for the field-of-view default), or with no
+   * width closes it.
+   */
+  async openCalibrator({ width, height, intrinsics }) {
+    calibrator?.free();
+    calibrator = null;
+    if (!width) return null;
+    calibrator = new Calibrator({ width, height, ...(intrinsics ? { intrinsics } : {}) });
+    return calibrator.options();
+  },
   /** Builds (or, with no id, drops) the comparison tracker for the same camera. */
   async openCompare({ trackerId, camera, options }) {
     compare?.free();
@@ -161,9 +190,10 @@ const handlers = {
   },
   /** One whole frame through the tracker; the pixels come back with the result. */
   async track({ rgba, right: frameRight, width, height, motion, want }) {
+    const calibration = calibrate(rgba, width, height, want);
     if (!tracker) {
       const top = want?.top ? topView(rgba, width, height) : null;
-      return reply({ rgba, estimate: null, trackMs: 0, top });
+      return reply({ rgba, estimate: null, trackMs: 0, top, calibration });
     }
     feedTracker(tracker, { motion, frameRight, width, height });
     const t0 = performance.now();
@@ -172,6 +202,7 @@ const handlers = {
     return reply({
       rgba, estimate, trackMs, ...extras(tracker, rgba, width, height, want ?? {}),
       compare: stepCompare(rgba, { motion, frameRight, width, height }, want),
+      calibration,
     });
   },
   /** Starts a frame in per-step (teaching) mode; `advance` then runs one step per call. */
@@ -182,7 +213,8 @@ const handlers = {
     t.beginFrame(rgba, width, height);
     // The comparison tracker takes the whole frame at once.
     const compared = stepCompare(rgba, { motion, frameRight, width, height }, want);
-    return reply({ rgba, ...extras(t, rgba, width, height, want ?? {}), compare: compared });
+    const calibration = calibrate(rgba, width, height, want);
+    return reply({ rgba, ...extras(t, rgba, width, height, want ?? {}), compare: compared, calibration });
   },
   async advance({ rgba, width, height, want }) {
     const t = requireTracker();

@@ -1,9 +1,10 @@
 //! The JavaScript binding: the only module with wasm-bindgen types.
 //!
-//! Each class wraps a core type (`Camera`, `Scene`, `TestRoad`, `Tracker`); every fallible call returns
+//! Each class wraps a core type (`Camera`, `Scene`, `TestRoad`, `Tracker`, `Calibrator`); every fallible call returns
 //! `Result<_, JsError>`, so JavaScript gets a thrown `Error` with the core's message and the
 //! object stays usable.
 
+mod calibrator;
 mod camera;
 mod error;
 mod scene;
@@ -11,6 +12,7 @@ mod test_road;
 mod tracker;
 mod types;
 
+pub use calibrator::JsCalibrator;
 pub use camera::JsCamera;
 pub use error::to_js;
 pub use scene::{scenarios, JsScene};

@@ -7,7 +7,8 @@
 //! `trackers::TrackerConfig` and each tracker's config (`trackers::*::config`), the vision
 //! configs they nest (`vision::{DldConfig, CannyConfig, TopViewConfig, HGradientConfig,
 //! DensityConfig, DisparityConfig}`), `lane::LaneEstimate`, `trackers::{Layer, EgoMotion}`,
-//! `synth::TestRoadConfig` and the truth's `state` keys (`synth::truth`). The npm test
+//! `synth::TestRoadConfig`, the truth's `state` keys (`synth::truth`) and `calib::{CalibratorConfig,
+//! CalibrationEstimate, FrameObservation, LineFit}` with `wasm::calibrator`'s status. The npm test
 //! (`tests/npm/`) compiles a TypeScript program against them with `tsc --strict`.
 
 use wasm_bindgen::prelude::*;
@@ -581,6 +582,97 @@ export interface Hypothesis {
    * danescu-*: the MBSAS cluster (-1 for none); liu-ppf: 0. */
   group: number;
   boundaries: Boundary[];
+}
+
+/** Options of `new Calibrator(options)`. Unknown fields are refused. */
+export interface CalibratorOptions {
+  /** Frame width, pixels (at least 32). */
+  width: number;
+  /** Frame height, pixels (at least 16). */
+  height: number;
+  /** A camera of the same size whose fx, fy, cx, cy and distortion are known (its pose is
+   *  ignored); without it the focal length comes from `hfov_deg` and the principal point is
+   *  the image centre. */
+  intrinsics?: CameraConfig | null;
+  /** Lane-width prior, metres (2.5 to 5; default 3.6): the height is only as right as this. */
+  lane_width_m?: number;
+  /** Horizontal field of view used without intrinsics, degrees (20 to 150; default 60). */
+  hfov_deg?: number;
+  /** Frames whose vanishing points must agree for a frame to count (1 to 120; default 5; 1
+   *  for independent still images). */
+  stable_frames?: number;
+  /** Largest common bend of the ego boundaries on straight road, working pixels (0.1 to 10;
+   *  default 1.5). */
+  max_bend_px?: number;
+}
+
+/** What `Calibrator.feed` says about one frame. */
+export interface CalibrationStatus {
+  /** The frame measured the camera (straight road, stable vanishing point). */
+  used: boolean;
+  /** Both ego boundaries were found. */
+  ego_found: boolean;
+  /** The ego boundaries are straight. */
+  straight: boolean;
+  /** The vanishing points of the last `stable_frames` frames agree. */
+  stable: boolean;
+  /** Where the ego boundaries meet, undistorted pixels. */
+  vanishing_point: [number, number] | null;
+  /** Frames used so far (at most 2000, the newest). */
+  frames_used: number;
+  /** Frames fed so far. */
+  frames_seen: number;
+}
+
+/** `Calibrator.estimate()`: the camera and how sure the calibrator is of it. */
+export interface CalibrationEstimate {
+  /** The estimated camera (roll 0); goes straight into `new Tracker(id, { camera })`. */
+  camera: CameraConfig;
+  /** 0 (nothing known) to 1 (pitch and yaw well within 0.5 degrees, height within 10 %). */
+  confidence: number;
+  /** Frames that measured the camera. */
+  frames_used: number;
+  /** Frames fed. */
+  frames_seen: number;
+  /** Spread of the per-frame pitch, degrees. */
+  pitch_sd_deg: number;
+  /** Spread of the per-frame yaw, degrees. */
+  yaw_sd_deg: number;
+  /** Spread of the per-frame height, metres. */
+  height_sd_m: number;
+  /** Vanishing point of the estimate, undistorted pixels. */
+  vanishing_point: [number, number];
+  /** Whether intrinsics were given (false: focal length from `hfov_deg`). */
+  intrinsics_known: boolean;
+}
+
+/** A straight line through marking pixels: x = x_ref + slope (y - y_ref), undistorted pixels. */
+export interface CalibrationLine {
+  x_ref: number;
+  y_ref: number;
+  /** dx / dy. */
+  slope: number;
+  /** Marking pixels on the line. */
+  support: number;
+  /** Topmost row of those pixels. */
+  y_top: number;
+  /** Bottom row of those pixels. */
+  y_bottom: number;
+  /** Signed bend, pixels (0 unless the line is an ego boundary). */
+  bend: number;
+}
+
+/** `Calibrator.observation()`: what the last frame showed. */
+export interface CalibrationObservation {
+  /** Lines, strongest first. */
+  lines: CalibrationLine[];
+  /** Indices in `lines` of the ego boundaries (left, right). */
+  ego: [number, number] | null;
+  /** Where the ego boundaries meet. */
+  vanishing_point: [number, number] | null;
+  straight: boolean;
+  stable: boolean;
+  used: boolean;
 }
 
 /** An RGBA frame: `ImageData.data`, `Scene.render(f)` or any width*height*4 bytes. */
