@@ -2,7 +2,7 @@
 # Installs everything lanepf's build, demo and tests need, on a Debian machine with Rust (rustup)
 # and Node/npm. Idempotent: each step checks first and does nothing when already done.
 #   scripts/setup.sh          everything (wasm target, wasm-bindgen CLI, npm tools, Chromium, Firefox,
-#                             WebKitGTK's WebDriver and Xvfb)
+#                             WebKitGTK's WebDriver, Xvfb and ffmpeg)
 #   scripts/setup.sh --no-browser   skip the browsers (enough for `make demo`)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -62,6 +62,9 @@ if [ "$want_browser" = 1 ]; then
   { [ -x /usr/bin/WebKitWebDriver ] && compgen -G '/usr/lib/*/webkit2gtk-4.1/MiniBrowser' >/dev/null; } \
     || missing_lean+=(webkit2gtk-driver)
   [ -x /usr/bin/Xvfb ] || missing_lean+=(xvfb)
+  # ffmpeg and ffprobe make the small test videos of tests/node/demux.test.mjs and
+  # tests/e2e/webcodecs.test.mjs (H.264, VP8, VP9, AV1, HEVC, MPEG-4) at test time.
+  { [ -x /usr/bin/ffmpeg ] && [ -x /usr/bin/ffprobe ]; } || missing_lean+=(ffmpeg)
   if [ "${#missing[@]}" -gt 0 ] || [ "${#missing_lean[@]}" -gt 0 ]; then
     if [ "$(id -u)" != 0 ]; then
       die "missing Debian packages: ${missing[*]} ${missing_lean[*]}; installing them needs root. Run:
