@@ -17,6 +17,22 @@ command -v cargo >/dev/null || die "cargo not found: install Rust with rustup (h
 command -v rustup >/dev/null || die "rustup not found: lanepf needs rustup to add the wasm32 target"
 command -v npm >/dev/null || die "npm not found: install Node.js 18+ and npm first"
 
+# apt-get install PACKAGES... as root; otherwise stops with the command to run with sudo.
+apt_install() {
+  if [ "$(id -u)" != 0 ]; then
+    die "missing Debian packages: $*; installing them needs root. Run:
+    sudo apt-get update && sudo apt-get install -y --no-install-recommends $*
+then run this command again."
+  fi
+  say "installing $* from apt"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "$@" >/dev/null
+}
+
+# 0. A C compiler and the C library's files: cargo links with `cc`, which rustup does not bring.
+{ command -v cc >/dev/null && compgen -G '/usr/lib/*/crt1.o' >/dev/null; } || apt_install gcc libc6-dev
+
 # 1. Rust pieces: the wasm32 target, rustfmt and clippy.
 if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
   say "adding the wasm32-unknown-unknown target"
