@@ -23,6 +23,7 @@
 # variables of the environment. Rust comes from rustup-init (static.rust-lang.org); Node.js is
 # copied from this machine (/usr/bin/node and /usr/lib/node_modules/npm).
 set -euo pipefail
+{ # (read whole before it runs: editing the file during a run does not change the run)
 here=$(cd "$(dirname "$0")/.." && pwd)
 
 commit=HEAD all=0 keep=0 parent=/var/tmp reuse=
@@ -64,6 +65,7 @@ if [ -n "$reuse" ]; then
 else
   mkdir -p "$parent"
   root=$(mktemp -d "$parent/lanepf-fresh.XXXXXX")
+  chmod 755 "$root" # a root's / (apt's _apt user reads under it)
 fi
 log=$root.log
 : > "$log"
@@ -202,3 +204,5 @@ step "make test" inside 'cd /work/lanepf && make test'
 [ "$all" = 1 ] && step "make test-slow (the rest of make test-all)" inside 'cd /work/lanepf && make test-slow'
 summary
 echo "fresh-check: PASSED"
+exit 0
+}
