@@ -1,4 +1,5 @@
-# lanepf: the two commands are `make demo` and `make test` (see README.md).
+# lanepf: the two commands are `make demo` and `make test` (see README.md); `make test-all`
+# adds the slow tier.
 # Every target installs what it needs first (scripts/setup.sh is idempotent).
 SHELL := /bin/bash
 export PATH := $(HOME)/.cargo/bin:$(CURDIR)/node_modules/.bin:$(PATH)
@@ -6,15 +7,21 @@ PORT ?= 8080
 WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
                  CHROMEDRIVER=/usr/bin/chromedriver WASM_BINDGEN_TEST_TIMEOUT=120
 
-.PHONY: demo test setup pkg lint test-native test-wasm test-browser bench bench-browser
+.PHONY: demo test test-all test-slow setup pkg lint test-native test-wasm test-chromium test-browser \
+        bench bench-browser
 
 ## Build everything and serve the demo on http://127.0.0.1:$(PORT)/
 demo: pkg
 	node scripts/serve.mjs --port $(PORT)
 
-## Run every test: formatting, clippy, native, wasm in headless Chromium, browser end-to-end.
-test: setup lint test-native test-wasm pkg test-browser
-	@echo "make test: all suites passed"
+## The fast tier (the README's test command and CI's): formatting, clippy, native, wasm in
+## headless Chromium, the Node tests, the npm package and every end-to-end file in Chromium.
+test: setup lint test-native test-wasm pkg test-chromium
+	@echo "make test: all suites passed (make test-all also runs Firefox and WebKit)"
+
+## Everything: the fast tier, then the slow one (the cross-browser suite in Firefox and WebKit).
+test-all: test test-slow
+	@echo "make test-all: all suites passed"
 
 setup:
 	bash scripts/setup.sh
@@ -34,6 +41,15 @@ test-native:
 test-wasm:
 	$(WASM_TEST_ENV) cargo test --target wasm32-unknown-unknown --test web
 
+# The Node tests and the end-to-end tests in Chromium (cross-browser.test.mjs in Chromium only).
+test-chromium:
+	E2E_BROWSERS=chromium node --test tests/node/ tests/e2e/ tests/npm/
+
+# The slow tier: cross-browser.test.mjs in Firefox ESR and WebKitGTK (needs `make pkg`).
+test-slow: setup pkg
+	E2E_BROWSERS=firefox,webkit node --test tests/e2e/cross-browser.test.mjs
+
+# All of the Node, npm and end-to-end tests in every browser (needs `make pkg`).
 test-browser:
 	node --test tests/node/ tests/e2e/ tests/npm/
 

@@ -2,7 +2,7 @@
 # Installs everything lanepf's build, demo and tests need, on a Debian machine with Rust (rustup)
 # and Node/npm. Idempotent: each step checks first and does nothing when already done.
 #   scripts/setup.sh          everything (wasm target, wasm-bindgen CLI, npm tools, Chromium, Firefox,
-#                             WebKitGTK's WebDriver and Xvfb)
+#                             WebKitGTK's WebDriver, Xvfb and ffmpeg)
 #   scripts/setup.sh --no-browser   skip the browsers (enough for `make demo`)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,6 +16,22 @@ die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
 command -v cargo >/dev/null || die "cargo not found: install Rust with rustup (https://rustup.rs) first"
 command -v rustup >/dev/null || die "rustup not found: lanepf needs rustup to add the wasm32 target"
 command -v npm >/dev/null || die "npm not found: install Node.js 18+ and npm first"
+
+# apt-get install PACKAGES... as root; otherwise stops with the command to run with sudo.
+apt_install() {
+  if [ "$(id -u)" != 0 ]; then
+    die "missing Debian packages: $*; installing them needs root. Run:
+    sudo apt-get update && sudo apt-get install -y --no-install-recommends $*
+then run this command again."
+  fi
+  say "installing $* from apt"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "$@" >/dev/null
+}
+
+# 0. A C compiler and the C library's files: cargo links with `cc`, which rustup does not bring.
+{ command -v cc >/dev/null && compgen -G '/usr/lib/*/crt1.o' >/dev/null; } || apt_install gcc libc6-dev
 
 # 1. Rust pieces: the wasm32 target, rustfmt and clippy.
 if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
@@ -62,6 +78,9 @@ if [ "$want_browser" = 1 ]; then
   { [ -x /usr/bin/WebKitWebDriver ] && compgen -G '/usr/lib/*/webkit2gtk-4.1/MiniBrowser' >/dev/null; } \
     || missing_lean+=(webkit2gtk-driver)
   [ -x /usr/bin/Xvfb ] || missing_lean+=(xvfb)
+  # ffmpeg and ffprobe make the small test videos of tests/node/demux.test.mjs and
+  # tests/e2e/webcodecs.test.mjs (H.264, VP8, VP9, AV1, HEVC, MPEG-4) at test time.
+  { [ -x /usr/bin/ffmpeg ] && [ -x /usr/bin/ffprobe ]; } || missing_lean+=(ffmpeg)
   if [ "${#missing[@]}" -gt 0 ] || [ "${#missing_lean[@]}" -gt 0 ]; then
     if [ "$(id -u)" != 0 ]; then
       die "missing Debian packages: ${missing[*]} ${missing_lean[*]}; installing them needs root. Run:
