@@ -49,7 +49,6 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<()> {
-    let files = frames::list(&args.frames)?;
     if args.camera != "auto" && args.calibration.intrinsics.is_some() {
         return Err(Error::Config(
             "--intrinsics is for --camera auto; with a camera file the file's intrinsics are used"
@@ -57,6 +56,7 @@ pub fn run(args: Args) -> Result<()> {
         ));
     }
     let camera = if args.camera == "auto" {
+        let files = frames::list(&args.frames)?;
         let estimate = super::calibrate::calibrate(&files, &args.calibration)?;
         eprintln!(
             "lanepf: camera auto: {}",
@@ -107,6 +107,7 @@ pub fn run(args: Args) -> Result<()> {
             "must be at least 1 iteration",
         ));
     }
+    let files = frames::list(&args.frames)?;
     let motion = match &args.motion {
         Some(path) => Some(read_motion(path, files.len())?),
         None => None,
