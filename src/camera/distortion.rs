@@ -64,6 +64,26 @@ impl Distortion {
         ]
     }
 
+    /// The largest r^2 up to which the radial map r -> r radial(r) increases, scanned in steps
+    /// of 0.0005 up to r^2 = 16 (a field of view far wider than any calibration covers);
+    /// `f64::INFINITY` when it increases all the way. Beyond it the model folds over: points
+    /// far outside the field of view would land back inside the image.
+    pub fn monotonic_r2(&self) -> f64 {
+        if self.k1 == 0.0 && self.k2 == 0.0 && self.k3 == 0.0 {
+            return f64::INFINITY;
+        }
+        const STEP: f64 = 0.0005;
+        for i in 1..=32_000 {
+            let s = i as f64 * STEP;
+            let radial = 1.0 + s * (self.k1 + s * (self.k2 + s * self.k3));
+            let dradial = self.k1 + s * (2.0 * self.k2 + 3.0 * s * self.k3);
+            if radial + 2.0 * s * dradial <= 0.0 {
+                return s - STEP;
+            }
+        }
+        f64::INFINITY
+    }
+
     /// True when the radial map r -> r radial(r) is increasing on [0, sqrt(`r2`)], i.e. the
     /// lens model has not folded over before that radius (checked at 32 radii).
     fn radially_monotonic_to(&self, r2: f64) -> bool {
@@ -125,6 +145,23 @@ mod tests {
         p2: 0.00013,
         k3: 0.01067,
     };
+
+    #[test]
+    fn the_udacity_lens_folds_over_near_radius_1_15() {
+        let r2 = UDACITY.monotonic_r2();
+        assert!((r2.sqrt() - 1.15).abs() < 0.02, "fold at r = {}", r2.sqrt());
+        // Just inside, the map still grows; beyond, it shrinks.
+        let r_d = |r: f64| UDACITY.distort(r, 0.0)[0];
+        let r = r2.sqrt();
+        assert!(r_d(r) > r_d(r - 0.01));
+        assert!(r_d(r + 0.05) < r_d(r));
+        assert_eq!(Distortion::default().monotonic_r2(), f64::INFINITY);
+        let pincushion = Distortion {
+            k1: 0.1,
+            ..Distortion::default()
+        };
+        assert_eq!(pincushion.monotonic_r2(), f64::INFINITY);
+    }
 
     #[test]
     fn undistort_inverts_distort_over_the_field_of_view() {

@@ -45,6 +45,9 @@ pub struct Camera {
     distortion: Distortion,
     /// Rows: camera X, Y, Z axes expressed in the road frame (-L, -U, F).
     rotation: Matrix3<f64>,
+    /// Squared normalised radius beyond which the lens model folds over
+    /// ([`Distortion::monotonic_r2`]): nothing beyond it is projected.
+    fold_r2: f64,
 }
 
 impl Camera {
@@ -104,6 +107,7 @@ impl Camera {
         };
         Ok(Self {
             file: file.clone(),
+            fold_r2: distortion.monotonic_r2(),
             distortion,
             rotation: road_to_camera_rotation(
                 math::deg_to_rad(file.pitch_deg),
@@ -191,12 +195,18 @@ impl Camera {
         [c.x, c.y, c.z]
     }
 
-    /// Pixel of a camera-frame point, or `None` when it is not in front of the camera.
+    /// Pixel of a camera-frame point, or `None` when it is not in front of the camera or lies
+    /// beyond the radius where the lens model folds over (where it would be drawn back inside
+    /// the image although it is far outside the field of view).
     pub fn camera_to_pixel(&self, c: [f64; 3]) -> Option<[f64; 2]> {
         if c[2] <= 1e-9 {
             return None;
         }
-        let [xd, yd] = self.distortion.distort(c[0] / c[2], c[1] / c[2]);
+        let (x, y) = (c[0] / c[2], c[1] / c[2]);
+        if x * x + y * y > self.fold_r2 {
+            return None;
+        }
+        let [xd, yd] = self.distortion.distort(x, y);
         Some([
             self.file.cx + self.file.fx * xd,
             self.file.cy + self.file.fy * yd,
