@@ -278,6 +278,16 @@ impl Calibrator {
         [self.width, self.height]
     }
 
+    /// Frames fed in since the start or the last reset.
+    pub fn frames_seen(&self) -> usize {
+        self.frames_seen
+    }
+
+    /// Frames that measured the camera and are still kept (at most [`MAX_SAMPLES`]).
+    pub fn frames_used(&self) -> usize {
+        self.samples.len()
+    }
+
     /// What the last frame showed.
     pub fn last_observation(&self) -> &FrameObservation {
         &self.last

@@ -2,7 +2,6 @@
 //! markings of the frames it is fed (see `crate::calib`).
 
 use super::error::{from_js_object, to_js};
-use crate::calib::calibrator::MAX_SAMPLES;
 use crate::calib::{Calibrator, CalibratorConfig, FrameObservation};
 use crate::camera::CameraFile;
 use serde::{Deserialize, Serialize};
@@ -59,10 +58,6 @@ pub struct JsCalibrator {
     inner: Calibrator,
     /// The last frame's pixels, copied out of the JS array (reused).
     frame: Vec<u8>,
-    /// Frames fed in and frames used since the start or the last reset (as the core counts
-    /// them; kept here so that `feed` need not compute the estimate).
-    frames_seen: usize,
-    frames_used: usize,
 }
 
 /// A frame side given from JavaScript: a whole number from 1 to 16384.
@@ -75,8 +70,13 @@ fn side(name: &str, v: f64) -> Result<usize, JsError> {
     Ok(v as usize)
 }
 
-/// Copies an RGBA frame (`Uint8Array` or `Uint8ClampedArray`) into `out`.
-fn copy_rgba(rgba: &JsValue, out: &mut Vec<u8>) -> Result<(), JsError> {
+/// Copies a `width` x `height` RGBA frame (`Uint8Array` or `Uint8ClampedArray`) into `out`; an
+/// array of another length is refused before anything is copied.
+fn copy_rgba(
+    rgba: &JsValue,
+    [width, height]: [usize; 2],
+    out: &mut Vec<u8>,
+) -> Result<(), JsError> {
     let view = if let Some(a) = rgba.dyn_ref::<js_sys::Uint8Array>() {
         a.clone()
     } else if let Some(a) = rgba.dyn_ref::<js_sys::Uint8ClampedArray>() {
@@ -92,7 +92,15 @@ fn copy_rgba(rgba: &JsValue, out: &mut Vec<u8>) -> Result<(), JsError> {
             describe(rgba)
         )));
     };
-    out.resize(view.length() as usize, 0);
+    let (expected, actual) = (width * height * 4, view.length() as usize);
+    if actual != expected {
+        return Err(to_js(crate::Error::BufferSize {
+            what: format!("a {width}x{height} RGBA frame (width*height*4 bytes)"),
+            expected,
+            actual,
+        }));
+    }
+    out.resize(expected, 0);
     view.copy_to(out);
     Ok(())
 }
@@ -146,8 +154,6 @@ impl JsCalibrator {
         Ok(JsCalibrator {
             inner,
             frame: Vec::new(),
-            frames_seen: 0,
-            frames_used: 0,
         })
     }
 
@@ -182,7 +188,13 @@ impl JsCalibrator {
         height: f64,
     ) -> Result<JsValue, JsError> {
         let (w, h) = (side("width", width)?, side("height", height)?);
-        copy_rgba(&rgba, &mut self.frame)?;
+        let [cw, ch] = self.inner.size();
+        if (w, h) != (cw, ch) {
+            return Err(JsError::new(&format!(
+                "{w}x{h}: this calibrator takes {cw}x{ch} frames"
+            )));
+        }
+        copy_rgba(&rgba, [w, h], &mut self.frame)?;
         let obs = self.inner.feed_rgba(&self.frame, w, h).map_err(to_js)?;
         let (used, ego_found, straight, stable, vanishing_point) = (
             obs.used,
@@ -191,18 +203,14 @@ impl JsCalibrator {
             obs.stable,
             obs.vanishing_point,
         );
-        self.frames_seen += 1;
-        if used {
-            self.frames_used = (self.frames_used + 1).min(MAX_SAMPLES);
-        }
         super::to_js_value(&FeedStatus {
             used,
             ego_found,
             straight,
             stable,
             vanishing_point,
-            frames_used: self.frames_used,
-            frames_seen: self.frames_seen,
+            frames_used: self.inner.frames_used(),
+            frames_seen: self.inner.frames_seen(),
         })
     }
 
@@ -242,7 +250,5 @@ impl JsCalibrator {
     /// Forgets every frame (a new video, or after the camera moved).
     pub fn reset(&mut self) {
         self.inner.reset();
-        self.frames_seen = 0;
-        self.frames_used = 0;
     }
 }
