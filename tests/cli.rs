@@ -496,3 +496,69 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
     assert_eq!(code, 1);
     assert!(err.contains("lane_width_m"), "{err}");
 }
+
+#[test]
+fn track_takes_the_seed_once_and_the_camera_only_from_camera() {
+    let out = temp("seed-once");
+    let d = out.join("scene");
+    let (code, _, err) = lanepf(&[
+        "synth",
+        "--scenario",
+        "highway-straight",
+        "--frames",
+        "3",
+        "--width",
+        "160",
+        "--height",
+        "120",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let (cam, frames) = (d.join("camera.json"), d.join("frames"));
+    let run = |config: Option<&str>, seed: Option<&str>, name: &str| {
+        let pred = out.join(format!("{name}.jsonl"));
+        let mut args = vec![
+            "track".to_string(),
+            "--tracker".into(),
+            "lee-cpf".into(),
+            "--camera".into(),
+            cam.display().to_string(),
+            "--frames".into(),
+            frames.display().to_string(),
+            "--out".into(),
+            pred.display().to_string(),
+        ];
+        if let Some(text) = config {
+            let path = out.join(format!("{name}.json"));
+            std::fs::write(&path, text).unwrap();
+            args.extend(["--config".into(), path.display().to_string()]);
+        }
+        if let Some(s) = seed {
+            args.extend(["--seed".into(), s.to_string()]);
+        }
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, _, err) = lanepf(&refs);
+        let states: Vec<serde_json::Value> = std::fs::read_to_string(&pred)
+            .unwrap_or_default()
+            .lines()
+            .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap()["state"].clone())
+            .collect();
+        (code, err, states)
+    };
+    let (code, err, _) = run(Some(r#"{"seed": 7}"#), Some("7"), "twice");
+    assert_eq!(code, 1);
+    assert!(err.contains("the seed is given twice: --seed 7"), "{err}");
+    let (code, err, _) = run(Some(r#"{"camera": {}}"#), None, "camera");
+    assert_eq!(code, 1);
+    assert!(err.contains("`camera` comes from --camera"), "{err}");
+    // The seed from the file and the same seed from the flag give the same run; another seed
+    // does not.
+    let (code, err, from_file) = run(Some(r#"{"seed": 7}"#), None, "file");
+    assert_eq!(code, 0, "{err}");
+    let (_, _, from_flag) = run(None, Some("7"), "flag");
+    let (_, _, other) = run(None, Some("8"), "other");
+    assert_eq!(from_file.len(), 3);
+    assert_eq!(from_file, from_flag);
+    assert_ne!(from_file, other);
+}

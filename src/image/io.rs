@@ -15,15 +15,29 @@ pub struct RgbaFrame {
     pub data: Vec<u8>,
 }
 
-/// Decodes PNG or JPEG bytes. `name` is only used in error messages.
+/// Decodes PNG or JPEG bytes. `name` is only used in error messages. The size in the file's
+/// header is checked before anything is decoded, so a small file that claims a huge image is
+/// refused at once instead of after allocating it.
 ///
 /// # Errors
 /// [`Error::Decode`] for a corrupt or unsupported file; [`Error::Dimensions`] for an unusable size.
 pub fn decode_rgba(bytes: &[u8], name: &str) -> Result<RgbaFrame> {
-    let img = image::load_from_memory(bytes).map_err(|e| Error::Decode {
+    let decode_error = |e: image::ImageError| Error::Decode {
         path: name.to_string(),
         reason: e.to_string(),
-    })?;
+    };
+    let reader = || {
+        image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| Error::Decode {
+                path: name.to_string(),
+                reason: e.to_string(),
+            })
+    };
+    let (hw, hh) = reader()?.into_dimensions().map_err(decode_error)?;
+    check_dimensions(hw as usize, hh as usize)
+        .map_err(|e| Error::Dimensions(format!("{name}: {e}")))?;
+    let img = reader()?.decode().map_err(decode_error)?;
     let rgba = img.to_rgba8();
     let (w, h) = (rgba.width() as usize, rgba.height() as usize);
     check_dimensions(w, h)?;
@@ -145,6 +159,60 @@ pub fn read_disparity_png(path: &Path) -> Result<(Vec<f32>, usize, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// CRC-32 (IEEE) of `bytes`, for hand-made PNG chunks.
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = 0xffff_ffffu32;
+        for &b in bytes {
+            c ^= b as u32;
+            for _ in 0..8 {
+                c = if c & 1 != 0 {
+                    0xedb8_8320 ^ (c >> 1)
+                } else {
+                    c >> 1
+                };
+            }
+        }
+        !c
+    }
+
+    /// A PNG whose header claims `w` x `h` RGBA pixels, with an empty IDAT: no image data.
+    fn png_header(w: u32, h: u32) -> Vec<u8> {
+        let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+        let mut ihdr = b"IHDR".to_vec();
+        ihdr.extend_from_slice(&w.to_be_bytes());
+        ihdr.extend_from_slice(&h.to_be_bytes());
+        ihdr.extend_from_slice(&[8, 6, 0, 0, 0]);
+        out.extend_from_slice(&13u32.to_be_bytes());
+        out.extend_from_slice(&ihdr);
+        out.extend_from_slice(&crc32(&ihdr).to_be_bytes());
+        for chunk in [&b"IDAT"[..], &b"IEND"[..]] {
+            out.extend_from_slice(&0u32.to_be_bytes());
+            out.extend_from_slice(chunk);
+            out.extend_from_slice(&crc32(chunk).to_be_bytes());
+        }
+        out
+    }
+
+    #[test]
+    fn a_huge_size_in_the_header_is_refused_before_decoding() {
+        assert_eq!(
+            crc32(b"IEND"),
+            0xae42_6082,
+            "the CRC of IEND, as every PNG ends"
+        );
+        let start = std::time::Instant::now();
+        let e = decode_rgba(&png_header(22_000, 22_000), "big.png").unwrap_err();
+        assert!(matches!(e, Error::Dimensions(_)), "{e}");
+        assert!(
+            e.to_string().contains("big.png") && e.to_string().contains("22000x22000"),
+            "{e}"
+        );
+        // Within the limits, the same header gets as far as the (missing) data.
+        let e = decode_rgba(&png_header(64, 48), "small.png").unwrap_err();
+        assert!(matches!(e, Error::Decode { .. }), "{e}");
+        assert!(start.elapsed().as_secs_f64() < 1.0);
+    }
 
     #[test]
     fn corrupt_bytes_give_a_decode_error() {

@@ -27,10 +27,11 @@ pub struct Args {
     /// Folder of right-camera frames (stereo trackers), same names.
     #[arg(long)]
     right: Option<PathBuf>,
-    /// RNG seed.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
-    /// JSON file of tracker options (merged over `camera`, `particles`, `seed`).
+    /// RNG seed (default 1; give it here or as `seed` in --config, not both).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// JSON file of tracker options (`particles`, `seed` and the tracker's own; the camera
+    /// comes from --camera only).
     #[arg(long)]
     config: Option<PathBuf>,
     /// JSON-lines file of the car's motion, one line per frame in frame order, with `t`
@@ -77,11 +78,30 @@ pub fn run(args: Args) -> Result<()> {
         }
         None => serde_json::Map::new(),
     };
+    let config_name = || {
+        args.config
+            .as_ref()
+            .map_or_else(String::new, |p| p.display().to_string())
+    };
+    if options.contains_key("camera") {
+        return Err(Error::Config(format!(
+            "{}: `camera` comes from --camera; remove it from the config file",
+            config_name()
+        )));
+    }
+    if let (Some(flag), Some(file)) = (args.seed, options.get("seed")) {
+        return Err(Error::Config(format!(
+            "the seed is given twice: --seed {flag} and `seed`: {file} in {}; keep one",
+            config_name()
+        )));
+    }
     options.insert(
         "camera".into(),
         serde_json::to_value(&camera).map_err(|e| Error::Config(e.to_string()))?,
     );
-    options.entry("seed").or_insert(args.seed.into());
+    options
+        .entry("seed")
+        .or_insert(args.seed.unwrap_or(1).into());
     let config = TrackerConfig::from_json_str(&serde_json::Value::Object(options).to_string())?;
     let mut tracker = trackers::create(&args.tracker, &config)?;
     match (&args.right, tracker.is_stereo()) {
