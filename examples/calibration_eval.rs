@@ -4,8 +4,8 @@
 //! (defaults: seeds 101..=112, 150 frames, scenarios highway-straight,highway-curve,s-curve,
 //! shadows,worn-markings,multi-lane cycled over the seeds).
 //!
-//! For each seed a camera pose is drawn (pitch -2..8 deg, yaw -3..3 deg, height 1.1..2.4 m,
-//! horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
+//! For each seed a camera pose is drawn (`synth::drawn_camera`: pitch -2..8 deg, yaw -3..3 deg,
+//! height 1.1..2.4 m, horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
 //! calibrator is fed every frame, once with the true intrinsics and once with none (focal
 //! length from its 60 degree default); the pose errors are printed, the yaw error also against
 //! the yaw the vanishing point can show (the mount's yaw minus the car's mean heading relative
@@ -17,36 +17,11 @@
 use lanepf::calib::{Calibrator, CalibratorConfig};
 use lanepf::camera::{Camera, CameraFile};
 use lanepf::eval::synthetic::evaluate;
-use lanepf::filter::Rng;
 use lanepf::lane::LaneEstimate;
-use lanepf::synth::{scenario, Eye, Scene};
+use lanepf::synth::{drawn_camera, scenario, Eye, Scene};
 use lanepf::trackers::{self, TrackerConfig};
 
 const TRACKERS: [&str; 4] = ["adachi-mmpf", "danescu-mono", "lee-cpf", "liu-ppf"];
-
-fn draw_camera(rng: &mut Rng) -> CameraFile {
-    let (w, h) = (640usize, 480usize);
-    let hfov: f64 = 50.0 + 40.0 * rng.uniform();
-    let f = 0.5 * w as f64 / lanepf::math::tan((0.5 * hfov).to_radians());
-    CameraFile {
-        width: w,
-        height: h,
-        fx: f,
-        fy: f,
-        cx: 0.5 * w as f64 + 10.0 * (rng.uniform() - 0.5),
-        cy: 0.5 * h as f64 + 10.0 * (rng.uniform() - 0.5),
-        height_m: 1.1 + 1.3 * rng.uniform(),
-        pitch_deg: -2.0 + 10.0 * rng.uniform(),
-        yaw_deg: -3.0 + 6.0 * rng.uniform(),
-        roll_deg: 0.0,
-        k1: 0.0,
-        k2: 0.0,
-        p1: 0.0,
-        p2: 0.0,
-        k3: 0.0,
-        baseline_m: None,
-    }
-}
 
 fn track(
     id: &str,
@@ -96,8 +71,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut losses: Vec<Vec<f64>> = vec![Vec::new(); TRACKERS.len()];
     for seed in from..=to {
         let name = &names[(seed - from) as usize % names.len()];
-        let mut rng = Rng::new(seed);
-        let truth_cam = draw_camera(&mut rng);
+        let truth_cam = drawn_camera(seed);
         let camera = Camera::from_file(&truth_cam)?;
         let mut config = scenario(name)?;
         config.frames = n_frames;

@@ -2,34 +2,7 @@
 
 use super::*;
 use crate::camera::{Camera, CameraFile};
-use crate::filter::Rng;
-use crate::synth::{scenario, Eye, Scene};
-
-/// A camera with a pose drawn from `seed`: pitch -2..8 deg, yaw -3..3 deg, height 1.1..2.4 m,
-/// horizontal field of view 50..90 deg, 640x480.
-fn drawn_camera(seed: u64) -> CameraFile {
-    let mut rng = Rng::new(seed);
-    let hfov = 50.0 + 40.0 * rng.uniform();
-    let f = 320.0 / crate::math::tan(crate::math::deg_to_rad(0.5 * hfov));
-    CameraFile {
-        width: 640,
-        height: 480,
-        fx: f,
-        fy: f,
-        cx: 320.0 + 10.0 * (rng.uniform() - 0.5),
-        cy: 240.0 + 10.0 * (rng.uniform() - 0.5),
-        height_m: 1.1 + 1.3 * rng.uniform(),
-        pitch_deg: -2.0 + 10.0 * rng.uniform(),
-        yaw_deg: -3.0 + 6.0 * rng.uniform(),
-        roll_deg: 0.0,
-        k1: 0.0,
-        k2: 0.0,
-        p1: 0.0,
-        p2: 0.0,
-        k3: 0.0,
-        baseline_m: None,
-    }
-}
+use crate::synth::{drawn_camera, scenario, Eye, Scene};
 
 /// Feeds `frames` frames of `name` seen through `truth` and returns the estimate and the car's
 /// mean heading relative to the lane over those frames, degrees.

@@ -25,7 +25,8 @@ pub use road::{LaneGap, Road, RoadConfig, Sample, Segment, WidthChange};
 pub use scenarios::{scenario, SCENARIOS};
 pub use scene::{Appearance, RoadPaint, SceneConfig, Shadow, Vehicle, VerticalProfile};
 pub use simulator::{
-    default_camera, frame_fingerprint, Eye, Scene, DEFAULT_BASELINE_M, SCENE_FINGERPRINT,
+    default_camera, drawn_camera, frame_fingerprint, Eye, Scene, DEFAULT_BASELINE_M,
+    SCENE_FINGERPRINT,
 };
 pub use test_road::{TestRoad, TestRoadConfig};
 pub use truth::TRUTH_RANGE_M;

@@ -67,6 +67,34 @@ pub fn default_camera(width: usize, height: usize) -> Result<Camera> {
     })
 }
 
+/// A 640x480 pinhole camera with a mounting drawn from `seed`, for checking what must work
+/// for any camera (auto-calibration, trackers): horizontal field of view 50 to 90 degrees,
+/// principal point within 5 px of the centre, height 1.1 to 2.4 m, pitch -2 to 8 degrees, yaw
+/// -3 to 3 degrees, no roll, no distortion (uniform draws, in that order).
+pub fn drawn_camera(seed: u64) -> crate::camera::CameraFile {
+    let mut rng = crate::filter::Rng::new(seed);
+    let hfov = 50.0 + 40.0 * rng.uniform();
+    let f = 320.0 / crate::math::tan(crate::math::deg_to_rad(0.5 * hfov));
+    crate::camera::CameraFile {
+        width: 640,
+        height: 480,
+        fx: f,
+        fy: f,
+        cx: 320.0 + 10.0 * (rng.uniform() - 0.5),
+        cy: 240.0 + 10.0 * (rng.uniform() - 0.5),
+        height_m: 1.1 + 1.3 * rng.uniform(),
+        pitch_deg: -2.0 + 10.0 * rng.uniform(),
+        yaw_deg: -3.0 + 6.0 * rng.uniform(),
+        roll_deg: 0.0,
+        k1: 0.0,
+        k2: 0.0,
+        p1: 0.0,
+        p2: 0.0,
+        k3: 0.0,
+        baseline_m: None,
+    }
+}
+
 impl Scene {
     /// Builds `config` for `camera` with `seed` (texture, noise and every random choice).
     ///
