@@ -130,6 +130,9 @@ pub struct CalibrationEstimate {
     pub intrinsics_known: bool,
 }
 
+/// Least ridge contrast of a marking pixel, grey levels of the marking intensity (see
+/// [`super::ridges`]).
+pub const MIN_RIDGE_CONTRAST: i32 = 12;
 /// Most samples kept (the oldest go first): about a minute of straight road at 30 fps.
 pub const MAX_SAMPLES: usize = 2000;
 /// Samples for full confidence by count.
@@ -361,7 +364,7 @@ impl Calibrator {
         find_ridges(
             &self.work,
             top..bottom,
-            12,
+            MIN_RIDGE_CONTRAST,
             &mut self.ridge_scratch,
             &mut self.ridges,
         );
@@ -391,18 +394,19 @@ impl Calibrator {
             min_extent: 0.15 * span,
             max_lines: 8,
         };
-        let mut lines = Vec::new();
+        // The last frame's line buffer is reused: no allocation once it has grown.
+        let mut lines = std::mem::take(&mut self.last.lines);
+        lines.clear();
         self.hough
             .detect(&self.points, &self.weights, &params, &mut lines);
-        let full = |l: &LineFit| LineFit {
-            x_ref: l.x_ref * s,
-            y_ref: l.y_ref * s,
-            y_top: l.y_top * s,
-            y_bottom: l.y_bottom * s,
-            bend: l.bend * s,
-            ..*l
-        };
-        let mut lines: Vec<LineFit> = lines.iter().map(full).collect();
+        for l in &mut lines {
+            // Working pixels to full-resolution ones.
+            l.x_ref *= s;
+            l.y_ref *= s;
+            l.y_top *= s;
+            l.y_bottom *= s;
+            l.bend *= s;
+        }
         let bottom_row = bottom as f64 * s;
         let ego = self.ego_pair(&lines, bottom_row);
         self.vote_crossings(&lines);
