@@ -343,12 +343,12 @@ impl Calibrator {
         Ok(&self.last)
     }
 
-    /// Rows (working pixels) searched for markings: from just below the estimated horizon (or
+    /// Rows (working pixels) searched for markings: from just below the `prior` horizon (or
     /// a quarter of the way down before there is one) to 5 % above the bottom.
-    fn search_rows(&self) -> (usize, usize) {
+    fn search_rows(&self, prior: Option<[f64; 2]>) -> (usize, usize) {
         let h = self.work.height();
         let bottom = (0.95 * h as f64) as usize;
-        let top = match self.prior_vanishing_point() {
+        let top = match prior {
             Some(vp) => {
                 let v = vp[1] / self.scale as f64 + 0.03 * h as f64;
                 v.clamp(0.0, 0.8 * h as f64) as usize
@@ -359,7 +359,10 @@ impl Calibrator {
     }
 
     fn observe(&mut self) {
-        let (top, bottom) = self.search_rows();
+        // Where the road vanishes as known before this frame: it sets the rows searched and
+        // picks the ego pair.
+        let prior = self.prior_vanishing_point();
+        let (top, bottom) = self.search_rows(prior);
         self.ridges.clear();
         find_ridges(
             &self.work,
@@ -408,8 +411,9 @@ impl Calibrator {
             l.bend *= s;
         }
         let bottom_row = bottom as f64 * s;
-        let ego = self.ego_pair(&lines, bottom_row);
-        self.vote_crossings(&lines);
+        let (left, right) = Self::sides(&lines);
+        let ego = self.ego_pair(&lines, &left, &right, prior, bottom_row);
+        self.vote_crossings(&lines, &left, &right);
         let vanishing_point = ego.and_then(|[l, r]| crossing(&lines[l], &lines[r]));
         if let (Some([l, r]), Some(vp)) = (ego, vanishing_point) {
             // Bends over the rows from 15 % of the way down from the vanishing point.
@@ -497,11 +501,10 @@ impl Calibrator {
     }
 
     /// Every left/right pair votes where it meets (see [`VpVotes`]).
-    fn vote_crossings(&mut self, lines: &[LineFit]) {
+    fn vote_crossings(&mut self, lines: &[LineFit], left: &[usize], right: &[usize]) {
         self.votes.decay();
-        let (left, right) = Self::sides(lines);
-        for &l in &left {
-            for &r in &right {
+        for &l in left {
+            for &r in right {
                 if let Some(vp) = self.meeting(&lines[l], &lines[r]) {
                     let weight = lines[l].support.min(lines[r].support) as f32;
                     self.votes.vote(vp, weight);
@@ -510,12 +513,19 @@ impl Calibrator {
         }
     }
 
-    /// The ego boundaries. With a prior vanishing point: of the lines passing within 6 % of the
-    /// width of it, the left-leaning and the right-leaning one nearest the middle at the bottom
-    /// row. Without one: the pair with the most support that meets where a road can vanish.
-    fn ego_pair(&self, lines: &[LineFit], bottom_row: f64) -> Option<[usize; 2]> {
-        let (left, right) = Self::sides(lines);
-        let pair = match self.prior_vanishing_point() {
+    /// The ego boundaries among the `left`- and `right`-leaning `lines`. With a prior vanishing
+    /// point: of the lines passing within 6 % of the width of it, the left-leaning and the
+    /// right-leaning one nearest the middle at the bottom row. Without one: the pair with the
+    /// most support that meets where a road can vanish.
+    fn ego_pair(
+        &self,
+        lines: &[LineFit],
+        left: &[usize],
+        right: &[usize],
+        prior: Option<[f64; 2]>,
+        bottom_row: f64,
+    ) -> Option<[usize; 2]> {
+        let pair = match prior {
             Some(vp) => {
                 let tol = 0.06 * self.width as f64;
                 let near = |&&i: &&usize| (lines[i].x_at(vp[1]) - vp[0]).abs() <= tol;
@@ -532,8 +542,8 @@ impl Calibrator {
             }
             None => {
                 let mut best = None;
-                for &l in &left {
-                    for &r in &right {
+                for &l in left {
+                    for &r in right {
                         let score = lines[l].support + lines[r].support;
                         if self.meeting(&lines[l], &lines[r]).is_some()
                             && best.is_none_or(|(s, _)| score > s)

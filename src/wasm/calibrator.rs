@@ -4,6 +4,7 @@
 use super::error::{from_js_object, to_js};
 use crate::calib::{Calibrator, CalibratorConfig, FrameObservation};
 use crate::camera::CameraFile;
+use crate::image::MAX_SIDE;
 use serde::{Deserialize, Serialize};
 use wasm_bindgen::prelude::*;
 
@@ -60,11 +61,11 @@ pub struct JsCalibrator {
     frame: Vec<u8>,
 }
 
-/// A frame side given from JavaScript: a whole number from 1 to 16384.
+/// A frame side given from JavaScript: a whole number from 1 to [`MAX_SIDE`].
 fn side(name: &str, v: f64) -> Result<usize, JsError> {
-    if !(v.is_finite() && v.fract() == 0.0 && (1.0..=16384.0).contains(&v)) {
+    if !(v.is_finite() && v.fract() == 0.0 && (1.0..=MAX_SIDE as f64).contains(&v)) {
         return Err(JsError::new(&format!(
-            "{name} = {v}: must be a whole number of pixels from 1 to 16384"
+            "{name} = {v}: must be a whole number of pixels from 1 to {MAX_SIDE}"
         )));
     }
     Ok(v as usize)
