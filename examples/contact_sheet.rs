@@ -14,22 +14,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let scale = w as f64 / 640.0;
     let camera = Camera::from_file(&CameraFile {
-        width: w,
-        height: h,
-        fx: 520.0 * scale,
-        fy: 520.0 * scale,
         cx: w as f64 / 2.0,
         cy: h as f64 / 2.0,
-        height_m: 1.5,
         pitch_deg: 4.0,
-        yaw_deg: 0.0,
-        roll_deg: 0.0,
-        k1: 0.0,
-        k2: 0.0,
-        p1: 0.0,
-        p2: 0.0,
-        k3: 0.0,
-        baseline_m: None,
+        ..CameraFile::pinhole(w, h, 520.0 * scale)
     })?;
     let cols = 4;
     let rows = SCENARIOS.len().div_ceil(cols);

@@ -356,22 +356,12 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
     let out = temp("calibrate");
     std::fs::create_dir_all(&out).unwrap();
     let truth = lanepf::camera::CameraFile {
-        width: 640,
-        height: 480,
-        fx: 480.0,
-        fy: 480.0,
         cx: 322.0,
         cy: 236.0,
         height_m: 1.6,
         pitch_deg: 3.0,
         yaw_deg: 1.0,
-        roll_deg: 0.0,
-        k1: 0.0,
-        k2: 0.0,
-        p1: 0.0,
-        p2: 0.0,
-        k3: 0.0,
-        baseline_m: None,
+        ..lanepf::camera::CameraFile::pinhole(640, 480, 480.0)
     };
     let cam = out.join("truth.json");
     truth.write(&cam).unwrap();

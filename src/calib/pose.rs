@@ -65,22 +65,13 @@ mod tests {
 
     fn camera(pitch_deg: f64, yaw_deg: f64, height_m: f64) -> Camera {
         Camera::from_file(&CameraFile {
-            width: 640,
-            height: 480,
-            fx: 520.0,
             fy: 510.0,
             cx: 321.0,
             cy: 236.0,
             height_m,
             pitch_deg,
             yaw_deg,
-            roll_deg: 0.0,
-            k1: 0.0,
-            k2: 0.0,
-            p1: 0.0,
-            p2: 0.0,
-            k3: 0.0,
-            baseline_m: None,
+            ..CameraFile::pinhole(640, 480, 520.0)
         })
         .unwrap()
     }

@@ -65,6 +65,31 @@ fn is_zero(v: &f64) -> bool {
 }
 
 impl CameraFile {
+    /// A `width` x `height` camera with square pixels of focal length `f`, the principal point
+    /// at the image centre, no distortion, level (pitch, yaw and roll 0) and 1.5 m above the
+    /// road, no stereo baseline: set the rest with struct update syntax,
+    /// `CameraFile { pitch_deg: 4.0, ..CameraFile::pinhole(640, 480, 520.0) }`.
+    pub fn pinhole(width: usize, height: usize, f: f64) -> Self {
+        Self {
+            width,
+            height,
+            fx: f,
+            fy: f,
+            cx: (width as f64 - 1.0) / 2.0,
+            cy: (height as f64 - 1.0) / 2.0,
+            height_m: 1.5,
+            pitch_deg: 0.0,
+            yaw_deg: 0.0,
+            roll_deg: 0.0,
+            k1: 0.0,
+            k2: 0.0,
+            p1: 0.0,
+            p2: 0.0,
+            k3: 0.0,
+            baseline_m: None,
+        }
+    }
+
     /// Parses the JSON text of a camera file.
     ///
     /// # Errors

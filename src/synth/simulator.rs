@@ -48,22 +48,9 @@ pub const DEFAULT_BASELINE_M: f64 = 0.3;
 pub fn default_camera(width: usize, height: usize) -> Result<Camera> {
     let f = width as f64 / 2.0 / crate::math::tan(crate::math::deg_to_rad(30.0));
     Camera::from_file(&crate::camera::CameraFile {
-        width,
-        height,
-        fx: f,
-        fy: f,
-        cx: (width as f64 - 1.0) / 2.0,
-        cy: (height as f64 - 1.0) / 2.0,
-        height_m: 1.5,
         pitch_deg: 4.0,
-        yaw_deg: 0.0,
-        roll_deg: 0.0,
-        k1: 0.0,
-        k2: 0.0,
-        p1: 0.0,
-        p2: 0.0,
-        k3: 0.0,
         baseline_m: Some(DEFAULT_BASELINE_M),
+        ..crate::camera::CameraFile::pinhole(width, height, f)
     })
 }
 
@@ -75,23 +62,14 @@ pub fn drawn_camera(seed: u64) -> crate::camera::CameraFile {
     let mut rng = crate::filter::Rng::new(seed);
     let hfov = 50.0 + 40.0 * rng.uniform();
     let f = 320.0 / crate::math::tan(crate::math::deg_to_rad(0.5 * hfov));
+    // Fields are evaluated in the order written: the draws keep their order.
     crate::camera::CameraFile {
-        width: 640,
-        height: 480,
-        fx: f,
-        fy: f,
         cx: 320.0 + 10.0 * (rng.uniform() - 0.5),
         cy: 240.0 + 10.0 * (rng.uniform() - 0.5),
         height_m: 1.1 + 1.3 * rng.uniform(),
         pitch_deg: -2.0 + 10.0 * rng.uniform(),
         yaw_deg: -3.0 + 6.0 * rng.uniform(),
-        roll_deg: 0.0,
-        k1: 0.0,
-        k2: 0.0,
-        p1: 0.0,
-        p2: 0.0,
-        k3: 0.0,
-        baseline_m: None,
+        ..crate::camera::CameraFile::pinhole(640, 480, f)
     }
 }
 
