@@ -233,6 +233,16 @@ export interface AdachiOptions {
   /** A frame is valid when each ego boundary's edge voted in at least this share of the
    *  voting region's rows (0.08; 0 to 1). */
   valid_support?: number;
+  /** 'straight': the paper's lanes parallel to the car; 'curved' (not in the paper): the edge
+   *  points are straightened by the road's bend and heading before they vote, and the
+   *  boundaries are drawn bent ('straight'). */
+  lane_shape?: 'straight' | 'curved';
+  /** 'curved' only: largest heading of the lane to the car searched, radians (0.1; 0 to 0.5). */
+  max_heading_rad?: number;
+  /** 'curved' only: largest curvature searched, 1/m (0.012; 0 to 0.05). */
+  max_curvature_per_m?: number;
+  /** 'curved' only: how far the followed road shape moves to each frame's best (0.5; (0, 1]). */
+  shape_gain?: number;
 }
 
 /** Options of `lee-cpf` (all optional; defaults shown). */

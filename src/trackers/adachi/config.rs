@@ -15,6 +15,17 @@ pub enum Polarity {
     Both,
 }
 
+/// The lane boundaries' shape along the road.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LaneShape {
+    /// Straight lines parallel to the car: the paper's model (Sec. 3.2).
+    Straight,
+    /// Not in the paper: the edge points are straightened by the road's bend and heading
+    /// before they vote ([`super::road_shape`]), and the boundaries are drawn bent.
+    Curved,
+}
+
 /// Settings of `adachi-mmpf`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -55,6 +66,14 @@ pub struct AdachiConfig {
     /// [`super::likelihood::Likelihood::support`]). Not in the paper, which does not define a
     /// valid frame.
     pub valid_support: f64,
+    /// `straight` (the paper) or `curved` (ours: see [`super::road_shape`]).
+    pub lane_shape: LaneShape,
+    /// `curved` only: the largest heading of the lane to the car searched, radians (0 to 0.5).
+    pub max_heading_rad: f64,
+    /// `curved` only: the largest curvature searched, 1/m (0 to 0.05, a 20 m radius).
+    pub max_curvature_per_m: f64,
+    /// `curved` only: how far the followed shape moves to each frame's best, (0, 1].
+    pub shape_gain: f64,
 }
 
 impl Default for AdachiConfig {
@@ -80,6 +99,10 @@ impl Default for AdachiConfig {
                 vec![0.0, 1.0 / 8.0, 1.0 / 8.0, 6.0 / 8.0],
             ],
             valid_support: 0.08,
+            lane_shape: LaneShape::Straight,
+            max_heading_rad: 0.1,
+            max_curvature_per_m: 0.012,
+            shape_gain: 0.5,
         }
     }
 }
@@ -145,6 +168,25 @@ impl AdachiConfig {
             0.0..=1.0,
             "must be a fraction in [0, 1]",
         )?;
+        require_within(
+            "max_heading_rad",
+            self.max_heading_rad,
+            0.0..=0.5,
+            "must be a heading in [0, 0.5] radians",
+        )?;
+        require_within(
+            "max_curvature_per_m",
+            self.max_curvature_per_m,
+            0.0..=0.05,
+            "must be a curvature in [0, 0.05] per metre (a radius of 20 m or more)",
+        )?;
+        if !(self.shape_gain > 0.0 && self.shape_gain <= 1.0) {
+            return Err(Error::parameter(
+                "shape_gain",
+                self.shape_gain,
+                "must be in (0, 1]",
+            ));
+        }
         if self.transitions.len() != 4 {
             return Err(Error::Config(
                 "transitions must be a 4x4 matrix (models 1-4)".into(),

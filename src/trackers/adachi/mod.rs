@@ -23,12 +23,17 @@
 //! vote still counts in the likelihood whatever it says.
 //!
 //! Boundaries are the straight lines rho_l parallel to the car (the paper's model assumes
-//! straight lanes along the driving direction), drawn from `near_m` to 3 `far_m`.
+//! straight lanes along the driving direction), drawn from `near_m` to 3 `far_m`. With
+//! `lane_shape: "curved"` (ours, see [`road_shape`]) the votes are straightened by the road's
+//! bend first and the boundaries are drawn along rho_l + s1 x + s2 x^2.
 
 pub mod config;
 pub mod grid;
+#[cfg(test)]
+mod lane_shape_tests;
 pub mod likelihood;
 pub mod motion;
+pub mod road_shape;
 pub mod votes;
 
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
@@ -119,6 +124,9 @@ pub struct AdachiEstimate {
     pub valid: bool,
     /// Effective sample size after the frame's weighing.
     pub ess: f64,
+    /// The road shape (s1, s2) the votes were straightened by: a boundary at rho_0 lies at
+    /// rho_0 + s1 x + s2 x^2 (0, 0 for the paper's straight lanes).
+    pub shape: [f64; 2],
 }
 
 impl AdachiTracker {
@@ -358,11 +366,13 @@ impl AdachiTracker {
             support,
             valid: support[0].min(support[1]) >= self.config.valid_support,
             ess: self.filter.ess(),
+            shape: self.votes.shape(),
         }
     }
 
-    /// The boundaries model `r` (1..4) has at lane position `q` and width `w` (eq. 1).
-    fn boundaries(&self, r: usize, q: f64, w: f64) -> Vec<Boundary> {
+    /// The boundaries model `r` (1..4) has at lane position `q` and width `w` (eq. 1), bent by
+    /// the road `shape`.
+    fn boundaries(&self, r: usize, q: f64, w: f64, shape: [f64; 2]) -> Vec<Boundary> {
         let roles = [
             Role::EgoLeft,
             Role::EgoRight,
@@ -374,9 +384,9 @@ impl AdachiTracker {
             if !COEFFICIENTS[r - 1][l] {
                 continue;
             }
-            let y = -(q + OFFSETS[l] * w / 2.0);
+            let rho = q + OFFSETS[l] * w / 2.0;
             let (points, road_points) = sample_road_curve(
-                |_| y,
+                |x| -(rho + shape[0] * x + shape[1] * x * x),
                 |x, y| self.camera.road_to_pixel(x, y),
                 self.config.near_m.min(3.0),
                 self.config.far_m * 3.0,
@@ -394,7 +404,7 @@ impl AdachiTracker {
 
     /// The estimate as the shared output type.
     pub fn to_lane_estimate(&self, e: &AdachiEstimate) -> LaneEstimate {
-        let boundaries = self.boundaries(e.r, e.q, e.w);
+        let boundaries = self.boundaries(e.r, e.q, e.w, e.shape);
         let state = [
             ("adachi.q", e.q),
             ("adachi.w", e.w),
@@ -418,8 +428,8 @@ impl AdachiTracker {
             ms: 0.0,
             boundaries,
             lateral_offset_m: e.q,
-            heading_rad: 0.0,
-            curvature_per_m: 0.0,
+            heading_rad: -e.shape[0],
+            curvature_per_m: -2.0 * e.shape[1],
             lane_width_m: e.w,
             delimiters: Vec::new(),
             state,
@@ -439,6 +449,7 @@ impl Tracker for AdachiTracker {
 
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
+        self.votes.reset_shape();
         self.first = true;
         self.q_track = None;
         self.lane_index = 0;
@@ -470,7 +481,12 @@ impl Tracker for AdachiTracker {
                 Hypothesis {
                     weight: weights[i],
                     group: p.model as i32 + 1,
-                    boundaries: self.boundaries(p.model + 1, p.state.q, p.state.w),
+                    boundaries: self.boundaries(
+                        p.model + 1,
+                        p.state.q,
+                        p.state.w,
+                        self.votes.shape(),
+                    ),
                 }
             })
             .collect()

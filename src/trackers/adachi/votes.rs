@@ -6,8 +6,13 @@
 //! An edge point is a local maximum along its row of the horizontal Sobel response of the
 //! chosen polarity, above a threshold, so each marking edge votes once per image row. The
 //! pixel-to-bin table is built once; a frame converts and scans only the region's rows.
+//!
+//! With `lane_shape: "curved"` (not the paper's) each region pixel also keeps its road point
+//! (x ahead, rho), and a frame's edge points are voted where [`road_shape`](super::road_shape)
+//! straightens them.
 
-use super::config::{AdachiConfig, Polarity};
+use super::config::{AdachiConfig, LaneShape, Polarity};
+use super::road_shape::{Shape, ShapeSearch};
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::image::luma;
@@ -31,6 +36,18 @@ pub struct Votes {
     rho_min: f64,
     polarity: Polarity,
     threshold: f32,
+    /// `lane_shape: "curved"`: the road point (x ahead, rho) of each region pixel, the frame's
+    /// edge points, the search, the followed shape (None before the first frame) and its gain.
+    curved: Option<Curved>,
+}
+
+#[derive(Debug, Clone)]
+struct Curved {
+    road: Vec<(f32, f32)>,
+    points: Vec<(f32, f32)>,
+    search: ShapeSearch,
+    shape: Option<Shape>,
+    gain: f64,
 }
 
 impl Votes {
@@ -42,7 +59,9 @@ impl Votes {
         let (w, h) = (camera.width(), camera.height());
         let bins_n = (2.0 * config.rho_range_m / config.bin_m).round() as usize;
         let rho_min = -config.rho_range_m;
+        let curved = config.lane_shape == LaneShape::Curved;
         let mut table = vec![u32::MAX; w * h];
+        let mut road = vec![(0.0f32, 0.0f32); if curved { w * h } else { 0 }];
         let (mut first, mut last) = (h, 0);
         for v in 0..h {
             for u in 0..w {
@@ -55,6 +74,9 @@ impl Votes {
                 let bin = ((-y - rho_min) / config.bin_m).floor();
                 if bin >= 0.0 && (bin as usize) < bins_n {
                     table[v * w + u] = bin as u32;
+                    if curved {
+                        road[v * w + u] = (x as f32, -y as f32);
+                    }
                     first = first.min(v);
                     last = last.max(v);
                 }
@@ -62,6 +84,20 @@ impl Votes {
         }
         let rows = if first <= last { first..last + 1 } else { 0..0 };
         let bins = table[rows.start * w..rows.end * w].to_vec();
+        let curved = curved.then(|| Curved {
+            road: road[rows.start * w..rows.end * w].to_vec(),
+            points: Vec::with_capacity(rows.len() * 16),
+            search: ShapeSearch::new(
+                config.max_heading_rad,
+                config.max_curvature_per_m,
+                config.far_m,
+                config.bin_m,
+                rho_min,
+                bins_n,
+            ),
+            shape: None,
+            gain: config.shape_gain,
+        });
         let mut noise = vec![0.0; bins_n];
         for &b in &bins {
             if b != u32::MAX {
@@ -93,7 +129,25 @@ impl Votes {
             rho_min,
             polarity: config.polarity,
             threshold: config.edge_threshold as f32,
+            curved,
         })
+    }
+
+    /// The road shape (s1, s2) the last frame was straightened by (`lane_shape: "curved"`;
+    /// (0, 0) for the paper's straight lanes): a boundary at rho_0 lies at
+    /// rho_0 + s1 x + s2 x^2 at x metres ahead.
+    pub fn shape(&self) -> Shape {
+        self.curved
+            .as_ref()
+            .and_then(|c| c.shape)
+            .unwrap_or([0.0, 0.0])
+    }
+
+    /// Forgets the followed road shape (the next frame starts from its own best).
+    pub fn reset_shape(&mut self) {
+        if let Some(c) = &mut self.curved {
+            c.shape = None;
+        }
     }
 
     /// Number of bins M.
@@ -153,6 +207,9 @@ impl Votes {
             }
         }
         let mut n = 0;
+        if let Some(c) = &mut self.curved {
+            c.points.clear();
+        }
         for v in self.rows.clone() {
             let k = v - top;
             let up = k.saturating_sub(1);
@@ -175,13 +232,43 @@ impl Votes {
                 let peak =
                     r > self.threshold && r >= self.response[u - 1] && r > self.response[u + 1];
                 if peak && b != u32::MAX {
-                    self.histogram[b as usize] += 1.0;
-                    n += 1;
+                    match &mut self.curved {
+                        None => {
+                            self.histogram[b as usize] += 1.0;
+                            n += 1;
+                        }
+                        Some(c) => c.points.push(c.road[(v - self.rows.start) * w + u]),
+                    }
                 }
             }
         }
-        n
+        match &mut self.curved {
+            None => n,
+            Some(c) => vote_straightened(c, &mut self.histogram),
+        }
     }
+}
+
+/// Finds and follows the road shape of the frame's edge points, then votes each one where the
+/// shape straightens it; returns the number of votes.
+fn vote_straightened(c: &mut Curved, histogram: &mut [f64]) -> usize {
+    let best = c.search.best(&c.points);
+    let shape = match c.shape {
+        None => best,
+        Some(prev) => [
+            prev[0] + c.gain * (best[0] - prev[0]),
+            prev[1] + c.gain * (best[1] - prev[1]),
+        ],
+    };
+    c.shape = Some(shape);
+    let mut n = 0;
+    for &(x, rho) in &c.points {
+        if let Some(j) = c.search.bin(x, rho, shape) {
+            histogram[j] += 1.0;
+            n += 1;
+        }
+    }
+    n
 }
 
 #[cfg(test)]
