@@ -25,12 +25,15 @@ use lanepf::lane::{LaneEstimate, Role};
 use lanepf::trackers::{self, TrackerConfig};
 use std::path::{Path, PathBuf};
 
-const TRACKERS: [&str; 5] = [
-    "adachi-mmpf",
-    "danescu-mono",
-    "lee-cpf",
-    "liu-ppf",
-    "liu-ppf-nokernel",
+/// Each row: a tracker id and the options it runs with (JSON; `{}` the defaults), so that a
+/// named option beyond a paper is reported beside the paper's method.
+const TRACKERS: [(&str, &str); 6] = [
+    ("adachi-mmpf", "{}"),
+    ("adachi-mmpf", r#"{"lane_shape": "curved"}"#),
+    ("danescu-mono", "{}"),
+    ("lee-cpf", "{}"),
+    ("liu-ppf", "{}"),
+    ("liu-ppf-nokernel", "{}"),
 ];
 const STILL_ITERATIONS: u32 = 5;
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -98,7 +101,7 @@ fn camera(source: &CameraSource, frames: &[RgbaFrame]) -> Res<(CameraFile, Strin
 }
 
 fn track(
-    id: &str,
+    (id, options): (&str, &str),
     camera: &CameraFile,
     frames: &[RgbaFrame],
     names: &[String],
@@ -108,7 +111,7 @@ fn track(
         camera: camera.clone(),
         particles: None,
         seed: 1,
-        options: Default::default(),
+        options: serde_json::from_str(options)?,
     };
     let mut tracker = trackers::create(id, &config)?;
     let mut out = Vec::new();
@@ -324,8 +327,8 @@ fn main() -> Res<()> {
         let (cam, note) = camera(&run.camera, &frames)?;
         notes.push(format!("- {}: {note}", run.label));
         let mut all = Vec::new();
-        for (k, id) in TRACKERS.iter().enumerate() {
-            let preds = track(id, &cam, &frames, &names, run.still)?;
+        for (k, &row) in TRACKERS.iter().enumerate() {
+            let preds = track(row, &cam, &frames, &names, run.still)?;
             let valid = preds.iter().filter(|p| p.valid).count();
             let cell = match &run.eval {
                 Some((format, gt)) => {
@@ -340,7 +343,7 @@ fn main() -> Res<()> {
                     100.0 * valid as f64 / preds.len().max(1) as f64
                 ),
             };
-            eprintln!("{} / {id}: {cell}", run.label);
+            eprintln!("{} / {} {}: {cell}", run.label, row.0, row.1);
             rows[k].push(cell);
             all.push(preds);
         }
@@ -349,8 +352,13 @@ fn main() -> Res<()> {
             sheet(&out.join(name), &frames, &all, &samples, 4)?;
         }
     }
-    for (k, id) in TRACKERS.iter().enumerate() {
-        table += &format!("| {id} | {} |\n", rows[k].join(" | "));
+    for (k, (id, options)) in TRACKERS.iter().enumerate() {
+        let name = if *options == "{}" {
+            id.to_string()
+        } else {
+            format!("{id} `{options}`")
+        };
+        table += &format!("| {name} | {} |\n", rows[k].join(" | "));
     }
     let report = format!("{table}\nCameras:\n{}\n", notes.join("\n"));
     std::fs::write(out.join("report.md"), &report)?;

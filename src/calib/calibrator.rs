@@ -135,6 +135,15 @@ pub struct CalibrationEstimate {
 pub const MIN_RIDGE_CONTRAST: i32 = 12;
 /// Most samples kept (the oldest go first): about a minute of straight road at 30 fps.
 pub const MAX_SAMPLES: usize = 2000;
+/// The mounts a vanishing point may imply: pitch (down positive) and |yaw|, degrees. A
+/// dash-cam looks at the road ahead; two lines meeting where no mounted camera looks (tree
+/// trunks, poles, the side of a truck) are not the lane.
+pub const PITCH_RANGE_DEG: [f64; 2] = [-10.0, 20.0];
+/// See [`PITCH_RANGE_DEG`].
+pub const MAX_YAW_DEG: f64 = 15.0;
+/// The camera heights, metres, an ego pair may imply with the lane-width prior: from a low
+/// car's dashboard to a truck's cab. A wider or narrower pair is not the ego lane.
+pub const HEIGHT_RANGE_M: [f64; 2] = [0.8, 4.0];
 /// Samples for full confidence by count.
 const FULL_COUNT: f64 = 30.0;
 
@@ -490,14 +499,19 @@ impl Calibrator {
         (pick(true), pick(false))
     }
 
-    /// Where `left` and `right` meet, if that is a possible vanishing point: above most of the
-    /// points of both, and not absurdly far off the image.
+    /// Where `left` and `right` meet, if that is a possible vanishing point of the road: above
+    /// most of the points of both, and implying a mount within [`PITCH_RANGE_DEG`] and
+    /// [`MAX_YAW_DEG`]. (Asking both lines to reach down towards the car as well, to refuse
+    /// tree trunks, also refused dashed boundaries whose nearest dash is far: not kept.)
     fn meeting(&self, left: &LineFit, right: &LineFit) -> Option<[f64; 2]> {
         let vp = crossing(left, right)?;
-        let (w, h) = (self.width as f64, self.height as f64);
         let mid = |l: &LineFit| 0.5 * (l.y_top + l.y_bottom);
         let above = vp[1] <= mid(left).min(mid(right));
-        (above && vp[1] > -0.5 * h && (vp[0] - 0.5 * w).abs() < w).then_some(vp)
+        let [pitch, yaw] = pose_from_vanishing_point(&self.pinhole, vp);
+        let [lo, hi] = PITCH_RANGE_DEG;
+        let mount =
+            (lo..=hi).contains(&pitch.to_degrees()) && yaw.to_degrees().abs() <= MAX_YAW_DEG;
+        (above && mount).then_some(vp)
     }
 
     /// Every left/right pair votes where it meets (see [`VpVotes`]).
@@ -545,9 +559,10 @@ impl Calibrator {
                 for &l in left {
                     for &r in right {
                         let score = lines[l].support + lines[r].support;
-                        if self.meeting(&lines[l], &lines[r]).is_some()
-                            && best.is_none_or(|(s, _)| score > s)
-                        {
+                        let plausible = self.meeting(&lines[l], &lines[r]).is_some_and(|vp| {
+                            self.sample(vp, &lines[l], &lines[r], bottom_row).is_some()
+                        });
+                        if plausible && best.is_none_or(|(s, _)| score > s) {
                             best = Some((score, [l, r]));
                         }
                     }
@@ -580,7 +595,9 @@ impl Calibrator {
         let yl = lateral_at_unit_height(k, pitch, yaw, [left.x_at(row), row])?;
         let yr = lateral_at_unit_height(k, pitch, yaw, [right.x_at(row), row])?;
         let width_at_unit_height = yl - yr;
-        (width_at_unit_height > 0.05).then_some(Sample {
+        let height = self.config.lane_width_m / width_at_unit_height;
+        let [lo, hi] = HEIGHT_RANGE_M;
+        (width_at_unit_height > 0.0 && (lo..=hi).contains(&height)).then_some(Sample {
             pitch,
             yaw,
             width_at_unit_height,

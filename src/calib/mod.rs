@@ -34,6 +34,13 @@
 //! undetermined (a wrong f stretches the road lengthwise, not across), comes from the field of
 //! view when not given (`hfov_deg`, 60 degrees by default); roll, which one vanishing point does
 //! not determine either, is taken as zero; the height is only as right as the lane-width prior.
+//!
+//! What it assumes (a dash-cam's mount): a pair of lines counts as the ego lane only when its
+//! vanishing point implies a pitch of -10 to 20 degrees down and a yaw within 15 degrees
+//! ([`calibrator::PITCH_RANGE_DEG`], [`calibrator::MAX_YAW_DEG`]) and, with the lane-width prior,
+//! a height of 0.8 to 4 m ([`calibrator::HEIGHT_RANGE_M`]). Tree trunks, poles and the sides of
+//! trucks meet where no mounted camera looks; a camera mounted outside these ranges gets no
+//! estimate.
 
 pub mod calibrator;
 pub mod hough;

@@ -122,3 +122,29 @@ fn a_wrong_lane_width_prior_scales_the_height_and_nothing_else() {
     assert!((b.height_m / a.height_m - 1.1).abs() < 1e-9, "{a:?} {b:?}");
     assert_eq!((a.pitch_deg, a.yaw_deg), (b.pitch_deg, b.yaw_deg));
 }
+
+/// A camera pitched 26 deg down (beyond [`PITCH_RANGE_DEG`]) is not a dash-cam's mount: the
+/// calibrator refuses to believe a road vanishes that high and gives no estimate (a pair of
+/// tree trunks or a truck's edges meets as high as that); the same road seen at 14 deg, as
+/// Caltech's camera is, is measured.
+#[test]
+fn vanishing_points_no_mount_could_see_are_refused() {
+    let feed = |pitch_deg: f64| {
+        let mut truth = drawn_camera(12);
+        truth.pitch_deg = pitch_deg;
+        let mut config = scenario("highway-straight").unwrap();
+        config.frames = 40;
+        let mut scene = Scene::new(config, Camera::from_file(&truth).unwrap(), 12).unwrap();
+        let mut cal = Calibrator::new(640, 480, Some(&truth), CalibratorConfig::default()).unwrap();
+        let mut rgba = vec![0u8; 640 * 480 * 4];
+        for i in 0..40 {
+            scene.render(i, Eye::Left, &mut rgba, None).unwrap();
+            cal.feed_rgba(&rgba, 640, 480).unwrap();
+        }
+        cal.estimate()
+    };
+    let steep = feed(26.0);
+    assert!(steep.is_none(), "{steep:?}");
+    let usual = feed(14.0).expect("an estimate at 14 deg");
+    assert!((usual.camera.pitch_deg - 14.0).abs() < 0.5, "{usual:?}");
+}
