@@ -12,7 +12,8 @@
 //! frames first, with the known intrinsics where there are some):
 //! - Caltech cordova1, 77 frames as a sequence: Aly's rule, ego lanes and all lanes;
 //! - CULane 06030819_0755, 60 frames 3 s apart: still mode (5 iterations a frame), auto camera
-//!   from the frames as stills, F1 at IoU 0.5 on 30 px lanes;
+//!   from the frames as stills, and an oracle camera from the labels (the dataset has none),
+//!   F1 at IoU 0.5 on 30 px lanes;
 //! - TuSimple, 6 frames: still mode, auto camera as stills, the official accuracy / FP / FN;
 //! - Udacity project_video and challenge_video (1280x720), the chessboard intrinsics with the
 //!   demo's pose and auto: valid rate, and the sheets.
@@ -41,6 +42,8 @@ type Res<T> = Result<T, Box<dyn std::error::Error>>;
 /// Where a dataset's camera comes from.
 enum CameraSource {
     File(PathBuf),
+    /// CULane ships no camera: an oracle one from its own labels (see [`camera_from_labels`]).
+    CulaneLabels(PathBuf),
     Auto {
         intrinsics: Option<PathBuf>,
         stills: bool,
@@ -69,6 +72,15 @@ fn list(dir: &Path, limit: usize) -> Res<Vec<PathBuf>> {
 fn camera(source: &CameraSource, frames: &[RgbaFrame]) -> Res<(CameraFile, String)> {
     match source {
         CameraSource::File(p) => Ok((CameraFile::read(p)?, "given".into())),
+        CameraSource::CulaneLabels(dir) => {
+            let f0 = frames.first().ok_or("no frames")?;
+            let cam = camera_from_labels(dir, f0.width, f0.height)?;
+            let note = format!(
+                "from the labels: pitch {:.2}, yaw {:.2}, h {:.2} m (60 deg field of view assumed)",
+                cam.pitch_deg, cam.yaw_deg, cam.height_m
+            );
+            Ok((cam, note))
+        }
         CameraSource::Auto { intrinsics, stills } => {
             let intr = intrinsics.as_deref().map(CameraFile::read).transpose()?;
             let config = CalibratorConfig {
@@ -98,6 +110,77 @@ fn camera(source: &CameraSource, frames: &[RgbaFrame]) -> Res<(CameraFile, Strin
             Ok((e.camera, note))
         }
     }
+}
+
+/// An oracle camera for a CULane folder, from its labels (the dataset has no camera): for each
+/// frame, a straight line through the lower half of the points of the labelled ego pair (the
+/// nearest lanes left and right of the middle at the bottom); where the two meet is the
+/// vanishing point (pitch, yaw with a 60 degree field of view), and the 3.6 m lane-width prior
+/// over their distance at the bottom row gives the height; medians over the frames. It says
+/// what the trackers do with a right camera; it is not a calibration a user could run.
+fn camera_from_labels(dir: &Path, width: usize, height: usize) -> Res<CameraFile> {
+    use lanepf::calib::pose::{lateral_at_unit_height, pose_from_vanishing_point, Pinhole};
+    let f = 0.5 * width as f64 / lanepf::math::tan(30f64.to_radians());
+    let k = Pinhole {
+        fx: f,
+        fy: f,
+        cx: 0.5 * width as f64,
+        cy: 0.5 * height as f64,
+    };
+    // x = a + b y through the lower half of a lane's points.
+    let fit = |pts: &[[f64; 2]]| -> Option<(f64, f64)> {
+        let mut p: Vec<[f64; 2]> = pts.to_vec();
+        p.sort_by(|a, b| b[1].total_cmp(&a[1]));
+        p.truncate(p.len().div_ceil(2).max(2));
+        let n = p.len() as f64;
+        let (my, mx) = (
+            p.iter().map(|q| q[1]).sum::<f64>() / n,
+            p.iter().map(|q| q[0]).sum::<f64>() / n,
+        );
+        let syy: f64 = p.iter().map(|q| (q[1] - my).powi(2)).sum();
+        let sxy: f64 = p.iter().map(|q| (q[1] - my) * (q[0] - mx)).sum();
+        (p.len() >= 2 && syy > 1e-9).then(|| (mx - sxy / syy * my, sxy / syy))
+    };
+    let bottom = height as f64 - 1.0;
+    let (mut pitches, mut yaws, mut heights) = (Vec::new(), Vec::new(), Vec::new());
+    for frame in lanepf::eval::culane::read_labels(dir)? {
+        let lines: Vec<(f64, f64)> = frame.lanes.iter().filter_map(|l| fit(l)).collect();
+        let at = |l: &(f64, f64)| l.0 + l.1 * bottom;
+        let mid = 0.5 * width as f64;
+        let left = lines
+            .iter()
+            .filter(|l| at(l) < mid)
+            .max_by(|a, b| at(a).total_cmp(&at(b)));
+        let right = lines
+            .iter()
+            .filter(|l| at(l) >= mid)
+            .min_by(|a, b| at(a).total_cmp(&at(b)));
+        let (Some(l), Some(r)) = (left, right) else {
+            continue;
+        };
+        if (l.1 - r.1).abs() < 1e-6 {
+            continue;
+        }
+        let y = (r.0 - l.0) / (l.1 - r.1);
+        let vp = [l.0 + l.1 * y, y];
+        let [pitch, yaw] = pose_from_vanishing_point(&k, vp);
+        let yl = lateral_at_unit_height(&k, pitch, yaw, [at(l), bottom]);
+        let yr = lateral_at_unit_height(&k, pitch, yaw, [at(r), bottom]);
+        if let (Some(yl), Some(yr)) = (yl, yr) {
+            pitches.push(pitch.to_degrees());
+            yaws.push(yaw.to_degrees());
+            heights.push(3.6 / (yl - yr));
+        }
+    }
+    let median = |v: &mut Vec<f64>| -> Res<f64> {
+        v.sort_by(f64::total_cmp);
+        Ok(*v.get(v.len() / 2).ok_or("no labelled ego pair")?)
+    };
+    let mut cam = CameraFile::pinhole(width, height, f);
+    cam.pitch_deg = median(&mut pitches)?;
+    cam.yaw_deg = median(&mut yaws)?;
+    cam.height_m = median(&mut heights)?;
+    Ok(cam)
 }
 
 fn track(
@@ -253,6 +336,14 @@ fn main() -> Res<()> {
                 intrinsics: None,
                 stills: true,
             },
+            still: true,
+            eval: Some((Format::Culane, culane.clone())),
+            sheet: None,
+        },
+        Run {
+            label: "CULane, camera from its labels (stills)".into(),
+            frames: list(&culane, usize::MAX)?,
+            camera: CameraSource::CulaneLabels(culane.clone()),
             still: true,
             eval: Some((Format::Culane, culane.clone())),
             sheet: None,
