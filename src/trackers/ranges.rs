@@ -426,4 +426,31 @@ mod tests {
             );
         }
     }
+
+    /// The ranges as pkg/README.md lists them: one bullet per tracker.
+    fn documented(ids: &[&str]) -> String {
+        let ranges = option_ranges(ids[0]).unwrap();
+        let list: Vec<String> = ranges
+            .iter()
+            .map(|r| format!("`{}` {} to {}", r.option, short(r.min), short(r.max)))
+            .collect();
+        let names: Vec<String> = ids.iter().map(|id| format!("`{id}`")).collect();
+        format!("- {}: {}.", names.join(", "), list.join(", "))
+    }
+
+    #[test]
+    fn the_package_readme_lists_every_range() {
+        let readme = include_str!("../../pkg/README.md");
+        let missing: Vec<String> = [
+            &[adachi::ID][..],
+            &[lee::ID],
+            &[liu::ID, liu::ID_NOKERNEL],
+            &[danescu::ID_MONO, danescu::ID_STEREO],
+        ]
+        .iter()
+        .map(|ids| documented(ids))
+        .filter(|line| !readme.contains(line.as_str()))
+        .collect();
+        assert!(missing.is_empty(), "pkg/README.md lacks:\n{}", missing.join("\n"));
+    }
 }
