@@ -451,6 +451,10 @@ mod tests {
         .map(|ids| documented(ids))
         .filter(|line| !readme.contains(line.as_str()))
         .collect();
-        assert!(missing.is_empty(), "pkg/README.md lacks:\n{}", missing.join("\n"));
+        assert!(
+            missing.is_empty(),
+            "pkg/README.md lacks:\n{}",
+            missing.join("\n")
+        );
     }
 }
