@@ -56,7 +56,7 @@ pub fn resample_into(points: &[[f64; 2]], spacing: f64, out: &mut Vec<[f64; 2]>)
         ((dx * dx + dy * dy).sqrt() / spacing).ceil().max(1.0)
     };
     let total: f64 = 1.0 + points.windows(2).map(steps).sum::<f64>();
-    if !(total <= MAX_RESAMPLED as f64) {
+    if total.is_nan() || total > MAX_RESAMPLED as f64 {
         let length: f64 = points.windows(2).map(|s| steps(s) * spacing).sum();
         return Err(Error::Config(format!(
             "a polyline of {} points and {length:.0} px would be resampled to {total:.0} points \
