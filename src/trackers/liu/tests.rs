@@ -133,7 +133,7 @@ fn bad_input_is_an_error_and_the_tracker_goes_on() {
         ),
         (
             r#", "top_view": {"x_min_m": 6, "x_max_m": 36, "y_left_m": 6, "y_right_m": -6, "m_per_px": 0.0001}"#,
-            "`top_view.m_per_px` = 0.0001: must be between 0.005 and 1",
+            "`top_view.m_per_px` = 1e-4: must be between 0.005 and 1",
         ),
         (
             r#", "top_view": {"x_min_m": 1, "x_max_m": 500, "y_left_m": 100, "y_right_m": -100, "m_per_px": 0.005}"#,
