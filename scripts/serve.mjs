@@ -1,6 +1,9 @@
 // Static server for the lanepf demo: http://127.0.0.1:PORT/ serves www/, /pkg/ serves pkg/.
-// It honours HTTP Range requests (video seeking needs them), serves .wasm as application/wasm,
-// binds to 127.0.0.1 only, and refuses paths outside those two folders.
+// It honours HTTP Range requests (video seeking needs them; other units and multiple ranges
+// get the whole file, as RFC 9110 allows), serves .wasm as application/wasm, binds to
+// 127.0.0.1 only, answers only requests whose Host is localhost, 127.0.0.1 or [::1] with its
+// port (a DNS-rebinding page names another host), refuses paths and symbolic links that lead
+// outside those two folders, and sends a Content-Security-Policy, nosniff and X-Frame-Options.
 // With a root folder it serves that folder alone at / instead (the npm package tests serve
 // their fixture apps so).
 //   node scripts/serve.mjs [--port 8080] [--root DIR]
@@ -20,9 +23,36 @@ const types = {
   '.md': 'text/plain; charset=utf-8',
 };
 
+// The demo's policy (index.html and bench.html carry it as a meta tag too): its own scripts
+// and WebAssembly, workers, media from files and the camera, no framing.
+const DEMO_CSP = "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; worker-src 'self'; "
+  + "connect-src 'self'; img-src 'self' data: blob:; media-src 'self' blob: mediastream:; "
+  + "style-src 'self'; object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'";
+// A folder served with --root holds any app (the npm tests' import-map pages have inline
+// scripts): no framing, no plugins, no <base>.
+const ROOT_CSP = "object-src 'none'; base-uri 'none'; frame-ancestors 'none'";
+
+/** Headers of every response. */
+const securityHeaders = (csp) => ({
+  'Content-Security-Policy': csp, 'X-Content-Type-Options': 'nosniff', 'X-Frame-Options': 'DENY',
+});
+
+/** Whether a Host header names this server: localhost, 127.0.0.1 or [::1] with its port. */
+export function allowedHost(host, port) {
+  if (typeof host !== 'string') return false;
+  const h = host.toLowerCase();
+  const names = ['localhost', '127.0.0.1', '[::1]'];
+  return names.some((n) => h === `${n}:${port}` || (port === 80 && h === n));
+}
+
 /** The mounts ([URL prefix, folder] pairs) of the demo, or of `root` alone at `/`. */
 function mountsFor(root) {
   return root === undefined ? demoMounts : [['/', resolve(root)]];
+}
+
+/** The mount folder holding `file` by name (`..` resolved), or null. */
+function mountOf(file, mounts) {
+  return mounts.map(([, dir]) => dir).find((dir) => file === dir || file.startsWith(dir + sep)) ?? null;
 }
 
 /** Maps a URL path to a file inside one of the mounts (the demo's by default), or null when it
@@ -33,35 +63,58 @@ export function resolvePath(urlPath, mounts = demoMounts) {
   for (const [prefix, dir] of mounts) {
     if (!path.startsWith(prefix)) continue;
     const file = normalize(join(dir, path.slice(prefix.length)));
-    return file === dir || file.startsWith(dir + sep) ? file : null;
+    return mountOf(file, [[prefix, dir]]) ? file : null;
   }
   return null;
 }
 
-/** Parses a single `bytes=a-b` range against a file size; null when absent, 'bad' when unsatisfiable. */
+/** The real path of `file` (symbolic links followed) when it is inside the real path of its
+ * mount folder; null when a link leads outside. Throws (ENOENT) for a missing file. */
+export async function realInside(file, mounts = demoMounts) {
+  const dir = mountOf(file, mounts);
+  if (!dir) return null;
+  const [real, realDir] = await Promise.all([fs.realpath(file), fs.realpath(dir)]);
+  return real === realDir || real.startsWith(realDir + sep) ? real : null;
+}
+
+/**
+ * Parses a single `bytes=a-b` range against a file size: { start, end }, or 'bad' when it
+ * cannot be satisfied, or null when there is none to honour: no header, another unit than
+ * bytes, several ranges or a malformed one (RFC 9110 14.2: a server may ignore Range and
+ * send the whole file with 200).
+ */
 export function parseRange(header, size) {
   if (!header) return null;
   const m = /^bytes=(\d*)-(\d*)$/.exec(header.trim());
-  if (!m || (m[1] === '' && m[2] === '')) return 'bad';
+  if (!m || (m[1] === '' && m[2] === '')) return null;
   let start, end;
   if (m[1] === '') { start = Math.max(0, size - Number(m[2])); end = size - 1; }
   else { start = Number(m[1]); end = m[2] === '' ? size - 1 : Math.min(Number(m[2]), size - 1); }
   return start <= end && start < size ? { start, end } : 'bad';
 }
 
-async function handle(req, res, mounts) {
+async function handle(req, res, mounts, port, csp) {
+  const secure = securityHeaders(csp);
+  const fail = (status, text, extra = {}) => res.writeHead(status, { ...secure, ...extra }).end(text);
+  if (!allowedHost(req.headers.host, port)) {
+    fail(421, `this server answers only for localhost, 127.0.0.1 or [::1] on port ${port}\n`);
+    return;
+  }
   if (req.method !== 'GET' && req.method !== 'HEAD') {
-    res.writeHead(405, { Allow: 'GET, HEAD' }).end('method not allowed\n');
+    fail(405, 'method not allowed\n', { Allow: 'GET, HEAD' });
     return;
   }
   let file = resolvePath(req.url, mounts);
-  if (!file) { res.writeHead(403).end('forbidden\n'); return; }
+  if (!file) { fail(403, 'forbidden\n'); return; }
   let stat;
   try {
     stat = await fs.stat(file);
     if (stat.isDirectory()) { file = join(file, 'index.html'); stat = await fs.stat(file); }
-  } catch { res.writeHead(404).end('not found\n'); return; }
+    file = await realInside(file, mounts);
+  } catch { fail(404, 'not found\n'); return; }
+  if (!file) { fail(403, 'forbidden: a link out of the served folder\n'); return; }
   const headers = {
+    ...secure,
     'Content-Type': types[extname(file).toLowerCase()] ?? 'application/octet-stream',
     'Accept-Ranges': 'bytes', 'Cache-Control': 'no-cache',
     // Cross-origin isolation (the page loads nothing from elsewhere, so it costs nothing):
@@ -71,7 +124,7 @@ async function handle(req, res, mounts) {
   };
   const range = parseRange(req.headers.range, stat.size);
   if (range === 'bad') {
-    res.writeHead(416, { 'Content-Range': `bytes */${stat.size}` }).end();
+    fail(416, '', { 'Content-Range': `bytes */${stat.size}` });
     return;
   }
   const { start, end } = range ?? { start: 0, end: stat.size - 1 };
@@ -86,9 +139,11 @@ async function handle(req, res, mounts) {
  * the folder `root` alone when given. Resolves to the http.Server once listening. */
 export function serve(port, root) {
   const mounts = mountsFor(root);
+  const csp = root === undefined ? DEMO_CSP : ROOT_CSP;
   return new Promise((ok, fail) => {
     const server = createServer((req, res) => {
-      handle(req, res, mounts).catch(() => { if (!res.headersSent) res.writeHead(500); res.end(); });
+      handle(req, res, mounts, server.address().port, csp)
+        .catch(() => { if (!res.headersSent) res.writeHead(500); res.end(); });
     });
     server.once('error', fail);
     server.listen(port, '127.0.0.1', () => ok(server));

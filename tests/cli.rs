@@ -552,3 +552,84 @@ fn track_takes_the_seed_once_and_the_camera_only_from_camera() {
     assert_eq!(from_file, from_flag);
     assert_ne!(from_file, other);
 }
+
+/// Issue 19: `eval` reads at most 256 MiB a file, 1 MiB a line and 5000 points a polyline, and
+/// resamples a polyline to at most 50 000 points, each with a clear error; ground truth in
+/// another format than `--format` says which format it looks like.
+#[test]
+fn eval_caps_its_inputs_and_names_the_format_it_sees() {
+    let out = temp("eval-caps");
+    std::fs::create_dir_all(&out).unwrap();
+    let labels = out.join("labels.json");
+    std::fs::write(
+        &labels,
+        r#"{"image_size": [640, 480], "frames": [{"frame": "f0.png", "lanes": [
+            {"bezier_xy": [[300, 479], [310, 400], [320, 330], [330, 260]]}]}]}"#,
+    )
+    .unwrap();
+    let prediction = |points: &[[f64; 2]]| {
+        serde_json::json!({"frame": "f0.png", "valid": true, "lateral_offset_m": 0.0,
+            "heading_rad": 0.0, "curvature_per_m": 0.0, "lane_width_m": 3.5,
+            "boundaries": [{"role": "ego-left", "points": points}]})
+        .to_string()
+            + "\n"
+    };
+    let eval = |pred: &Path, format: &str| {
+        lanepf(&[
+            "eval",
+            "--pred",
+            pred.to_str().unwrap(),
+            "--gt",
+            labels.to_str().unwrap(),
+            "--format",
+            format,
+        ])
+    };
+    let write = |name: &str, text: &str| {
+        let path = out.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let good = write("good.jsonl", &prediction(&[[300.0, 479.0], [330.0, 260.0]]));
+    let (code, _, err) = eval(&good, "caltech");
+    assert_eq!(code, 0, "{err}");
+
+    // A Caltech labels.json read as TuSimple names the format it looks like.
+    let (code, _, err) = eval(&good, "tusimple");
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("looks like Caltech Lanes labels") && err.contains("try --format caltech"),
+        "{err}"
+    );
+    // 300 points alternating x = 0 and x = 1e7: refused before 13 s and 700 MB of samples.
+    let zigzag: Vec<[f64; 2]> = (0..300)
+        .map(|k| [if k % 2 == 0 { 0.0 } else { 1e7 }, 479.0 - k as f64])
+        .collect();
+    let (code, _, err) = eval(&write("zigzag.jsonl", &prediction(&zigzag)), "caltech");
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("frame f0.png") && err.contains("more than 50000"),
+        "{err}"
+    );
+    let many: Vec<[f64; 2]> = (0..6000).map(|k| [300.0, k as f64 * 0.05]).collect();
+    let (code, _, err) = eval(&write("many.jsonl", &prediction(&many)), "caltech");
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("line 1: boundary 0 has 6000 points, more than the 5000"),
+        "{err}"
+    );
+    let long = format!("{{\"frame\": \"{}\"}}\n", "x".repeat(2 << 20));
+    let (code, _, err) = eval(&write("long.jsonl", &long), "caltech");
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("line 1: 2097165 bytes long, more than the 1024 KiB"),
+        "{err}"
+    );
+    // An endless file is refused after 256 MiB, not read until memory runs out.
+    if Path::new("/dev/zero").exists() {
+        let (code, _, err) = eval(Path::new("/dev/zero"), "caltech");
+        assert_eq!(code, 1);
+        assert!(err.contains("/dev/zero: larger than 256 MiB"), "{err}");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}

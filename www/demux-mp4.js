@@ -7,6 +7,7 @@
 // Fragmented files (moof) are refused.
 import { BlobReader } from './blob-reader.js';
 import { avcCodec, hevcCodec, vp9Codec, vpcCInfo, av1Codec } from './codec-string.js';
+import { checkDuration, checkRate, checkSampleCount } from './demux-limits.js';
 
 const TOP_LEVEL = new Set(['ftyp', 'styp', 'moov', 'mdat', 'free', 'skip', 'wide', 'pdin', 'uuid', 'meta', 'moof', 'mfra', 'sidx']);
 
@@ -162,18 +163,30 @@ function expandRuns(box, at, count, entrySize, value) {
   return out;
 }
 
-/** Sample sizes from stsz. */
+/**
+ * Sample sizes from stsz: at most MAX_SAMPLES, none empty, a constant size times the count
+ * no more than the file (checked before anything the size of the table is allocated).
+ */
 function sampleSizes(stbl, fileSize) {
   if (stbl.child('stz2')) throw new Error('compact sample sizes (stz2) are not supported');
   const stsz = stbl.need('stsz');
   const constant = stsz.u32(stsz.start + 4);
   if (constant) {
     const count = stsz.u32(stsz.start + 8);
+    checkSampleCount(count, 'the stsz box');
     if (constant * count > fileSize) throw new Error(`stsz promises ${count} samples of ${constant} bytes, more than the file holds`);
     return new Array(count).fill(constant);
   }
   const count = stsz.entries(stsz.start + 8, 4);
-  return Array.from({ length: count }, (_, k) => stsz.u32(stsz.start + 12 + 4 * k));
+  checkSampleCount(count, 'the stsz box');
+  // The table itself lies in the file (4 bytes a frame); where the frames lie is checked
+  // frame by frame, naming the first past the end.
+  const sizes = new Array(count);
+  for (let k = 0; k < count; k++) {
+    sizes[k] = stsz.u32(stsz.start + 12 + 4 * k);
+    if (sizes[k] === 0) throw new Error(`frame ${k + 1} of ${count} has a size of 0 bytes in the stsz box (the file is corrupt)`);
+  }
+  return sizes;
 }
 
 /** Sample offsets in the file from stsc (samples per chunk) and stco/co64 (chunk offsets). */
@@ -284,6 +297,13 @@ export async function demuxMp4(blob) {
   const tally = new Map();
   for (const d of deltas) tally.set(d, (tally.get(d) ?? 0) + 1);
   const common = [...tally].sort((a, b) => b[1] - a[1])[0][0];
+  const fps = common ? Math.round((100 * timescale) / common) / 100 : null;
+  checkRate(fps, `the stts box (frames of ${common} ticks at ${timescale} a second)`);
+  // mdhd's duration is all ones when unknown; the frames' own span is then the length.
+  const unknown = v1 ? mediaDuration >= 2 ** 64 - 1 : mediaDuration === 0xffffffff;
+  checkDuration(dts / timescale, 'the frames of the stts box last');
+  const duration = (mediaDuration && !unknown ? mediaDuration : dts) / timescale;
+  checkDuration(duration, 'the video track\'s duration in mdhd');
   return {
     container: 'mp4',
     codec: config.codec,
@@ -292,8 +312,8 @@ export async function demuxMp4(blob) {
     codedHeight: config.height,
     displayWidth,
     displayHeight,
-    duration: (mediaDuration || dts) / timescale,
-    fps: common ? Math.round((100 * timescale) / common) / 100 : null,
+    duration,
+    fps,
     samples,
   };
 }

@@ -7,6 +7,7 @@
 // their child begins. Laced video blocks and encoded (compressed, encrypted) tracks are refused.
 import { BlobReader, TruncatedError } from './blob-reader.js';
 import { avcCodec, hevcCodec, vp9Codec, vp9FrameInfo, vp9Level, vp9PrivateInfo, av1Codec } from './codec-string.js';
+import { MAX_SAMPLES, checkDuration, checkRate, checkSampleCount } from './demux-limits.js';
 
 const ID = {
   EBML: 0x1a45dfa3, DocType: 0x4282, Segment: 0x18538067, Info: 0x1549a966, TimecodeScale: 0x2ad7b1,
@@ -18,6 +19,9 @@ const ID = {
 // What a Cluster may hold (Timecode, SilentTracks, Position, PrevSize, SimpleBlock, BlockGroup,
 // EncryptedBlock, Void, CRC-32): anything else ends a Cluster of unknown size.
 const CLUSTER_CHILDREN = new Set([0xe7, 0x5854, 0xa7, 0xab, 0xa3, 0xa0, 0xaf, 0xec, 0xbf]);
+
+// Most blocks of all tracks together (audio has more blocks a second than video).
+const MAX_BLOCKS = 4 * MAX_SAMPLES;
 
 const hex = (id) => `0x${id.toString(16).toUpperCase()}`;
 
@@ -89,7 +93,17 @@ function parseInfo(bytes, base) {
     if (e.id === ID.TimecodeScale) info.scale = uint(e.data);
     if (e.id === ID.Duration) info.duration = float(e.data);
   }
-  if (!(info.scale > 0)) throw new Error('the Info element has a zero TimecodeScale');
+  // TimecodeScale is nanoseconds per tick (1e6 by default): 1 ns to 1 s is a clock.
+  if (!(info.scale >= 1 && info.scale <= 1e9)) {
+    throw new Error(`the Info element's TimecodeScale (${info.scale} ns a tick) is not 1 ns to 1 s (the file is corrupt)`);
+  }
+  if (info.duration !== null) {
+    if (!(info.duration >= 0 && info.duration < Infinity)) {
+      throw new Error(`the Info element's Duration (${info.duration}) is not a length of time (the file is corrupt)`);
+    }
+    checkDuration((info.duration * info.scale) / 1e9, 'the Info element\'s Duration');
+    if (info.duration === 0) info.duration = null;
+  }
   return info;
 }
 
@@ -158,6 +172,8 @@ async function readCluster(reader, cluster, parentEnd, blocks) {
         }
         if (block.start === undefined) throw new Error(`the BlockGroup at byte ${pos} has no Block`);
       }
+      if (block.size <= block.length) throw new Error(`the block at byte ${pos} holds no frame data (the file is corrupt)`);
+      if (blocks.length >= MAX_BLOCKS) throw new Error(`the file has more than ${MAX_BLOCKS} blocks, more than this reader accepts`);
       blocks.push({
         track: block.track, time: timecode + block.rel, key: block.key, duration: block.duration,
         laced: (block.flags & 0x06) !== 0, offset: block.start + block.length, size: block.size - block.length,
@@ -242,6 +258,7 @@ export async function demuxWebm(blob) {
   if (track.encoded) throw new Error('the video track is compressed or encrypted (ContentEncodings), which is not supported');
   const mine = blocks.filter((b) => b.track === track.number);
   if (mine.length === 0) throw new Error('the video track has no frames');
+  checkSampleCount(mine.length, 'the video track');
   if (mine.some((b) => b.laced)) throw new Error('the video track uses lacing (several frames per block), which is not supported');
   if (!mine[0].key) throw new Error('the first frame is not a keyframe');
 
@@ -260,7 +277,11 @@ export async function demuxWebm(blob) {
   });
   for (const s of samples) delete s.blockDuration;
   const last = shown.at(-1);
-  const frameNs = track.defaultDuration ?? (median ? median * 1000 : null);
+  checkDuration(Math.abs(shown[0].timestamp) / 1e6, 'the first frame\'s timestamp');
+  checkDuration((last.timestamp - shown[0].timestamp) / 1e6, 'the frames\' timestamps span');
+  const frameNs = track.defaultDuration || (median ? median * 1000 : null);
+  const fps = frameNs ? Math.round(1e11 / frameNs) / 100 : null;
+  checkRate(fps, track.defaultDuration ? 'the track\'s DefaultDuration' : 'the frames\' timestamps');
   return {
     container: 'webm',
     ...(await decoderConfig(track, reader, samples[0])),
@@ -269,7 +290,7 @@ export async function demuxWebm(blob) {
     displayWidth: track.width,
     displayHeight: track.height,
     duration: (endUs ?? last.timestamp + last.duration) / 1e6,
-    fps: frameNs ? Math.round(1e11 / frameNs) / 100 : null,
+    fps,
     samples,
   };
 }

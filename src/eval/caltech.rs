@@ -179,17 +179,24 @@ impl AlyDistances {
 /// Aly's distances between two polylines (the first is sampled every
 /// [`SAMPLE_SPACING_PX`] and measured to the second, and the other way round); `None` when
 /// either is empty. `scratch` is reused for the samples.
+///
+/// # Errors
+/// [`Error::Config`] when a polyline would take more than
+/// [`super::limits::MAX_RESAMPLED`] samples.
 pub fn aly_distances(
     a: &[[f64; 2]],
     b: &[[f64; 2]],
     scratch: &mut (Vec<[f64; 2]>, Vec<f64>),
-) -> Option<AlyDistances> {
-    let (da_med, da_mean) = one_way(a, b, scratch)?;
-    let (db_med, db_mean) = one_way(b, a, scratch)?;
-    Some(AlyDistances {
+) -> Result<Option<AlyDistances>> {
+    let (Some((da_med, da_mean)), Some((db_med, db_mean))) =
+        (one_way(a, b, scratch)?, one_way(b, a, scratch)?)
+    else {
+        return Ok(None);
+    };
+    Ok(Some(AlyDistances {
         median: da_med.min(db_med),
         mean: da_mean.min(db_mean),
-    })
+    }))
 }
 
 /// (median, mean) of the distances from samples of `from` to the polyline `to`.
@@ -197,11 +204,11 @@ fn one_way(
     from: &[[f64; 2]],
     to: &[[f64; 2]],
     (samples, d): &mut (Vec<[f64; 2]>, Vec<f64>),
-) -> Option<(f64, f64)> {
+) -> Result<Option<(f64, f64)>> {
     if from.is_empty() || to.is_empty() {
-        return None;
+        return Ok(None);
     }
-    resample_into(from, SAMPLE_SPACING_PX, samples);
+    resample_into(from, SAMPLE_SPACING_PX, samples)?;
     d.clear();
     d.extend(samples.iter().map(|p| distance_to_polyline(*p, to)));
     let mean = d.iter().sum::<f64>() / d.len() as f64;
@@ -212,7 +219,7 @@ fn one_way(
     } else {
         0.5 * (d[mid - 1] + d[mid])
     };
-    Some((median, mean))
+    Ok(Some((median, mean)))
 }
 
 /// Counts of one mode.
@@ -288,9 +295,10 @@ pub fn evaluate(
                 boundaries
                     .iter()
                     .map(|b| aly_distances(&b.points, g, &mut scratch))
-                    .collect()
+                    .collect::<Result<_>>()
             })
-            .collect();
+            .collect::<Result<_>>()
+            .map_err(|e| Error::Config(format!("frame {}: {e}", frame.frame)))?;
         let quality = |i: usize, j: usize| -> Option<f64> {
             let d = dist[i][j].filter(AlyDistances::matched)?;
             Some(1.0 - d.mean / MEAN_THRESHOLD_PX)
@@ -397,14 +405,20 @@ mod tests {
     fn parallel_curve_at_10_px_matches_and_at_25_px_does_not() {
         let g = bezier_polyline(&vertical(300.0).bezier_xy, BEZIER_SEGMENTS);
         let mut s = (Vec::new(), Vec::new());
-        let near = aly_distances(&polyline(|_| 310.0, 450.0, 250.0), &g, &mut s).unwrap();
+        let near = aly_distances(&polyline(|_| 310.0, 450.0, 250.0), &g, &mut s)
+            .unwrap()
+            .unwrap();
         assert!((near.median - 10.0).abs() < 1e-9 && (near.mean - 10.0).abs() < 1e-9);
         assert!(near.matched());
-        let far = aly_distances(&polyline(|_| 325.0, 450.0, 250.0), &g, &mut s).unwrap();
+        let far = aly_distances(&polyline(|_| 325.0, 450.0, 250.0), &g, &mut s)
+            .unwrap()
+            .unwrap();
         assert!((far.median - 25.0).abs() < 1e-9, "{far:?}");
         assert!(!far.matched());
         // 18 px: the median passes (<= 20) but the mean fails (> 15).
-        let mid = aly_distances(&polyline(|_| 318.0, 450.0, 250.0), &g, &mut s).unwrap();
+        let mid = aly_distances(&polyline(|_| 318.0, 450.0, 250.0), &g, &mut s)
+            .unwrap()
+            .unwrap();
         assert!(mid.median <= 20.0 && !mid.matched(), "{mid:?}");
     }
 
@@ -413,7 +427,9 @@ mod tests {
         // Half the lane, exactly on it: d1 (detection -> lane) is 0, d2 is large for half.
         let g = bezier_polyline(&vertical(300.0).bezier_xy, BEZIER_SEGMENTS);
         let mut s = (Vec::new(), Vec::new());
-        let d = aly_distances(&polyline(|_| 300.0, 450.0, 350.0), &g, &mut s).unwrap();
+        let d = aly_distances(&polyline(|_| 300.0, 450.0, 350.0), &g, &mut s)
+            .unwrap()
+            .unwrap();
         assert!(d.matched() && d.median < 1e-9, "{d:?}");
     }
 

@@ -62,6 +62,7 @@ pub struct CulaneFrame {
 pub fn parse_lines(text: &str, source: &str) -> Result<Vec<Vec<[f64; 2]>>> {
     let mut lanes = Vec::new();
     for (i, line) in text.lines().enumerate() {
+        super::limits::check_line(source, i + 1, line)?;
         let values: Vec<f64> = line
             .split_whitespace()
             .map(|v| {

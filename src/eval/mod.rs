@@ -29,7 +29,11 @@ pub mod synthetic;
 pub mod tusimple;
 
 mod assign;
+pub mod limits;
 mod polyline;
+mod sniff;
+
+pub use sniff::guess_format;
 
 use crate::error::{Error, Result};
 use crate::lane::LaneEstimate;
@@ -188,12 +192,9 @@ impl fmt::Display for EvalReport {
     }
 }
 
-/// Reads a whole text file.
+/// Reads a whole text file of at most [`limits::MAX_FILE_BYTES`].
 pub(crate) fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|e| Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    })
+    limits::read_text(path)
 }
 
 /// A rate as a percentage, or "n/a".
@@ -210,16 +211,24 @@ pub(crate) fn file_name(name: &str) -> &str {
 /// `source` names the text in errors.
 ///
 /// # Errors
-/// [`Error::Config`] naming the (1-based) line that is not a lane estimate.
+/// [`Error::Config`] naming the (1-based) line that is not a lane estimate, is longer than
+/// [`limits::MAX_LINE_BYTES`] or has a polyline of more than [`limits::MAX_POINTS`] points.
 pub fn parse_predictions(text: &str, source: &str) -> Result<Vec<LaneEstimate>> {
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
         if line.trim().is_empty() {
             continue;
         }
-        let e = serde_json::from_str(line).map_err(|e| {
+        limits::check_line(source, i + 1, line)?;
+        let e: LaneEstimate = serde_json::from_str(line).map_err(|e| {
             Error::Config(format!("{source} line {}: not a lane estimate: {e}", i + 1))
         })?;
+        for (k, b) in e.boundaries.iter().enumerate() {
+            limits::check_points(
+                &format!("{source} line {}: boundary {k}", i + 1),
+                b.points.len(),
+            )?;
+        }
         out.push(e);
     }
     Ok(out)
@@ -313,7 +322,34 @@ enum GroundTruth {
 }
 
 impl GroundTruth {
+    /// Loads the ground truth; when it does not parse, the error says which format the file
+    /// looks like if that is another one.
     fn load(format: Format, path: &Path) -> Result<Self> {
+        Self::load_as(format, path).map_err(|e| match e {
+            Error::Config(message) => {
+                let file = match format {
+                    Format::Caltech | Format::Tusimple => file_or_in_dir(path, "labels.json"),
+                    _ => path.to_path_buf(),
+                };
+                let guess = file
+                    .is_file()
+                    .then(|| limits::read_text(&file).ok())
+                    .flatten()
+                    .and_then(|text| guess_format(&text))
+                    .filter(|&g| g != format);
+                match guess {
+                    Some(g) => Error::Config(format!(
+                        "{message}; the file looks like {}: try --format {g}",
+                        sniff::describe(g)
+                    )),
+                    None => Error::Config(message),
+                }
+            }
+            other => other,
+        })
+    }
+
+    fn load_as(format: Format, path: &Path) -> Result<Self> {
         Ok(match format {
             Format::Synthetic => GroundTruth::Synthetic(synthetic::read_ground_truth(path)?),
             Format::Caltech => {

@@ -5,6 +5,9 @@
 //! first segment (in point order) whose closed y interval contains it, and distances are taken
 //! to the nearest segment.
 
+use super::limits::MAX_RESAMPLED;
+use crate::error::{Error, Result};
+
 /// The smallest and largest y of `points`, or `None` for an empty polyline.
 pub fn y_range(points: &[[f64; 2]]) -> Option<(f64, f64)> {
     let mut it = points.iter();
@@ -38,22 +41,40 @@ pub fn x_at_y(points: &[[f64; 2]], y: f64) -> Option<f64> {
 /// Points along the polyline at arc-length steps of at most `spacing` (> 0), both ends
 /// included, written into `out` (cleared first). Each segment is split into the fewest equal
 /// steps no longer than `spacing`.
-pub fn resample_into(points: &[[f64; 2]], spacing: f64, out: &mut Vec<[f64; 2]>) {
+///
+/// # Errors
+/// [`Error::Config`] when that takes more than [`MAX_RESAMPLED`] points (or a coordinate is
+/// not finite), counted before anything is written.
+pub fn resample_into(points: &[[f64; 2]], spacing: f64, out: &mut Vec<[f64; 2]>) -> Result<()> {
     out.clear();
-    let Some(first) = points.first() else { return };
-    out.push(*first);
+    let Some(first) = points.first() else {
+        return Ok(());
+    };
     let spacing = if spacing > 0.0 { spacing } else { 1.0 };
+    let steps = |s: &[[f64; 2]]| {
+        let (dx, dy) = (s[1][0] - s[0][0], s[1][1] - s[0][1]);
+        ((dx * dx + dy * dy).sqrt() / spacing).ceil().max(1.0)
+    };
+    let total: f64 = 1.0 + points.windows(2).map(steps).sum::<f64>();
+    if total.is_nan() || total > MAX_RESAMPLED as f64 {
+        let length: f64 = points.windows(2).map(|s| steps(s) * spacing).sum();
+        return Err(Error::Config(format!(
+            "a polyline of {} points and {length:.0} px would be resampled to {total:.0} points \
+             every {spacing} px, more than {MAX_RESAMPLED}",
+            points.len()
+        )));
+    }
+    out.push(*first);
     for s in points.windows(2) {
         let (a, b) = (s[0], s[1]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let len = (dx * dx + dy * dy).sqrt();
-        // Bounded: a non-finite or huge segment is not split further than 100 000 steps.
-        let steps = (len / spacing).ceil().clamp(1.0, 1e5) as usize;
-        for k in 1..=steps {
-            let t = k as f64 / steps as f64;
+        let n = steps(s) as usize;
+        for k in 1..=n {
+            let t = k as f64 / n as f64;
             out.push([a[0] + t * dx, a[1] + t * dy]);
         }
     }
+    Ok(())
 }
 
 /// Squared distance from `p` to the segment `a`-`b`.
@@ -106,10 +127,27 @@ mod tests {
     fn resampling_keeps_ends_and_spacing() {
         let pts = [[0.0, 0.0], [0.0, 10.0], [3.0, 14.0]];
         let mut out = Vec::new();
-        resample_into(&pts, 1.0, &mut out);
+        resample_into(&pts, 1.0, &mut out).unwrap();
         assert_eq!(out.first(), Some(&[0.0, 0.0]));
         assert_eq!(out.last(), Some(&[3.0, 14.0]));
         assert_eq!(out.len(), 1 + 10 + 5);
+    }
+
+    #[test]
+    fn resampling_a_zigzag_far_outside_the_image_is_refused_before_allocating() {
+        // Issue 19: 300 points alternating x = 0 and x = 1e7 took 13 s and 700 MB.
+        let pts: Vec<[f64; 2]> = (0..300)
+            .map(|k| [if k % 2 == 0 { 0.0 } else { 1e7 }, k as f64])
+            .collect();
+        let mut out = Vec::new();
+        let e = resample_into(&pts, 1.0, &mut out).unwrap_err().to_string();
+        assert!(
+            e.contains("300 points") && e.contains("more than 50000"),
+            "{e}"
+        );
+        assert!(out.capacity() == 0 && out.is_empty());
+        let e = resample_into(&[[0.0, 0.0], [f64::INFINITY, 0.0]], 1.0, &mut out);
+        assert!(e.is_err());
     }
 
     #[test]

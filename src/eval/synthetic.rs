@@ -74,8 +74,13 @@ pub fn parse_ground_truth(text: &str, source: &str) -> Result<Vec<LaneEstimate>>
         if line.trim().is_empty() {
             continue;
         }
+        super::limits::check_line(source, i + 1, line)?;
         let g: GtLine = serde_json::from_str(line)
             .map_err(|e| Error::Config(format!("{source} line {}: {e}", i + 1)))?;
+        for (k, b) in g.boundaries.iter().enumerate() {
+            let what = format!("{source} line {}: boundary {k}", i + 1);
+            super::limits::check_points(&what, b.points.len())?;
+        }
         let boundaries = g
             .boundaries
             .into_iter()

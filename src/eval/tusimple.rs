@@ -85,8 +85,13 @@ pub fn parse_labels(text: &str, source: &str) -> Result<Vec<TusimpleFrame>> {
         if line.trim().is_empty() {
             continue;
         }
+        super::limits::check_line(source, i + 1, line)?;
         let l: LabelLine = serde_json::from_str(line)
             .map_err(|e| Error::Config(format!("{source} line {}: {e}", i + 1)))?;
+        super::limits::check_points(
+            &format!("{source} line {}: h_samples", i + 1),
+            l.h_samples.len(),
+        )?;
         if let Some(k) = l.lanes.iter().position(|x| x.len() != l.h_samples.len()) {
             return Err(Error::Config(format!(
                 "{source} line {}: lane {k} has {} values but there are {} h_samples",

@@ -17,10 +17,12 @@ pub struct RgbaFrame {
 
 /// Decodes PNG or JPEG bytes. `name` is only used in error messages. The size in the file's
 /// header is checked before anything is decoded, so a small file that claims a huge image is
-/// refused at once instead of after allocating it.
+/// refused at once instead of after allocating it. A truncated JPEG is an error: the JPEG
+/// decoder fills the missing part with grey and would otherwise give a frame silently.
 ///
 /// # Errors
-/// [`Error::Decode`] for a corrupt or unsupported file; [`Error::Dimensions`] for an unusable size.
+/// [`Error::Decode`] for a corrupt, truncated or unsupported file; [`Error::Dimensions`] for
+/// an unusable size.
 pub fn decode_rgba(bytes: &[u8], name: &str) -> Result<RgbaFrame> {
     let decode_error = |e: image::ImageError| Error::Decode {
         path: name.to_string(),
@@ -37,6 +39,13 @@ pub fn decode_rgba(bytes: &[u8], name: &str) -> Result<RgbaFrame> {
     let (hw, hh) = reader()?.into_dimensions().map_err(decode_error)?;
     check_dimensions(hw as usize, hh as usize)
         .map_err(|e| Error::Dimensions(format!("{name}: {e}")))?;
+    if bytes.starts_with(&[0xff, 0xd8]) && !jpeg_is_complete(bytes) {
+        return Err(Error::Decode {
+            path: name.to_string(),
+            reason: "the JPEG data ends before its end-of-image marker (the file is truncated)"
+                .into(),
+        });
+    }
     let img = reader()?.decode().map_err(decode_error)?;
     let rgba = img.to_rgba8();
     let (w, h) = (rgba.width() as usize, rgba.height() as usize);
@@ -46,6 +55,15 @@ pub fn decode_rgba(bytes: &[u8], name: &str) -> Result<RgbaFrame> {
         height: h,
         data: rgba.into_raw(),
     })
+}
+
+/// Whether a JPEG's last scan is followed by its end-of-image marker (FF D9). Inside
+/// entropy-coded data a 0xFF byte is only ever followed by 0x00 or a restart marker, so FF DA
+/// (start of scan) and FF D9 are markers wherever they appear; an embedded thumbnail's markers
+/// come before the main image's last scan.
+fn jpeg_is_complete(bytes: &[u8]) -> bool {
+    let last_scan = bytes.windows(2).rposition(|w| w == [0xff, 0xda]);
+    last_scan.is_some_and(|at| bytes[at..].windows(2).any(|w| w == [0xff, 0xd9]))
 }
 
 /// Reads and decodes an image file.
@@ -212,6 +230,25 @@ mod tests {
         let e = decode_rgba(&png_header(64, 48), "small.png").unwrap_err();
         assert!(matches!(e, Error::Decode { .. }), "{e}");
         assert!(start.elapsed().as_secs_f64() < 1.0);
+    }
+
+    #[test]
+    fn a_truncated_jpeg_is_an_error_naming_the_file() {
+        let rgb: Vec<u8> = (0..64 * 48 * 3).map(|k| (k * 7 % 251) as u8).collect();
+        let mut jpeg = Vec::new();
+        image::codecs::jpeg::JpegEncoder::new_with_quality(&mut jpeg, 90)
+            .encode(&rgb, 64, 48, image::ExtendedColorType::Rgb8)
+            .unwrap();
+        assert_eq!(decode_rgba(&jpeg, "whole.jpg").unwrap().width, 64);
+        for cut in [jpeg.len() - 2, jpeg.len() * 2 / 3, 700] {
+            let e = decode_rgba(&jpeg[..cut], "cut.jpg")
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("cut.jpg") && e.contains("truncated"),
+                "{cut}: {e}"
+            );
+        }
     }
 
     #[test]

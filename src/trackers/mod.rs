@@ -12,9 +12,13 @@ mod defaults;
 mod hypothesis;
 pub mod lee;
 pub mod liu;
+#[cfg(test)]
+mod option_fuzz;
+mod ranges;
 
 pub use defaults::default_options;
 pub use hypothesis::{spread_indices, Hypothesis};
+pub use ranges::{option_ranges, OptionRange};
 
 use crate::camera::{Camera, CameraFile};
 use crate::error::{Error, Result};

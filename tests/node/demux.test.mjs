@@ -192,3 +192,103 @@ test('random damage to the headers ends in a result inside the file or an Error,
     assert.ok(refused > 0, `${name}: some damage is noticed`);
   }
 });
+
+// Issue 19: tables and clocks that would take gigabytes, minutes or give absurd values.
+
+/** An EBML element: its ID's bytes, an 8-byte size (or unknown), the payload. */
+function el(id, ...parts) {
+  const payload = Buffer.concat(parts.map((p) => (Buffer.isBuffer(p) ? p : Buffer.from(p))));
+  const idBytes = Buffer.from(id.toString(16).padStart(2 * Math.ceil(id.toString(16).length / 2), '0'), 'hex');
+  const size = Buffer.alloc(8);
+  size.writeBigUInt64BE(BigInt(payload.length));
+  size[0] = 0x01;
+  return Buffer.concat([idBytes, size, payload]);
+}
+const u = (v, n = 4) => { const b = Buffer.alloc(8); b.writeBigUInt64BE(BigInt(v)); return b.subarray(8 - n); };
+const f64 = (v) => { const b = Buffer.alloc(8); b.writeDoubleBE(v); return b; };
+/** A SimpleBlock of track 1 at `rel` ms holding `data`. */
+const simpleBlock = (rel, data, key = true) => el(0xa3, Buffer.from([0x81, (rel >> 8) & 0xff, rel & 0xff, key ? 0x80 : 0]), data);
+
+/** A small VP8 WebM: `info` children, `track` children added, a cluster of `blocks`, `more`. */
+function webm({ info = [], track = [], blocks = [simpleBlock(0, [1, 2, 3]), simpleBlock(40, [4, 5], false)], more = [] } = {}) {
+  return Buffer.concat([
+    el(0x1a45dfa3, el(0x4282, 'webm')),
+    el(0x18538067,
+      el(0x1549a966, ...info),
+      el(0x1654ae6b, el(0xae, el(0xd7, u(1, 1)), el(0x83, u(1, 1)), el(0x86, 'V_VP8'),
+        el(0xe0, el(0xb0, u(160, 2)), el(0xba, u(120, 2))), ...track)),
+      el(0x1f43b675, el(0xe7, u(0, 1)), ...blocks), ...more),
+  ]);
+}
+
+test('the hand-made WebM of these tests reads', async () => {
+  const t = await demuxWebm(blob(webm({ info: [el(0x2ad7b1, u(1e6)), el(0x4489, f64(80))] })));
+  assert.deepEqual(t.samples.map((s) => [s.timestamp, s.size, s.key]), [[0, 3, true], [40000, 2, false]]);
+  assert.equal(t.fps, 25);
+  assert.equal(t.duration, 0.08);
+});
+
+test('WebM: zero-size blocks, absurd Duration, TimecodeScale and frame rates are refused', async () => {
+  await assert.rejects(demuxWebm(blob(webm({ blocks: [simpleBlock(0, [1]), simpleBlock(40, [])] }))),
+    /the block at byte \d+ holds no frame data/);
+  // 3 million empty blocks: refused at the first, not after 34 s and 1.3 GB.
+  const empty = simpleBlock(0, []);
+  const many = webm({ blocks: [simpleBlock(0, [1]), Buffer.concat(Array(3_000_000).fill(empty))] });
+  const started = Date.now();
+  await assert.rejects(demuxWebm(blob(many)), /holds no frame data/);
+  assert.ok(Date.now() - started < 20_000);
+  for (const [duration, name] of [[Infinity, 'Infinity'], [-5, '-5'], [NaN, 'NaN']]) {
+    await assert.rejects(demuxWebm(blob(webm({ info: [el(0x4489, f64(duration))] }))),
+      new RegExp(`the Info element's Duration \\(${name}\\) is not a length of time`));
+  }
+  // 10^12 ms: 31 years.
+  await assert.rejects(demuxWebm(blob(webm({ info: [el(0x4489, f64(1e12))] }))),
+    /the Info element's Duration \(1000000000 s\) is not a video's length: it must be 0 to 604800 s/);
+  {
+  }
+  await assert.rejects(demuxWebm(blob(webm({ info: [el(0x2ad7b1, Buffer.alloc(8, 0xff))] }))),
+    /TimecodeScale \(18446744073709552000 ns a tick\) is not 1 ns to 1 s/);
+  await assert.rejects(demuxWebm(blob(webm({ info: [el(0x2ad7b1, u(0))] }))), /TimecodeScale \(0 ns a tick\)/);
+  // A frame every 2^50 ns (13 days): a frame rate of 0.
+  await assert.rejects(demuxWebm(blob(webm({ track: [el(0x23e383, u(2 ** 50, 8))] }))),
+    /the track's DefaultDuration gives a frame rate of 0 fps/);
+  // A second Cluster 10^12 ms later: no video spans 31 years.
+  const far = webm({ more: [el(0x1f43b675, el(0xe7, u(1e12, 8)), simpleBlock(0, [9]))] });
+  await assert.rejects(demuxWebm(blob(far)), /not a video's length/);
+});
+
+/** h264-faststart.mp4 with its tables edited by `edit(buf, at)` (`at`: box positions). */
+function editedMp4(edit) {
+  const buf = Buffer.from(bytes('h264-faststart.mp4'));
+  const at = (type) => buf.indexOf(type) - 4;
+  edit(buf, at);
+  return buf;
+}
+
+test('MP4: 20 million one-byte samples, empty samples and absurd clocks are refused', async () => {
+  // stsz: a constant size of 1 byte for 20 million samples; stts and stsc agree; the file is
+  // padded to 21 MB so that the sizes fit in it.
+  const table = editedMp4((buf, at) => {
+    buf.writeUInt32BE(1, at('stsz') + 12);
+    buf.writeUInt32BE(20_000_000, at('stsz') + 16);
+    buf.writeUInt32BE(1, at('stts') + 12);
+    buf.writeUInt32BE(20_000_000, at('stts') + 16);
+    buf.writeUInt32BE(1, at('stsc') + 12);
+    buf.writeUInt32BE(1, at('stsc') + 16);
+    buf.writeUInt32BE(20_000_000, at('stsc') + 20);
+  });
+  const pad = Buffer.alloc(21_000_000);
+  pad.writeUInt32BE(pad.length, 0);
+  pad.write('free', 4);
+  await assert.rejects(demuxMp4(blob(Buffer.concat([table, pad]))),
+    /the stsz box declares 20000000 frames, more than the 1000000 this reader accepts/);
+  const empty = editedMp4((buf, at) => buf.writeUInt32BE(0, at('stsz') + 20 + 4 * 3));
+  await assert.rejects(demuxMp4(blob(empty)), /frame 4 of 37 has a size of 0 bytes in the stsz box/);
+  // Every frame 2^32 - 1 ticks long at 1 tick a second: 136 years, 0 fps.
+  const slow = editedMp4((buf, at) => {
+    const mdhd = at('mdhd');
+    buf.writeUInt32BE(1, mdhd + 8 + (buf[mdhd + 8] === 1 ? 20 : 12));
+    buf.writeUInt32BE(0xffffffff, at('stts') + 20);
+  });
+  await assert.rejects(demuxMp4(blob(slow)), /gives a frame rate of 0 fps/);
+});

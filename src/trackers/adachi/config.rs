@@ -125,6 +125,7 @@ impl AdachiConfig {
     /// # Errors
     /// [`Error::Parameter`] naming the first bad value.
     pub fn validate(&self) -> Result<()> {
+        crate::trackers::ranges::check_ranges(super::ID, self)?;
         require_positive("near_m", self.near_m)?;
         require_positive("far_m", self.far_m)?;
         if self.far_m <= self.near_m {

@@ -177,6 +177,7 @@ impl DanescuConfig {
     }
 
     fn check(&self) -> Result<()> {
+        crate::trackers::ranges::check_ranges(super::ID_MONO, self)?;
         if !(0.0..1.0).contains(&self.init_fraction) {
             return Err(Error::parameter(
                 "init_fraction",

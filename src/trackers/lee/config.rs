@@ -179,6 +179,7 @@ impl LeeConfig {
     /// # Errors
     /// [`Error::Parameter`] naming the first bad value.
     pub fn validate(&self) -> Result<()> {
+        crate::trackers::ranges::check_ranges(super::ID, self)?;
         require_positive("near_m", self.near_m)?;
         require_positive("split_m", self.split_m)?;
         require_positive("far_m", self.far_m)?;

@@ -119,6 +119,7 @@ impl LiuConfig {
     /// # Errors
     /// [`Error::Parameter`] naming the first bad value.
     pub fn validate(&self) -> Result<()> {
+        crate::trackers::ranges::check_ranges(super::ID, self)?;
         let (w, h) = self.top_view.size()?;
         if w * h > 2_000_000 {
             return Err(Error::parameter(

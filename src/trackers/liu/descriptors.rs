@@ -201,16 +201,18 @@ pub fn orientation_mod_pi(gy: f32, gx: f32) -> f32 {
     wrap_half_turn(t) as f32
 }
 
-/// An angle folded into (-pi/2, pi/2] (orientations modulo pi).
+/// An angle folded into (-pi/2, pi/2] (orientations modulo pi), in constant time for any
+/// angle (NaN and infinities give NaN). The remainder `t % pi` is exact, so an angle within a
+/// few turns gives the same bits as subtracting pi step by step.
 pub fn wrap_half_turn(t: f64) -> f64 {
-    let mut t = t;
-    while t > PI / 2.0 {
-        t -= PI;
+    let t = t % PI;
+    if t > PI / 2.0 {
+        t - PI
+    } else if t <= -PI / 2.0 {
+        t + PI
+    } else {
+        t
     }
-    while t <= -PI / 2.0 {
-        t += PI;
-    }
-    t
 }
 
 #[cfg(test)]
@@ -224,5 +226,23 @@ mod tests {
         assert!((wrap_half_turn(3.0) - (3.0 - PI)).abs() < 1e-12);
         assert!((orientation_mod_pi(0.0, -5.0)).abs() < 1e-6);
         assert!((f64::from(orientation_mod_pi(1.0, 1.0)) - PI / 4.0).abs() < 1e-6);
+        // Huge angles return at once (a loop of pi steps never ended at 1e17).
+        for t in [1e9, -1e17, 1e300, f64::MAX, -f64::MAX] {
+            let w = wrap_half_turn(t);
+            assert!(w > -PI / 2.0 && w <= PI / 2.0, "{t}: {w}");
+        }
+        assert!(wrap_half_turn(f64::INFINITY).is_nan() && wrap_half_turn(f64::NAN).is_nan());
+        // The same bits as the step-by-step fold within a few turns.
+        for k in -4000..4000 {
+            let t = f64::from(k) * 0.0031;
+            let mut s = t;
+            while s > PI / 2.0 {
+                s -= PI;
+            }
+            while s <= -PI / 2.0 {
+                s += PI;
+            }
+            assert_eq!(wrap_half_turn(t).to_bits(), s.to_bits(), "{t}");
+        }
     }
 }

@@ -133,7 +133,15 @@ fn bad_input_is_an_error_and_the_tracker_goes_on() {
         ),
         (
             r#", "top_view": {"x_min_m": 6, "x_max_m": 36, "y_left_m": 6, "y_right_m": -6, "m_per_px": 0.0001}"#,
+            "`top_view.m_per_px` = 1e-4: must be between 0.005 and 1",
+        ),
+        (
+            r#", "top_view": {"x_min_m": 1, "x_max_m": 500, "y_left_m": 100, "y_right_m": -100, "m_per_px": 0.005}"#,
             "too large",
+        ),
+        (
+            r#", "sigma_theta": 1e9"#,
+            "`sigma_theta` = 1e9: must be between 1e-6 and 1",
         ),
         (r#", "kernel": true"#, "unknown field"),
     ] {
@@ -143,9 +151,9 @@ fn bad_input_is_an_error_and_the_tracker_goes_on() {
             .to_string();
         assert!(e.contains(name), "{option}: {e}");
     }
-    // A top view 150-200 m to the left of the road is outside the image.
+    // A top view 60-100 m to the left of the road is outside the image.
     let e = LiuTracker::new(
-        &config(r#", "top_view": {"x_min_m": 6, "x_max_m": 36, "y_left_m": 200, "y_right_m": 150, "m_per_px": 0.5}"#),
+        &config(r#", "top_view": {"x_min_m": 6, "x_max_m": 36, "y_left_m": 100, "y_right_m": 60, "m_per_px": 0.5}"#),
         true,
     )
     .err()
