@@ -134,6 +134,9 @@ const ADACHI: &[&[OptionRange]] = &[&[
     r("width_range_m", 0.5, 10.0),
     r("transitions", 0.0, 1.0),
     r("valid_support", 0.0, 1.0),
+    r("max_heading_rad", 0.0, 0.5),
+    r("max_curvature_per_m", 0.0, 0.05),
+    r("shape_gain", 0.01, 1.0),
 ]];
 
 const DANESCU: &[&[OptionRange]] = &[

@@ -241,7 +241,7 @@ export interface AdachiOptions {
   max_heading_rad?: number;
   /** 'curved' only: largest curvature searched, 1/m (0.012; 0 to 0.05). */
   max_curvature_per_m?: number;
-  /** 'curved' only: how far the followed road shape moves to each frame's best (0.5; (0, 1]). */
+  /** 'curved' only: how far the followed road shape moves to each frame's best (0.5; 0.01 to 1). */
   shape_gain?: number;
 }
 

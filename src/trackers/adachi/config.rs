@@ -72,7 +72,7 @@ pub struct AdachiConfig {
     pub max_heading_rad: f64,
     /// `curved` only: the largest curvature searched, 1/m (0 to 0.05, a 20 m radius).
     pub max_curvature_per_m: f64,
-    /// `curved` only: how far the followed shape moves to each frame's best, (0, 1].
+    /// `curved` only: how far the followed shape moves to each frame's best (0.01 to 1).
     pub shape_gain: f64,
 }
 
@@ -169,25 +169,6 @@ impl AdachiConfig {
             0.0..=1.0,
             "must be a fraction in [0, 1]",
         )?;
-        require_within(
-            "max_heading_rad",
-            self.max_heading_rad,
-            0.0..=0.5,
-            "must be a heading in [0, 0.5] radians",
-        )?;
-        require_within(
-            "max_curvature_per_m",
-            self.max_curvature_per_m,
-            0.0..=0.05,
-            "must be a curvature in [0, 0.05] per metre (a radius of 20 m or more)",
-        )?;
-        if !(self.shape_gain > 0.0 && self.shape_gain <= 1.0) {
-            return Err(Error::parameter(
-                "shape_gain",
-                self.shape_gain,
-                "must be in (0, 1]",
-            ));
-        }
         if self.transitions.len() != 4 {
             return Err(Error::Config(
                 "transitions must be a 4x4 matrix (models 1-4)".into(),
