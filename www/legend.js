@@ -12,7 +12,7 @@ const line = (role, y = SAMPLE_H / 2) => ({ role, points: [[4, y], [SAMPLE_W - 4
 const ENTRIES = [
   ...Object.keys(ROLE_COLOURS).map((role) => ({
     key: role,
-    label: `${role}${role.endsWith('adjacent') ? ' boundary' : ''}`,
+    label: `${role} boundary`,
     draw: (ctx) => drawEstimate(ctx, { valid: true, boundaries: [line(role)] }),
   })),
   {

@@ -99,8 +99,9 @@ function draw(frame, result, redraw = false) {
   const truth = controls.showTruth.checked ? frame.truth : null;
   const byGroup = controls.colourGroups.checked;
   drawHypotheses(ctx, hypotheses, null, byGroup);
-  if (truth) drawTruth(ctx, truth.boundaries);
+  // The truth over the estimate: thin dashes on a thick line where they agree.
   if (estimate) drawEstimate(ctx, estimate);
+  if (truth) drawTruth(ctx, truth.boundaries);
   showBadge(document.getElementById('view-badge'), estimate);
   const seen = result?.calibration?.observation;
   if (seen && (showCalibration.checked || auto.looking())) drawCalibrationLines(ctx, seen);
@@ -149,8 +150,8 @@ function drawCompare(frame, compared, truth, byGroup) {
   if (!compared) return;
   drawFrame(ctx2, frame.rgba, frame.width, frame.height);
   drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
-  if (truth) drawTruth(ctx2, truth.boundaries);
   if (compared.estimate) drawEstimate(ctx2, compared.estimate);
+  if (truth) drawTruth(ctx2, truth.boundaries);
   showBadge(document.getElementById('compare-badge'), compared.estimate);
   let text = `${compared.trackerId} · track ${compared.trackMs.toFixed(1)} ms`;
   if (compared.estimate && !compared.estimate.valid) text += ' · not valid';

@@ -4,7 +4,8 @@
 //   a valid estimate:      solid, opaque, in its role's colour;
 //   an estimate that is not valid: the same colour faded to INVALID_ALPHA and dashed
 //                          (INVALID_DASH), thinner, so it never passes for a confident one;
-//   the ground truth:      dashed (TRUTH_DASH) in TRUTH_COLOUR, whatever the role;
+//   the ground truth:      dashed (TRUTH_DASH) in TRUTH_COLOUR, whatever the role, thin and
+//                          over the estimate (dashes on a thick line where they agree);
 //   particles:             thin lines, opacity by weight, in their role's (or group's) colour.
 
 export const ROLE_COLOURS = {
@@ -19,7 +20,7 @@ export const TRUTH_COLOUR = '#ff1744';
 export const TRUTH_DASH = [10, 8];
 /** An estimate that is not valid: its opacity and dash pattern. */
 export const INVALID_ALPHA = 0.4;
-export const INVALID_DASH = [4, 8];
+export const INVALID_DASH = [8, 8];
 
 /** Draws an RGBA frame (Uint8ClampedArray, width*height*4) scaled to the canvas. */
 export function drawFrame(ctx, rgba, width, height) {
@@ -159,8 +160,8 @@ export function drawTopView(ctx, top, { truth = null, estimate = null, hypothese
   const map = ([x, y]) => [(top.yHalf - y) / top.cell, (top.xMax - x) / top.cell];
   const asImage = (boundaries) => boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }));
   drawHypotheses(ctx, hypotheses, map, byGroup);
-  if (truth) drawTruth(ctx, asImage(truth.boundaries));
   if (estimate) drawEstimate(ctx, estimate, map);
+  if (truth) drawTruth(ctx, asImage(truth.boundaries));
 }
 
 /** Heat colour of a value in [0, 1]: red grows linearly, then yellow and white show the top. */
