@@ -103,6 +103,11 @@ export class Controls {
     }
   }
 
+  /** The "Ground truth" control is shown only for a source that has ground truth (the simulator's). */
+  setHasTruth(yes) {
+    this.showTruth.closest('label').hidden = !yes;
+  }
+
   /** Shows progress in [0, 1], or hides the bar for a source without an end (null). */
   setProgress(value) {
     const known = typeof value === 'number' && value >= 0;

@@ -11,10 +11,11 @@ import { VideoFile } from './video-select.js';
 import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from './camera-presets.js';
 import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
-import { drawFrame, drawBoundaries, drawDelimiters, drawHypotheses, drawTopView, drawLayer, drawCalibrationLines } from './render.js';
+import { drawFrame, drawTruth, drawEstimate, drawHypotheses, drawTopView, drawLayer, drawCalibrationLines } from './render.js';
+import { Legend, showBadge } from './legend.js';
 import { AutoCalibration } from './auto-calibration.js';
 import { toJsonLines, toCsv, download } from './export.js';
-import { Plots } from './plots.js';
+import { Plots, plotsCaption } from './plots.js';
 import { Departure } from './departure.js';
 import { appendCapped } from './capped.js';
 import { ParamsPanel } from './params-panel.js';
@@ -29,6 +30,7 @@ const cues = document.getElementById('cues').getContext('2d');
 const ctx2 = document.getElementById('view2').getContext('2d');
 const client = new WorkerClient();
 const plots = new Plots(document.getElementById('plots'));
+const legend = new Legend(document.getElementById('legend'));
 const departure = new Departure();
 const panel = new ParamsPanel();
 const auto = new AutoCalibration();
@@ -47,6 +49,7 @@ const state = {
   sourceName: '',
   trackerId: '',
   compareId: '',
+  hasTruth: false, // the source has ground truth (the simulator's scenes and test road)
   camera: null,
   importedCamera: null,
   inFrame: null, // the frame being stepped through in per-step mode
@@ -96,8 +99,10 @@ function draw(frame, result, redraw = false) {
   const truth = controls.showTruth.checked ? frame.truth : null;
   const byGroup = controls.colourGroups.checked;
   drawHypotheses(ctx, hypotheses, null, byGroup);
-  if (truth) drawBoundaries(ctx, truth.boundaries, { dashed: true, width: 2 });
+  // The truth over the estimate: thin dashes on a thick line where they agree.
   if (estimate) drawEstimate(ctx, estimate);
+  if (truth) drawTruth(ctx, truth.boundaries);
+  showBadge(document.getElementById('view-badge'), estimate);
   const seen = result?.calibration?.observation;
   if (seen && (showCalibration.checked || auto.looking())) drawCalibrationLines(ctx, seen);
   calibration?.draw(ctx, estimate);
@@ -139,20 +144,15 @@ function draw(frame, result, redraw = false) {
   controls.setProgress(state.source?.progress ?? null);
 }
 
-/** An estimate's boundaries; with marking widths (danescu-*), the markings' bands under thin centre lines. */
-function drawEstimate(context, estimate) {
-  drawDelimiters(context, estimate.delimiters);
-  drawBoundaries(context, estimate.boundaries, { width: estimate.delimiters?.length ? 2 : 4 });
-}
-
 /** The second tracker's view: the same frame with its boundaries and particles. */
 function drawCompare(frame, compared, truth, byGroup) {
   document.getElementById('compare-figure').hidden = !compared;
   if (!compared) return;
   drawFrame(ctx2, frame.rgba, frame.width, frame.height);
   drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
-  if (truth) drawBoundaries(ctx2, truth.boundaries, { dashed: true, width: 2 });
   if (compared.estimate) drawEstimate(ctx2, compared.estimate);
+  if (truth) drawTruth(ctx2, truth.boundaries);
+  showBadge(document.getElementById('compare-badge'), compared.estimate);
   let text = `${compared.trackerId} · track ${compared.trackMs.toFixed(1)} ms`;
   if (compared.estimate && !compared.estimate.valid) text += ' · not valid';
   if (compared.estimate && frame.truth) {
@@ -299,6 +299,7 @@ async function openTracker({ keepLog = false } = {}) {
     trackerId: trackerId ? state.compareId : '', camera: state.camera, options: { seed: options.seed },
   });
   controls.setStepNames(info.stepNames);
+  document.getElementById('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length);
   demo.camera = state.camera;
   if (keepLog) return;
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
@@ -353,6 +354,7 @@ async function openSource(next, name) {
   state.source?.close();
   state.source = next;
   state.sourceName = name;
+  showTruthControls(next instanceof SceneSource || next instanceof TestRoadSource);
   demo.ended = false;
   demo.source = name;
   let note = '';
@@ -397,6 +399,19 @@ function filesSource(files) {
     return new VideoFile({ file: videos[0], name: videos[0].name, sideBySide: stereo });
   }
   return new ImageSource(files, { stereo });
+}
+
+/**
+ * Ground truth exists for the simulator's sources only: elsewhere (the clip, your media, the
+ * webcam) its control, caption and legend entry are hidden.
+ */
+function showTruthControls(hasTruth) {
+  state.hasTruth = hasTruth;
+  controls.setHasTruth(hasTruth);
+  legend.update({ hasTruth, byGroup: controls.colourGroups.checked });
+  document.getElementById('caption').textContent = hasTruth
+    ? 'Camera view: the estimate, the ground truth and the particles (colours below). Drop a video or images here.'
+    : 'Camera view: the estimate and the particles (colours below). Drop a video or images here.';
 }
 
 function redrawLast() {
@@ -496,7 +511,10 @@ async function main() {
     }
   };
   controls.cueLayer.addEventListener('change', redrawLast);
-  controls.colourGroups.addEventListener('change', redrawLast);
+  controls.colourGroups.addEventListener('change', () => {
+    legend.update({ hasTruth: state.hasTruth, byGroup: controls.colourGroups.checked });
+    redrawLast();
+  });
   controls.showPlots.addEventListener('change', () => {
     document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
   });

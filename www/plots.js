@@ -16,6 +16,19 @@ export const SERIES = [
   { name: 'time', unit: 'ms/frame', of: (e, r) => r?.trackMs, truth: false },
 ];
 
+/**
+ * The plots' caption: whose estimate is plotted (`trackerId`, '' for none), the ground truth
+ * only for a source that has one, lee-cpf's raw filter only for lee-cpf.
+ */
+export function plotsCaption(trackerId, hasTruth, length = 300) {
+  if (!trackerId) return 'No tracker: nothing to plot (choose one under Tracker)';
+  const parts = [`${trackerId}’s estimate (blue)`];
+  if (hasTruth) parts.push('the ground truth (grey, dashed)');
+  if (trackerId === 'lee-cpf') parts.push('its raw filter before the Kalman smoother (orange)');
+  const list = parts.length > 1 ? `${parts.slice(0, -1).join(', ')} and ${parts.at(-1)}` : parts[0];
+  return `${list}, over the last ${length} frames`;
+}
+
 export class Plots {
   constructor(canvas, length = 300) {
     this.canvas = canvas;

@@ -1,5 +1,12 @@
 // Drawing on the canvas: frames, lane boundaries (one colour per role), the particle cloud,
-// the top view and the trackers' cue layers.
+// the top view and the trackers' cue layers. How things look is decided here, once, and the
+// legend (legend.js) draws its samples with these same functions:
+//   a valid estimate:      solid, opaque, in its role's colour;
+//   an estimate that is not valid: the same colour faded to INVALID_ALPHA and dashed
+//                          (INVALID_DASH), thinner, so it never passes for a confident one;
+//   the ground truth:      dashed (TRUTH_DASH) in TRUTH_COLOUR, whatever the role, thin and
+//                          over the estimate (dashes on a thick line where they agree);
+//   particles:             thin lines, opacity by weight, in their role's (or group's) colour.
 
 export const ROLE_COLOURS = {
   'ego-left': '#ffd54f',
@@ -7,6 +14,13 @@ export const ROLE_COLOURS = {
   'left-adjacent': '#ba68c8',
   'right-adjacent': '#81c784',
 };
+
+/** The ground truth's colour and dash pattern (one colour for every role). */
+export const TRUTH_COLOUR = '#ff1744';
+export const TRUTH_DASH = [10, 8];
+/** An estimate that is not valid: its opacity and dash pattern. */
+export const INVALID_ALPHA = 0.4;
+export const INVALID_DASH = [8, 8];
 
 /** Draws an RGBA frame (Uint8ClampedArray, width*height*4) scaled to the canvas. */
 export function drawFrame(ctx, rgba, width, height) {
@@ -18,15 +32,19 @@ export function drawFrame(ctx, rgba, width, height) {
   ctx.putImageData(new ImageData(rgba, width, height), 0, 0);
 }
 
-/** Draws boundaries [{ role, points: [[x, y], ...] }] as polylines. */
-export function drawBoundaries(ctx, boundaries, { dashed = false, width = 3 } = {}) {
+/**
+ * Draws boundaries [{ role, points: [[x, y], ...] }] as polylines in their role's colour (or
+ * `colour` for all), with the dash pattern `dash` (none: solid) and opacity `alpha`.
+ */
+export function drawBoundaries(ctx, boundaries, { dash = [], width = 3, colour = null, alpha = 1 } = {}) {
   ctx.save();
   ctx.lineWidth = width;
   ctx.lineJoin = 'round';
-  ctx.setLineDash(dashed ? [10, 8] : []);
+  ctx.globalAlpha = alpha;
+  ctx.setLineDash(dash);
   for (const b of boundaries) {
     if (b.points.length < 2) continue;
-    ctx.strokeStyle = ROLE_COLOURS[b.role] ?? '#ffffff';
+    ctx.strokeStyle = colour ?? ROLE_COLOURS[b.role] ?? '#ffffff';
     ctx.beginPath();
     ctx.moveTo(b.points[0][0], b.points[0][1]);
     for (const [x, y] of b.points.slice(1)) ctx.lineTo(x, y);
@@ -35,13 +53,37 @@ export function drawBoundaries(ctx, boundaries, { dashed = false, width = 3 } = 
   ctx.restore();
 }
 
+/** Draws the ground truth's boundaries: dashed, in TRUTH_COLOUR. */
+export function drawTruth(ctx, boundaries, width = 2) {
+  drawBoundaries(ctx, boundaries, { dash: TRUTH_DASH, width, colour: TRUTH_COLOUR });
+}
+
+/**
+ * Draws an estimate (`LaneEstimate`): its boundaries, and for a tracker with marking widths
+ * (danescu-*) the markings' bands under thin centre lines. A valid estimate solid and opaque;
+ * one that is not valid faded (INVALID_ALPHA) and dashed (INVALID_DASH). Image polylines, or
+ * the road polylines through `map` (road point -> canvas point) for the top view.
+ */
+export function drawEstimate(ctx, estimate, map = null) {
+  const banded = estimate.delimiters?.length > 0;
+  const boundaries = map
+    ? estimate.boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }))
+    : estimate.boundaries;
+  // Thinner on the top view, whose canvas is small; thin centre lines over marking bands.
+  const width = map ? (banded ? 1 : 3) : (banded ? 2 : 4);
+  const alpha = estimate.valid ? 1 : INVALID_ALPHA;
+  drawDelimiters(ctx, estimate.delimiters, map, alpha);
+  drawBoundaries(ctx, boundaries, { width, alpha, dash: estimate.valid ? [] : INVALID_DASH });
+}
+
 /**
  * Draws the markings of a tracker that models their widths (`LaneEstimate.delimiters`,
  * danescu-*): each boundary's marking as a translucent band of its role's colour between the
  * marking's inner and outer edge, the edges as thin lines. Image polylines, or the road
- * polylines through `map` (road point -> canvas point) for the top view.
+ * polylines through `map` (road point -> canvas point) for the top view; `alpha` fades it all
+ * (an estimate that is not valid).
  */
-export function drawDelimiters(ctx, delimiters, map = null) {
+export function drawDelimiters(ctx, delimiters, map = null, alpha = 1) {
   if (!delimiters?.length) return;
   const pts = (d) => (map ? d.road_points.map(map) : d.points);
   ctx.save();
@@ -58,10 +100,10 @@ export function drawDelimiters(ctx, delimiters, map = null) {
     for (let k = 1; k < a.length; k++) ctx.lineTo(a[k][0], a[k][1]);
     for (let k = b.length - 1; k >= 0; k--) ctx.lineTo(b[k][0], b[k][1]);
     ctx.closePath();
-    ctx.globalAlpha = 0.35;
+    ctx.globalAlpha = 0.35 * alpha;
     ctx.fillStyle = colour;
     ctx.fill();
-    ctx.globalAlpha = 0.9;
+    ctx.globalAlpha = 0.9 * alpha;
     ctx.strokeStyle = colour;
     ctx.lineWidth = 1;
     for (const line of [a, b]) {
@@ -118,11 +160,8 @@ export function drawTopView(ctx, top, { truth = null, estimate = null, hypothese
   const map = ([x, y]) => [(top.yHalf - y) / top.cell, (top.xMax - x) / top.cell];
   const asImage = (boundaries) => boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }));
   drawHypotheses(ctx, hypotheses, map, byGroup);
-  if (truth) drawBoundaries(ctx, asImage(truth.boundaries), { dashed: true, width: 2 });
-  if (estimate) {
-    drawDelimiters(ctx, estimate.delimiters, map);
-    drawBoundaries(ctx, asImage(estimate.boundaries), { width: estimate.delimiters?.length ? 1 : 3 });
-  }
+  if (estimate) drawEstimate(ctx, estimate, map);
+  if (truth) drawTruth(ctx, asImage(truth.boundaries));
 }
 
 /** Heat colour of a value in [0, 1]: red grows linearly, then yellow and white show the top. */

@@ -229,13 +229,13 @@ for (const driver of DRIVERS) {
         const xr = right.points.reduce((a, p) => (Math.abs(p[1] - y) < Math.abs(a[1] - y) ? p : a))[0];
         assert.ok(lum(img, (xl + xr) / 2, y) < 140, `lane centre at row ${y} is asphalt`);
       }
-      // With the overlay on, the ground truth's role colours are drawn.
+      // With the overlay on, the ground truth is drawn in its colour (render.js's TRUTH_COLOUR).
       await setChecked(page, '#show-truth', true);
       const n2 = await demo(page, 'frames');
       await page.click('#step');
       await page.waitFor((n) => window.lanepfDemo.frames > n, { arg: n2 });
-      const yellow = countColour(await readCanvas(page), [0xff, 0xd5, 0x4f]);
-      assert.ok(yellow > 100, `ego-left overlay drawn (${yellow} px)`);
+      const red = countColour(await readCanvas(page), [0xff, 0x17, 0x44]);
+      assert.ok(red > 100, `ground truth overlay drawn (${red} px)`);
       assert.deepEqual(await page.errors(), []);
       await page.close();
     });

@@ -1,0 +1,77 @@
+// What the drawing means: the colour legend under the camera view and the estimate's state
+// badge on it. The legend's samples are drawn by render.js's own functions with its own
+// colours, so the legend cannot say one thing while the canvas shows another.
+import { ROLE_COLOURS, drawEstimate, drawTruth, drawHypotheses } from './render.js';
+
+const SAMPLE_W = 56;
+const SAMPLE_H = 16;
+/** A boundary of `role` across a sample canvas, as image and as road points. */
+const line = (role, y = SAMPLE_H / 2) => ({ role, points: [[4, y], [SAMPLE_W - 4, y]], road_points: [] });
+
+/** The legend's entries: key, label, how to draw the sample (ctx, { byGroup }). */
+const ENTRIES = [
+  ...Object.keys(ROLE_COLOURS).map((role) => ({
+    key: role,
+    label: `${role} boundary`,
+    draw: (ctx) => drawEstimate(ctx, { valid: true, boundaries: [line(role)] }),
+  })),
+  {
+    key: 'invalid',
+    label: 'not valid: the tracker’s guess, faded and dashed',
+    draw: (ctx) => drawEstimate(ctx, { valid: false, boundaries: [line('ego-left')] }),
+  },
+  {
+    key: 'truth',
+    label: 'ground truth',
+    draw: (ctx) => drawTruth(ctx, [line('ego-left')]),
+  },
+  {
+    key: 'particles',
+    label: 'particles: thin, more opaque when heavier',
+    draw: (ctx, { byGroup }) => drawHypotheses(ctx, [0.2, 0.6, 1].map((weight, k) => ({
+      weight, group: k, boundaries: [line(k === 1 ? 'ego-right' : 'ego-left', 3 + 5 * k)],
+    })), null, byGroup),
+  },
+];
+
+export class Legend {
+  /** Fills the list `ul` with one item per entry: a sample canvas and its label. */
+  constructor(ul) {
+    this.items = new Map();
+    for (const e of ENTRIES) {
+      const li = document.createElement('li');
+      li.dataset.key = e.key;
+      const canvas = document.createElement('canvas');
+      canvas.width = SAMPLE_W;
+      canvas.height = SAMPLE_H;
+      canvas.setAttribute('aria-hidden', 'true');
+      li.append(canvas, ` ${e.label}`);
+      ul.append(li);
+      this.items.set(e.key, { li, ctx: canvas.getContext('2d'), entry: e });
+    }
+    this.update({});
+  }
+
+  /**
+   * Shows the truth's entry only for a source with ground truth; draws the particles' sample
+   * by group when the particles are coloured by group.
+   */
+  update({ hasTruth = false, byGroup = false }) {
+    for (const { li, ctx, entry } of this.items.values()) {
+      ctx.clearRect(0, 0, SAMPLE_W, SAMPLE_H);
+      entry.draw(ctx, { byGroup });
+      if (entry.key === 'truth') li.hidden = !hasTruth;
+    }
+  }
+}
+
+/** The badge on a view: whether the shown estimate is valid; hidden with no estimate. */
+export function showBadge(badge, estimate) {
+  badge.hidden = !estimate;
+  if (!estimate) return;
+  badge.dataset.valid = String(estimate.valid);
+  badge.textContent = estimate.valid ? 'valid' : 'no lane: not valid';
+  badge.title = estimate.valid
+    ? 'The tracker is confident of this frame’s lane; drawn solid.'
+    : 'The tracker has no confident lane in this frame; its best guess is drawn faded and dashed.';
+}
