@@ -51,12 +51,15 @@ fn run(
     let mut out = Vec::with_capacity(frames.len());
     let t0 = Instant::now();
     for f in frames {
-        let mut e = tracker.step(f, camera.width, camera.height)?;
-        if still {
+        let iterations = if still {
             tracker.reset();
-            for _ in 0..STILL_ITERATIONS {
-                e = tracker.step(f, camera.width, camera.height)?;
-            }
+            STILL_ITERATIONS
+        } else {
+            1
+        };
+        let mut e = tracker.step(f, camera.width, camera.height)?;
+        for _ in 1..iterations {
+            e = tracker.step(f, camera.width, camera.height)?;
         }
         out.push(e);
     }
