@@ -613,7 +613,10 @@ fn calibrator_rejects_bad_options_by_name() {
         "hfov_deg",
         JsValue::from_f64(f64::NAN),
     ));
-    assert!(e.contains("invalid calibrator options: hfov_deg is NaN"), "{e}");
+    assert!(
+        e.contains("invalid calibrator options: hfov_deg is NaN"),
+        "{e}"
+    );
     let e = m(obj(r#"{"width": 320, "height": 240, "hfov_deg": 200}"#));
     assert!(e.contains("hfov_deg") && e.contains("20 to 150"), "{e}");
     let e = m(obj(r#"{"width": 320, "height": 240, "stable_frames": 0}"#));
