@@ -101,7 +101,15 @@ async function fuzz({ calls, seed, progress }) {
   };
 
   // --- argument generators --------------------------------------------------------------
-  const hostileValue = () => R.pick([
+  // Hostile objects are remembered, so that the generators never spread or walk one
+  // themselves (their traps would throw in the fuzzer, not in the package).
+  const hostile = new WeakSet();
+  const hostileValue = () => {
+    const v = hostileChoice();
+    if ((typeof v === 'object' && v !== null) || typeof v === 'function') hostile.add(v);
+    return v;
+  };
+  const hostileChoice = () => R.pick([
     () => NaN, () => Infinity, () => -Infinity, () => -1, () => 0, () => 0.5, () => 2 ** 32 + 7,
     () => 2 ** 53 + 2, () => 1e300, () => -1e300, () => 5e-324, () => '12', () => '', () => 'x'.repeat(R.int(0, 200)),
     () => null, () => undefined, () => true, () => [], () => [1, 'a'], () => ({}), () => 10n,
@@ -144,6 +152,7 @@ async function fuzz({ calls, seed, progress }) {
     if (R.chance(0.3)) return hostileValue();
     if (typeof v === 'number') return near(v);
     if (typeof v === 'boolean') return !v;
+    if (hostile.has(v)) return v;
     if (Array.isArray(v)) return v.map((x) => (R.chance(0.5) ? mutate(x) : x));
     if (v && typeof v === 'object') return mutateObject(v);
     return v;
@@ -158,7 +167,8 @@ async function fuzz({ calls, seed, progress }) {
       else if (r < 0.2 && keys.length) delete out[R.pick(keys)];
       else if (keys.length) {
         const k = R.pick(keys);
-        out[k] = out[k] && typeof out[k] === 'object' && !Array.isArray(out[k]) && depth < 2
+        const plain = out[k] && typeof out[k] === 'object' && !hostile.has(out[k]) && !Array.isArray(out[k]);
+        out[k] = plain && depth < 2
           ? mutateObject(out[k], depth + 1) : mutate(out[k]);
       }
     }
