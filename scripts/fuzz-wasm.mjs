@@ -116,6 +116,7 @@ async function fuzz({ calls, seed, progress }) {
     () => Symbol('s'), () => () => 3, () => new Float64Array(3), () => new Date(0),
     () => cyclic(), () => deep(R.pick([10, 200, 10000])), () => throwingGetter(), () => proxy(),
     () => reentrant(), () => new Map([[1, 2]]), () => Object.create(null),
+    () => ({ toJSON() {} }), () => ({ toJSON() { return R.pick([5, 'x', null, [1]]); } }),
   ])();
   const cyclic = () => { const o = { a: 1 }; o.self = o; return o; };
   const deep = (n) => { let o = {}; for (let i = 0; i < n; i++) o = { a: o }; return o; };

@@ -65,6 +65,11 @@ pub fn read_value(value: &JsValue, what: &str, kind: Kind) -> Result<Value, Thro
     let text = js_sys::JSON::stringify_with_replacer(value, replacer.as_ref())
         .map_err(|e| fail(format!("{what} cannot be read: {}", exception_message(&e))))?;
     drop(replacer);
+    // Not always a string: a `toJSON` that returns undefined makes `JSON.stringify` return
+    // undefined, and reading its length would throw through this frame.
+    let text = JsValue::from(text)
+        .dyn_into::<js_sys::JsString>()
+        .map_err(|_| fail(format!("{what} gives no JSON: its toJSON returns nothing")))?;
     if text.length() > MAX_JSON {
         return Err(fail(format!(
             "{what} is too large: {} characters of JSON, at most {MAX_JSON}",
@@ -75,8 +80,8 @@ pub fn read_value(value: &JsValue, what: &str, kind: Kind) -> Result<Value, Thro
         .map_err(|e| fail(format!("{what} cannot be read: {e}")))?;
     if !parsed.is_object() {
         return Err(fail(format!(
-            "{what} must be an object, not {}",
-            describe(value)
+            "{what} must be a plain object, but its JSON is {}",
+            first_chars(&parsed.to_string(), 40)
         )));
     }
     check(&parsed, "").map_err(|m| fail(format!("invalid {what}: {m}")))?;
@@ -119,6 +124,14 @@ fn mark_unrepresentable(_key: JsValue, value: JsValue) -> JsValue {
         None => return value,
     };
     JsValue::from_str(&format!("{MARK}{what}"))
+}
+
+/// At most `n` characters of `text`, with `...` when cut.
+fn first_chars(text: &str, n: usize) -> String {
+    match text.char_indices().nth(n) {
+        Some((i, _)) => format!("{}...", &text[..i]),
+        None => text.to_string(),
+    }
 }
 
 /// Finds the first marked or `null` value and names its key path.

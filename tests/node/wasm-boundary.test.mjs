@@ -37,7 +37,9 @@ function hostile() {
   const proxy = new Proxy({ ...camera }, { ownKeys() { throw new Error('trap'); } });
   const proxyGet = new Proxy({ ...camera }, { get() { throw new Error('get trap'); } });
   const bigint = { ...camera, fx: 10n };
-  return { cyclic, deep, getter, proxy, proxyGet, bigint };
+  const noJson = { ...camera, toJSON() {} };
+  const revoked = Proxy.revocable({}, {}); revoked.revoke();
+  return { cyclic, deep, getter, proxy, proxyGet, bigint, noJson, revoked: revoked.proxy };
 }
 
 test('hostile config objects throw a clear Error and leave every object usable', () => {
@@ -47,7 +49,8 @@ test('hostile config objects throw a clear Error and leave every object usable',
     throwsKind(() => new Tracker('lee-cpf', bad), 'LanepfConfigError');
     throwsKind(() => new Tracker('lee-cpf', { camera: bad }), 'LanepfConfigError');
     throwsKind(() => new Camera(bad), 'LanepfConfigError');
-    throwsKind(() => new Scene('s-curve', { camera: bad }), 'LanepfConfigError');
+    // (A key whose toJSON gives undefined is left out, as JSON.stringify leaves it out.)
+    if (what !== 'noJson') throwsKind(() => new Scene('s-curve', { camera: bad }), 'LanepfConfigError');
     throwsKind(() => new Scene('s-curve', bad), 'LanepfConfigError');
     throwsKind(() => new TestRoad(bad), 'LanepfConfigError');
     throwsKind(() => new TestRoad(camera, bad), 'LanepfConfigError');
@@ -81,6 +84,8 @@ test('hostile config messages say what was wrong', () => {
   throwsKind(() => new Camera({ ...camera, fx: 10n }), 'LanepfConfigError', /fx is a BigInt/);
   throwsKind(() => new Camera({ ...camera, fx: () => 1 }), 'LanepfConfigError', /fx is a function/);
   throwsKind(() => new Camera({ ...camera, fx: NaN }), 'LanepfConfigError', /fx is NaN/);
+  throwsKind(() => new Camera({ toJSON() {} }), 'LanepfConfigError', /camera gives no JSON/);
+  throwsKind(() => new Camera({ toJSON() { return 5; } }), 'LanepfConfigError', /camera must be a plain object, but its JSON is 5/);
   throwsKind(() => new Tracker('lee-cpf', { camera: { ...camera, fy: -Infinity } }), 'LanepfConfigError', /camera\.fy is -Infinity/);
 });
 
