@@ -9,7 +9,11 @@
 // exception, an object left locked, a call over 2 s, or wasm memory growing without bound
 // fails the run.
 //
-//   node scripts/fuzz-wasm.mjs [--calls N] [--seed S] [--json]      (make fuzz-wasm)
+//   node scripts/fuzz-wasm.mjs [--calls N] [--seed S] [--wide] [--json]      (make fuzz-wasm)
+//
+// Numeric options stay within a factor of 3 of their defaults unless --wide, which also draws
+// extremes (subnormals, 1e-9, 1e9, 1e200, negatives): the range checks' territory (issue 19,
+// part 3), where a slow or panicking step is a missing range check.
 //
 // The calls run in a worker thread; the main thread is a watchdog that ends the run when one
 // call has not returned within 30 s (a hang), naming the call's index to replay with the seed.
@@ -30,7 +34,8 @@ if (isMainThread) {
   const seed = opt('--seed', 1);
   const json = args.includes('--json');
   const progress = new Int32Array(new SharedArrayBuffer(8)); // [call index, busy]
-  const worker = new Worker(new URL(import.meta.url), { workerData: { calls, seed, progress } });
+  const wide = args.includes('--wide');
+  const worker = new Worker(new URL(import.meta.url), { workerData: { calls, seed, wide, progress } });
   let last = { index: -1, since: Date.now() };
   const watchdog = setInterval(() => {
     const index = Atomics.load(progress, 0);
@@ -59,7 +64,7 @@ if (isMainThread) {
 
 function printReport(r) {
   const mb = (b) => `${(b / 2 ** 20).toFixed(1)} MiB`;
-  console.log(`fuzz-wasm: seed ${r.seed}, ${r.cases} calls in ${(r.seconds).toFixed(1)} s`);
+  console.log(`fuzz-wasm: seed ${r.seed}${r.wide ? ' (--wide)' : ''}, ${r.cases} calls in ${(r.seconds).toFixed(1)} s`);
   console.log(`  returned          ${r.returned}`);
   console.log(`  clean errors      ${r.cleanErrors} (config ${r.byKind.LanepfConfigError}, input ${r.byKind.LanepfInputError}, state ${r.byKind.LanepfStateError})`);
   console.log(`  freed-object errors ${r.freedErrors} (wasm-bindgen's own, for calls on freed objects)`);
@@ -71,7 +76,7 @@ function printReport(r) {
   for (const f of r.failures) console.log(`  FAILURE at call ${f.index}: ${f.call}: ${f.error}`);
 }
 
-async function fuzz({ calls, seed, progress }) {
+async function fuzz({ calls, seed, wide, progress }) {
   const pkg = await import('../pkg/web/lanepf.js');
   const wasm = pkg.initSync({ module: readFileSync(new URL('../pkg/web/lanepf_bg.wasm', import.meta.url)) });
   const { Calibrator, Camera, Scene, TestRoad, Tracker } = pkg;
@@ -94,7 +99,7 @@ async function fuzz({ calls, seed, progress }) {
 
   const live = []; // { kind, obj, m (material), freed }
   const stats = {
-    seed, cases: 0, returned: 0, cleanErrors: 0, freedErrors: 0, crashes: 0, unclassified: 0,
+    seed, wide, cases: 0, returned: 0, cleanErrors: 0, freedErrors: 0, crashes: 0, unclassified: 0,
     locked: 0, hangs: 0, slowestMs: 0, slowest: '',
     byKind: { LanepfConfigError: 0, LanepfInputError: 0, LanepfStateError: 0 },
     memory: { start: wasm.memory.buffer.byteLength, half: 0, end: 0 }, memoryBounded: true, failures: [],
@@ -145,6 +150,7 @@ async function fuzz({ calls, seed, progress }) {
 
   /** A number near `x` (same sign, within a factor 3), kept whole when `x` is. */
   const near = (x) => {
+    if (wide && R.chance(0.3)) return R.pick([5e-324, 1e-9, 1e9, 1e200, -x, x * 1e6, 2 ** 31]);
     const y = x * 3 ** R.float(-1, 1);
     return Number.isInteger(x) ? Math.max(Math.round(y), x > 0 ? 1 : 0) : y;
   };

@@ -80,7 +80,7 @@ pub fn read_value(value: &JsValue, what: &str, kind: Kind) -> Result<Value, Thro
         .map_err(|e| fail(format!("{what} cannot be read: {e}")))?;
     if !parsed.is_object() {
         return Err(fail(format!(
-            "{what} must be a plain object, but its JSON is {}",
+            "{what} must be an object, but its JSON is {}",
             first_chars(&parsed.to_string(), 40)
         )));
     }

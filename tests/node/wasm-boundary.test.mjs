@@ -85,7 +85,7 @@ test('hostile config messages say what was wrong', () => {
   throwsKind(() => new Camera({ ...camera, fx: () => 1 }), 'LanepfConfigError', /fx is a function/);
   throwsKind(() => new Camera({ ...camera, fx: NaN }), 'LanepfConfigError', /fx is NaN/);
   throwsKind(() => new Camera({ toJSON() {} }), 'LanepfConfigError', /camera gives no JSON/);
-  throwsKind(() => new Camera({ toJSON() { return 5; } }), 'LanepfConfigError', /camera must be a plain object, but its JSON is 5/);
+  throwsKind(() => new Camera({ toJSON() { return 5; } }), 'LanepfConfigError', /camera must be an object, but its JSON is 5/);
   throwsKind(() => new Tracker('lee-cpf', { camera: { ...camera, fy: -Infinity } }), 'LanepfConfigError', /camera\.fy is -Infinity/);
 });
 
