@@ -9,20 +9,25 @@
 // exception, an object left locked, a call over 2 s, or wasm memory growing without bound
 // fails the run.
 //
-//   node scripts/fuzz-wasm.mjs [--calls N] [--seed S] [--wide] [--json]      (make fuzz-wasm)
+//   node scripts/fuzz-wasm.mjs [--calls N] [--seed S] [--wide] [--trace-from I] [--json]
 //
-// Numeric options stay within a factor of 3 of their defaults unless --wide, which also draws
-// extremes (subnormals, 1e-9, 1e9, 1e200, negatives): the range checks' territory (issue 19,
-// part 3), where a slow or panicking step is a missing range check.
+// (make fuzz-wasm.) A run depends on the seed alone: --trace-from I prints every call from the
+// I-th on before making it, to replay a failure.
+//
+// A tracker's numeric options stay within a factor of 3 of their defaults (wrong types, NaN,
+// null and unknown keys still come) unless --wide, which also draws finite extremes (5e-324,
+// 1e-9, 1e9, 1e200, 1e300, negatives, 2^31): the range checks' territory (issue 19, part 3),
+// where a slow or panicking step is a missing range check.
 //
 // The calls run in a worker thread; the main thread is a watchdog that ends the run when one
 // call has not returned within 30 s (a hang), naming the call's index to replay with the seed.
 import { Worker, isMainThread, parentPort, workerData } from 'node:worker_threads';
-import { readFileSync } from 'node:fs';
+import { readFileSync, writeSync } from 'node:fs';
 
 const HANG_MS = 2000;
 const WATCHDOG_MS = 30000;
 const KINDS = new Set(['LanepfConfigError', 'LanepfInputError', 'LanepfStateError']);
+let showing = false; // the fuzzer itself is printing an argument: getters do nothing
 
 if (isMainThread) {
   const args = process.argv.slice(2);
@@ -35,7 +40,8 @@ if (isMainThread) {
   const json = args.includes('--json');
   const progress = new Int32Array(new SharedArrayBuffer(8)); // [call index, busy]
   const wide = args.includes('--wide');
-  const worker = new Worker(new URL(import.meta.url), { workerData: { calls, seed, wide, progress } });
+  const traceFrom = opt('--trace-from', Infinity);
+  const worker = new Worker(new URL(import.meta.url), { workerData: { calls, seed, wide, traceFrom, progress } });
   let last = { index: -1, since: Date.now() };
   const watchdog = setInterval(() => {
     const index = Atomics.load(progress, 0);
@@ -76,7 +82,7 @@ function printReport(r) {
   for (const f of r.failures) console.log(`  FAILURE at call ${f.index}: ${f.call}: ${f.error}`);
 }
 
-async function fuzz({ calls, seed, wide, progress }) {
+async function fuzz({ calls, seed, wide, traceFrom, progress }) {
   const pkg = await import('../pkg/web/lanepf.js');
   const wasm = pkg.initSync({ module: readFileSync(new URL('../pkg/web/lanepf_bg.wasm', import.meta.url)) });
   const { Calibrator, Camera, Scene, TestRoad, Tracker } = pkg;
@@ -97,7 +103,8 @@ async function fuzz({ calls, seed, wide, progress }) {
   });
   const HUGE = new Uint8Array(2 ** 31); // not touched: only its length is ever read
 
-  const live = []; // { kind, obj, m (material), freed }
+  const live = []; // { kind, serial, obj, m (material), freed }
+  let nextSerial = 0;
   const stats = {
     seed, wide, cases: 0, returned: 0, cleanErrors: 0, freedErrors: 0, crashes: 0, unclassified: 0,
     locked: 0, hangs: 0, slowestMs: 0, slowest: '',
@@ -106,6 +113,8 @@ async function fuzz({ calls, seed, wide, progress }) {
   };
 
   // --- argument generators --------------------------------------------------------------
+  let acting = false; // a call of the package is under way
+  let nested = 0; // calls made by a getter during one
   // Hostile objects are remembered, so that the generators never spread or walk one
   // themselves (their traps would throw in the fuzzer, not in the package).
   const hostile = new WeakSet();
@@ -121,7 +130,7 @@ async function fuzz({ calls, seed, wide, progress }) {
     () => Symbol('s'), () => () => 3, () => new Float64Array(3), () => new Date(0),
     () => cyclic(), () => deep(R.pick([10, 200, 10000])), () => throwingGetter(), () => proxy(),
     () => reentrant(), () => new Map([[1, 2]]), () => Object.create(null),
-    () => ({ toJSON() {} }), () => ({ toJSON() { return R.pick([5, 'x', null, [1]]); } }),
+    () => ({ toJSON() {} }), () => { const v = R.pick([5, 'x', null, [1]]); return { toJSON: () => v }; },
   ])();
   const cyclic = () => { const o = { a: 1 }; o.self = o; return o; };
   const deep = (n) => { let o = {}; for (let i = 0; i < n; i++) o = { a: o }; return o; };
@@ -138,9 +147,17 @@ async function fuzz({ calls, seed, wide, progress }) {
     Object.defineProperty(o, 'b', {
       enumerable: true,
       get() {
-        const target = live.length ? R.pick(live) : null;
-        if (target && !target.freed) {
-          if (R.chance(0.2)) { target.freed = true; target.obj.free(); } else callMethod(target);
+        // Only while the package reads it (not when the fuzzer prints it), and not nested, so
+        // that the run depends on the seed alone.
+        if (!acting || nested > 0 || showing) return 2;
+        nested++;
+        try {
+          const target = live.length ? R.pick(live) : null;
+          if (target && !target.freed) {
+            if (R.chance(0.2)) { target.freed = true; target.obj.free(); } else callMethod(target);
+          }
+        } finally {
+          nested--;
         }
         return 2;
       },
@@ -156,7 +173,12 @@ async function fuzz({ calls, seed, wide, progress }) {
   };
   /** Mutates a valid value: mostly nearby values, sometimes a hostile one. */
   const mutate = (v) => {
-    if (R.chance(0.3)) return hostileValue();
+    if (R.chance(0.3)) {
+      const h = hostileValue();
+      // A finite number of the wrong size for a tracker option is the range checks' test
+      // (--wide), not this one's.
+      return trackerOptions && typeof h === 'number' && Number.isFinite(h) ? near(typeof v === 'number' ? v : 1) : h;
+    }
     if (typeof v === 'number') return near(v);
     if (typeof v === 'boolean') return !v;
     if (hostile.has(v)) return v;
@@ -183,12 +205,18 @@ async function fuzz({ calls, seed, wide, progress }) {
   };
 
   const cameraArg = (m) => (R.chance(0.85) ? m.camera : R.chance(0.5) ? mutateObject(m.camera) : hostileValue());
+  let trackerOptions = false; // drawing a tracker's options (numbers stay near the defaults)
   const trackerConfig = (id, m) => {
     const base = { ...defaults[id], camera: m.camera, seed: R.int(0, 1000), particles: R.int(20, 300) };
     if (id.startsWith('liu')) base.init_particles = R.int(0, 50);
     if (id === 'lee-cpf') base.stage2_particles = R.int(0, 200);
     if (R.chance(0.5)) delete base.particles;
-    return R.chance(0.7) ? base : R.chance(0.8) ? mutateObject(base) : hostileValue();
+    trackerOptions = !wide;
+    try {
+      return R.chance(0.7) ? base : R.chance(0.8) ? mutateObject(base) : hostileValue();
+    } finally {
+      trackerOptions = false;
+    }
   };
   const frameArg = (m, right = false) => R.chance(0.85)
     ? R.pick(right ? m.right : m.left)
@@ -211,34 +239,35 @@ async function fuzz({ calls, seed, wide, progress }) {
   const construct = () => {
     const m = R.pick(material);
     const what = R.pick(['tracker', 'tracker', 'tracker', 'scene', 'road', 'camera', 'calibrator']);
+    const serial = nextSerial++;
     let obj;
     if (what === 'tracker') {
       const id = R.chance(0.9) ? R.pick(ids) : R.pick(['nope', 5, {}, null, 'x'.repeat(100), Symbol('id')]);
       const config = trackerConfig(typeof id === 'string' && ids.includes(id) ? id : 'lee-cpf', m);
-      describeCall = () => `new Tracker(${show(id)}, ${show(config)})`;
+      setCall(() => `#${serial} = new Tracker(${show(id)}, ${show(config)})`);
       obj = new Tracker(id, config);
     } else if (what === 'scene') {
       const name = R.chance(0.9) ? R.pick(names) : hostileValue();
       const options = R.chance(0.8) ? R.pick([{ width: m.w, height: m.h, seed: R.int(0, 99) }, { camera: m.camera }, undefined])
         : mutateObject({ width: m.w, height: m.h, seed: 1 });
-      describeCall = () => `new Scene(${show(name)}, ${show(options)})`;
+      setCall(() => `#${serial} = new Scene(${show(name)}, ${show(options)})`);
       obj = new Scene(name, options);
     } else if (what === 'road') {
       const camera = cameraArg(m);
       const options = R.chance(0.5) ? undefined : mutateObject({ lane_width_m: 3.6, speed_mps: 20, fps: 30 });
-      describeCall = () => `new TestRoad(${show(camera)}, ${show(options)})`;
+      setCall(() => `#${serial} = new TestRoad(${show(camera)}, ${show(options)})`);
       obj = new TestRoad(camera, options);
     } else if (what === 'camera') {
       const camera = cameraArg(m);
-      describeCall = () => `new Camera(${show(camera)})`;
+      setCall(() => `#${serial} = new Camera(${show(camera)})`);
       obj = new Camera(camera);
     } else {
       const options = R.chance(0.7) ? { width: m.w, height: m.h, stable_frames: R.int(1, 6) }
         : R.chance(0.7) ? mutateObject({ width: m.w, height: m.h, intrinsics: m.camera, hfov_deg: 60 }) : hostileValue();
-      describeCall = () => `new Calibrator(${show(options)})`;
+      setCall(() => `#${serial} = new Calibrator(${show(options)})`);
       obj = new Calibrator(options);
     }
-    live.push({ kind: what, obj, m, freed: false });
+    live.push({ kind: what, serial, obj, m, freed: false });
     while (live.length > 12) {
       const old = live.shift();
       if (!old.freed) { old.freed = true; old.obj.free(); }
@@ -248,7 +277,10 @@ async function fuzz({ calls, seed, wide, progress }) {
   const callMethod = (entry) => {
     const { kind, obj, m } = entry;
     const w = sizeArg(m.w), h = sizeArg(m.h);
-    const call = (name, ...args) => { describeCall = () => `${kind}.${name}(${args.map(show).join(', ')})`; return obj[name](...args); };
+    const call = (name, ...args) => {
+      setCall(() => `${kind} #${entry.serial}.${name}(${args.map(show).join(', ')})`);
+      return obj[name](...args);
+    };
     switch (kind) {
       case 'tracker': return R.pick([
         () => { if (obj.isStereo && R.chance(0.8)) obj.setRight(R.pick(m.right), m.w, m.h); return call('step', frameArg(m), w, h); },
@@ -278,18 +310,27 @@ async function fuzz({ calls, seed, wide, progress }) {
   };
 
   const functionCall = () => R.pick([
-    () => { const id = R.chance(0.7) ? R.pick(ids) : hostileValue(); describeCall = () => `trackerDefaults(${show(id)})`; return pkg.trackerDefaults(id); },
+    () => { const id = R.chance(0.7) ? R.pick(ids) : hostileValue(); setCall(() => `trackerDefaults(${show(id)})`); return pkg.trackerDefaults(id); },
     () => pkg.trackerIds(), () => pkg.scenarios(), () => pkg.version(),
   ])();
 
   let describeCall = () => '';
+  let index = 0;
+  /** Names the call about to be made (printed first from --trace-from on). */
+  const setCall = (describe) => {
+    describeCall = describe;
+    // Written at once (a worker's console is flushed only when its loop is idle).
+    if (index >= traceFrom) writeSync(2, `call ${index}: ${describe()}\n`);
+  };
   const half = Math.floor(calls / 2);
   const t0 = performance.now();
   for (let i = 0; i < calls; i++) {
     Atomics.store(progress, 0, i);
     Atomics.store(progress, 1, 1);
     describeCall = () => '(no description)';
+    index = i;
     const start = performance.now();
+    acting = true;
     try {
       const r = rng();
       if (r < 0.12 || live.length === 0) construct();
@@ -298,7 +339,7 @@ async function fuzz({ calls, seed, wide, progress }) {
         // Free a live object; one in ten stays listed, so that calls on freed objects are tried.
         const k = Math.floor(rng() * live.length);
         const e = live[k];
-        describeCall = () => `${e.kind}.free()`;
+        setCall(() => `${e.kind}.free()`);
         if (R.chance(0.9)) live.splice(k, 1);
         const wasFreed = e.freed;
         e.freed = true;
@@ -309,6 +350,7 @@ async function fuzz({ calls, seed, wide, progress }) {
     } catch (err) {
       classify(err, i);
     }
+    acting = false;
     Atomics.store(progress, 1, 0);
     const ms = performance.now() - start;
     if (ms > stats.slowestMs) { stats.slowestMs = ms; stats.slowest = describeCall().slice(0, 160); }
@@ -338,8 +380,17 @@ async function fuzz({ calls, seed, wide, progress }) {
   }
 }
 
-/** Short text of an argument, for failure reports. */
+/** Short text of an argument, for failure reports (its getters do nothing meanwhile). */
 function show(v) {
+  showing = true;
+  try {
+    return showText(v);
+  } finally {
+    showing = false;
+  }
+}
+
+function showText(v) {
   if (typeof v === 'bigint') return `${v}n`;
   if (typeof v === 'symbol' || typeof v === 'function') return String(v);
   if (ArrayBuffer.isView(v)) return `${v.constructor.name}(${v.length ?? v.byteLength})`;
