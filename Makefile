@@ -8,7 +8,7 @@ WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-ru
                  CHROMEDRIVER=/usr/bin/chromedriver WASM_BINDGEN_TEST_TIMEOUT=120
 
 .PHONY: demo test test-all test-slow setup pkg lint test-native test-wasm test-chromium test-browser \
-        bench bench-browser
+        fuzz-wasm bench bench-browser
 
 ## Build everything and serve the demo on http://127.0.0.1:$(PORT)/
 demo: pkg
@@ -45,9 +45,15 @@ test-wasm:
 test-chromium:
 	E2E_BROWSERS=chromium node --test tests/node/ tests/e2e/ tests/npm/
 
-# The slow tier: cross-browser.test.mjs in Firefox ESR and WebKitGTK (needs `make pkg`).
+# The slow tier: cross-browser.test.mjs in Firefox ESR and WebKitGTK, then the wasm API fuzz run.
 test-slow: setup pkg
 	E2E_BROWSERS=firefox,webkit node --test tests/e2e/cross-browser.test.mjs
+	node scripts/fuzz-wasm.mjs
+
+## 100 000 seeded random calls on the wasm package's API: 0 traps, 0 hangs, memory bounded
+## (FUZZ_ARGS="--calls N --seed S" to change them).
+fuzz-wasm: pkg
+	node scripts/fuzz-wasm.mjs $(FUZZ_ARGS)
 
 # All of the Node, npm and end-to-end tests in every browser (needs `make pkg`).
 test-browser:

@@ -62,6 +62,10 @@ pub enum Error {
     /// A point cannot be mapped (e.g. a pixel above the horizon has no road point).
     #[error("cannot map point: {0}")]
     Geometry(String),
+    /// A call the object cannot take in its state or at all (no frame in progress, a stereo
+    /// step without its right frame, a right frame for a one-camera tracker).
+    #[error("{0}")]
+    State(String),
 }
 
 /// `Result` with lanepf's [`enum@Error`].

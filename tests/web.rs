@@ -22,7 +22,7 @@ const CAMERA: &str = r#"{"width": 640, "height": 480, "fx": 309.4362, "fy": 344.
     "cx": 317.9034, "cy": 256.5352, "height_m": 2.1798, "pitch_deg": 14.0}"#;
 
 /// The message of the `Error` a call threw.
-fn message<T>(r: Result<T, wasm_bindgen::JsError>) -> String {
+fn message<T, E: Into<JsValue>>(r: Result<T, E>) -> String {
     match r {
         Ok(_) => panic!("expected a thrown Error"),
         Err(e) => {
@@ -31,6 +31,16 @@ fn message<T>(r: Result<T, wasm_bindgen::JsError>) -> String {
             err.message().into()
         }
     }
+}
+
+/// A number argument.
+fn n(x: impl Into<f64>) -> JsValue {
+    JsValue::from_f64(x.into())
+}
+
+/// RGBA bytes as the `Uint8Array` JavaScript passes.
+fn px(bytes: &[u8]) -> JsValue {
+    js_sys::Uint8Array::from(bytes).into()
 }
 
 /// Sets `obj[key] = value` on a parsed object.
@@ -49,12 +59,12 @@ fn version_is_the_crate_version() {
 fn camera_round_trips_and_projects() {
     let cam = JsCamera::new(obj(CAMERA)).unwrap();
     assert_eq!((cam.width(), cam.height()), (640, 480));
-    let p = cam.project_road(20.0, 0.0).unwrap();
+    let p = cam.project_road(n(20.0), n(0.0)).unwrap();
     assert!(
         (p[0] - 317.9034).abs() < 1e-6,
         "centre line projects to cx: {p:?}"
     );
-    let back = cam.road_point(p[0], p[1]).unwrap();
+    let back = cam.road_point(n(p[0]), n(p[1])).unwrap();
     assert!(
         (back[0] - 20.0).abs() < 1e-6 && back[1].abs() < 1e-6,
         "{back:?}"
@@ -68,7 +78,7 @@ fn camera_rejects_nan_missing_and_absurd_values_by_name() {
         "fx",
         JsValue::from_f64(f64::NAN),
     )));
-    assert!(m.contains("camera.fx is NaN"), "{m}");
+    assert!(m.contains("invalid camera: fx is NaN"), "{m}");
     let m = message(JsCamera::new(with(
         CAMERA,
         "height_m",
@@ -88,19 +98,19 @@ fn camera_rejects_nan_missing_and_absurd_values_by_name() {
 #[wasm_bindgen_test]
 fn camera_stays_usable_after_bad_calls() {
     let cam = JsCamera::new(obj(CAMERA)).unwrap();
-    let m = message(cam.project_road(f64::NAN, 0.0));
-    assert!(m.contains("`x` = NaN"), "{m}");
-    let m = message(cam.road_point(320.0, 10.0));
+    let m = message(cam.project_road(n(f64::NAN), n(0.0)));
+    assert!(m.contains("x is NaN"), "{m}");
+    let m = message(cam.road_point(n(320.0), n(10.0)));
     assert!(m.contains("horizon"), "{m}");
-    assert!(cam.project_road(10.0, 1.8).is_ok());
+    assert!(cam.project_road(n(10.0), n(1.8)).is_ok());
 }
 
 #[wasm_bindgen_test]
 fn test_road_renders_full_frames_and_truth() {
     let mut road = JsTestRoad::new(obj(CAMERA), JsValue::UNDEFINED).unwrap();
-    let px = road.render(5).unwrap();
+    let px = road.render(n(5)).unwrap();
     assert_eq!(px.length() as usize, 640 * 480 * 4);
-    let truth = road.truth(5).unwrap();
+    let truth = road.truth(n(5)).unwrap();
     let boundaries = js_sys::Reflect::get(&truth, &"boundaries".into()).unwrap();
     assert_eq!(js_sys::Array::from(&boundaries).length(), 2);
     let m = message(JsTestRoad::new(
@@ -117,7 +127,7 @@ fn tracker_factory_explains_unknown_ids_and_bad_configs() {
     let config = obj(&format!(
         r#"{{"camera": {CAMERA}, "particles": 300, "seed": 7}}"#
     ));
-    let m = message(JsTracker::new("no-such-tracker", config));
+    let m = message(JsTracker::new("no-such-tracker".into(), config));
     assert!(
         m.starts_with("unknown tracker `no-such-tracker`; available: "),
         "{m}"
@@ -126,9 +136,9 @@ fn tracker_factory_explains_unknown_ids_and_bad_configs() {
         assert!(m.contains(&id), "{m} lists {id}");
     }
     let bad = obj(&format!(r#"{{"camera": {CAMERA}, "particles": 0}}"#));
-    let m = message(JsTracker::new("no-such-tracker", bad));
+    let m = message(JsTracker::new("no-such-tracker".into(), bad));
     assert!(m.contains("`particles` = 0"), "{m}");
-    let m = message(JsTracker::new("no-such-tracker", JsValue::NULL));
+    let m = message(JsTracker::new("no-such-tracker".into(), JsValue::NULL));
     assert!(m.contains("tracker config is missing"), "{m}");
 }
 
@@ -138,7 +148,7 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
     let list: js_sys::Array = list.dyn_into().unwrap();
     assert_eq!(list.length(), 12);
     let mut scene = JsScene::new(
-        "s-curve",
+        "s-curve".into(),
         obj(r#"{"width": 160, "height": 120, "seed": 3}"#),
     )
     .unwrap();
@@ -146,8 +156,8 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
         (scene.width(), scene.height(), scene.frames()),
         (160, 120, 450)
     );
-    let left = scene.render(30).unwrap().to_vec();
-    let right = scene.render_right(30).unwrap().to_vec();
+    let left = scene.render(n(30)).unwrap().to_vec();
+    let right = scene.render_right(n(30)).unwrap().to_vec();
     assert_eq!(left.len(), 160 * 120 * 4);
     assert_ne!(
         left, right,
@@ -171,29 +181,32 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
         lanepf::synth::frame_fingerprint(&left),
         lanepf::synth::SCENE_FINGERPRINT
     );
-    let truth = scene.truth(30).unwrap();
+    let truth = scene.truth(n(30)).unwrap();
     let boundaries = js_sys::Reflect::get(&truth, &"boundaries".into()).unwrap();
     assert!(js_sys::Array::from(&boundaries).length() >= 2);
 }
 
 #[wasm_bindgen_test]
 fn scenes_reject_unknown_names_and_bad_options() {
-    let e = message(JsScene::new("moon", JsValue::UNDEFINED));
+    let e = message(JsScene::new("moon".into(), JsValue::UNDEFINED));
     assert!(
         e.contains("unknown scenario `moon`") && e.contains("highway-straight"),
         "{e}"
     );
-    let e = message(JsScene::new("urban", obj(r#"{"width": 0, "height": 10}"#)));
+    let e = message(JsScene::new(
+        "urban".into(),
+        obj(r#"{"width": 0, "height": 10}"#),
+    ));
     assert!(e.contains("0x10"), "{e}");
     let e = message(JsScene::new(
-        "urban",
+        "urban".into(),
         with("{}", "seed", JsValue::from_f64(f64::NAN)),
     ));
     assert!(e.contains("seed"), "{e}");
-    let e = message(JsScene::new("urban", obj(r#"{"width": 1.5}"#)));
-    assert!(e.contains("whole number"), "{e}");
+    let e = message(JsScene::new("urban".into(), obj(r#"{"width": 1.5}"#)));
+    assert!(e.contains("width") && e.contains("1.5"), "{e}");
     let e = message(JsScene::new(
-        "urban",
+        "urban".into(),
         with("{}", "camera", with(CAMERA, "fx", JsValue::from_f64(-1.0))),
     ));
     assert!(e.contains("`fx`"), "{e}");
@@ -213,19 +226,19 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     // Same run as the native unit test `same_result_as_the_browser_build`, through the JS
     // classes: highway-curve seed 1 at 320x240, 400 particles, seed 2, five frames.
     let mut scene = JsScene::new(
-        "highway-curve",
+        "highway-curve".into(),
         obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
     )
     .unwrap();
     let camera = scene.camera().unwrap();
     let config = obj(r#"{"particles": 400, "seed": 2}"#);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut tracker = JsTracker::new("adachi-mmpf", config).unwrap();
+    let mut tracker = JsTracker::new("adachi-mmpf".into(), config).unwrap();
     assert_eq!(tracker.id(), "adachi-mmpf");
     let mut last = JsValue::UNDEFINED;
     for f in 0..5 {
-        let rgba = scene.render(f).unwrap().to_vec();
-        last = tracker.step(&rgba, 320, 240).unwrap();
+        let rgba = scene.render(n(f)).unwrap().to_vec();
+        last = tracker.step(px(&rgba), n(320), n(240)).unwrap();
     }
     let q = js_sys::Reflect::get(&last, &"lateral_offset_m".into())
         .unwrap()
@@ -250,10 +263,10 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     assert_eq!(values.length(), 320);
     assert_eq!(field("start").as_f64(), Some(-8.0));
     // A wrong buffer throws, and the tracker carries on.
-    let m = message(tracker.step(&[0; 12], 320, 240));
+    let m = message(tracker.step(px(&[0; 12]), n(320), n(240)));
     assert!(m.contains("320x240"), "{m}");
-    let rgba = scene.render(5).unwrap().to_vec();
-    assert!(tracker.step(&rgba, 320, 240).is_ok());
+    let rgba = scene.render(n(5)).unwrap().to_vec();
+    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
 }
 
 /// `lateral_offset_m` of an estimate.
@@ -273,21 +286,21 @@ fn track_five_frames_both_ways(
     steps: usize,
 ) -> (JsScene, JsValue, JsTracker, JsValue, JsValue) {
     let mut scene = JsScene::new(
-        "highway-curve",
+        "highway-curve".into(),
         obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
     )
     .unwrap();
     let camera = scene.camera().unwrap();
     let config = obj(options);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut tracker = JsTracker::new(id, config.clone()).unwrap();
-    let mut stepped = JsTracker::new(id, config).unwrap();
+    let mut tracker = JsTracker::new(id.into(), config.clone()).unwrap();
+    let mut stepped = JsTracker::new(id.into(), config).unwrap();
     assert_eq!(stepped.step_names().len(), steps, "{id}");
     let (mut last, mut last_stepped) = (JsValue::UNDEFINED, JsValue::UNDEFINED);
     for f in 0..5 {
-        let rgba = scene.render(f).unwrap().to_vec();
-        last = tracker.step(&rgba, 320, 240).unwrap();
-        stepped.begin_frame(&rgba, 320, 240).unwrap();
+        let rgba = scene.render(n(f)).unwrap().to_vec();
+        last = tracker.step(px(&rgba), n(320), n(240)).unwrap();
+        stepped.begin_frame(px(&rgba), n(320), n(240)).unwrap();
         for k in 0..steps {
             assert_eq!(stepped.next_step(), Some(k));
             last_stepped = stepped.advance().unwrap();
@@ -324,12 +337,12 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
     // Bad options and a wrong buffer throw, and the tracker carries on.
     let bad = obj(r#"{"sigma_q": -1}"#);
     js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
-    let m = message(JsTracker::new("lee-cpf", bad));
+    let m = message(JsTracker::new("lee-cpf".into(), bad));
     assert!(m.contains("sigma_q"), "{m}");
-    let m = message(tracker.step(&[0; 12], 320, 240));
+    let m = message(tracker.step(px(&[0; 12]), n(320), n(240)));
     assert!(m.contains("320x240"), "{m}");
-    let rgba = scene.render(5).unwrap().to_vec();
-    assert!(tracker.step(&rgba, 320, 240).is_ok());
+    let rgba = scene.render(n(5)).unwrap().to_vec();
+    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
 }
 
 #[wasm_bindgen_test]
@@ -361,15 +374,15 @@ fn liu_tracker_runs_in_the_browser_with_the_native_result() {
     let total: f32 = cloud.chunks(10).map(|p| p[9]).sum();
     assert!((total - 1.0).abs() < 1e-3, "{total}");
     // The no-kernel baseline exists, bad options throw, and the tracker carries on.
-    assert!(JsTracker::new("liu-ppf-nokernel", config).is_ok());
+    assert!(JsTracker::new("liu-ppf-nokernel".into(), config).is_ok());
     let bad = obj(r#"{"boundaries": 9}"#);
     js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
-    let m = message(JsTracker::new("liu-ppf", bad));
+    let m = message(JsTracker::new("liu-ppf".into(), bad));
     assert!(m.contains("boundaries"), "{m}");
-    let m = message(tracker.step(&[0; 12], 320, 240));
+    let m = message(tracker.step(px(&[0; 12]), n(320), n(240)));
     assert!(m.contains("320x240"), "{m}");
-    let rgba = scene.render(5).unwrap().to_vec();
-    assert!(tracker.step(&rgba, 320, 240).is_ok());
+    let rgba = scene.render(n(5)).unwrap().to_vec();
+    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
 }
 
 #[wasm_bindgen_test]
@@ -400,10 +413,10 @@ fn danescu_mono_runs_in_the_browser_with_the_native_result() {
     assert!(m.contains("speed_mps"), "{m}");
     let bad = obj(r#"{"points": 0}"#);
     js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
-    let m = message(JsTracker::new("danescu-mono", bad));
+    let m = message(JsTracker::new("danescu-mono".into(), bad));
     assert!(m.contains("points"), "{m}");
-    let rgba = scene.render(5).unwrap().to_vec();
-    assert!(tracker.step(&rgba, 320, 240).is_ok());
+    let rgba = scene.render(n(5)).unwrap().to_vec();
+    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
 }
 
 #[wasm_bindgen_test]
@@ -412,27 +425,27 @@ fn danescu_stereo_runs_in_the_browser_with_the_native_result() {
     // `trackers::danescu::tests::stereo_same_result_as_the_browser_build`: highway-curve seed
     // 1 at 320x240, 300 particles, seed 2, five stereo frames.
     let mut scene = JsScene::new(
-        "highway-curve",
+        "highway-curve".into(),
         obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
     )
     .unwrap();
     let camera = scene.camera().unwrap();
     let config = obj(r#"{"particles": 300, "seed": 2}"#);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut tracker = JsTracker::new("danescu-stereo", config).unwrap();
+    let mut tracker = JsTracker::new("danescu-stereo".into(), config).unwrap();
     assert!(tracker.is_stereo());
-    let first = scene.render(0).unwrap().to_vec();
+    let first = scene.render(n(0)).unwrap().to_vec();
     // Without the right image: a thrown Error that says what to do, and the tracker goes on.
-    let m = message(tracker.step(&first, 320, 240));
+    let m = message(tracker.step(px(&first), n(320), n(240)));
     assert!(m.contains("setRight") && m.contains("danescu-mono"), "{m}");
-    let m = message(tracker.set_right(&[0; 12], 320, 240));
+    let m = message(tracker.set_right(px(&[0; 12]), n(320), n(240)));
     assert!(m.contains("320x240") || m.contains("bytes"), "{m}");
     let mut last = JsValue::UNDEFINED;
     for f in 0..5 {
-        let left = scene.render(f).unwrap().to_vec();
-        let right = scene.render_right(f).unwrap().to_vec();
-        tracker.set_right(&right, 320, 240).unwrap();
-        last = tracker.step(&left, 320, 240).unwrap();
+        let left = scene.render(n(f)).unwrap().to_vec();
+        let right = scene.render_right(n(f)).unwrap().to_vec();
+        tracker.set_right(px(&right), n(320), n(240)).unwrap();
+        last = tracker.step(px(&left), n(320), n(240)).unwrap();
     }
     let state = js_sys::Reflect::get(&last, &"state".into()).unwrap();
     let alpha = js_sys::Reflect::get(&state, &"danescu.alpha".into())
@@ -443,10 +456,10 @@ fn danescu_stereo_runs_in_the_browser_with_the_native_result() {
     // A one-camera tracker refuses a right image.
     let config = obj(r#"{}"#);
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut mono = JsTracker::new("danescu-mono", config).unwrap();
+    let mut mono = JsTracker::new("danescu-mono".into(), config).unwrap();
     assert!(!mono.is_stereo());
-    let right = scene.render_right(0).unwrap().to_vec();
-    let m = message(mono.set_right(&right, 320, 240));
+    let right = scene.render_right(n(0)).unwrap().to_vec();
+    let m = message(mono.set_right(px(&right), n(320), n(240)));
     assert!(m.contains("one camera"), "{m}");
 }
 
@@ -474,10 +487,10 @@ fn calibration_camera() -> JsValue {
 fn calibrate_on_highway(camera: &JsValue, calibrator: &mut JsCalibrator) -> (JsValue, usize) {
     let options = obj(r#"{"seed": 1}"#);
     js_sys::Reflect::set(&options, &"camera".into(), camera).unwrap();
-    let mut scene = JsScene::new("highway-straight", options).unwrap();
+    let mut scene = JsScene::new("highway-straight".into(), options).unwrap();
     let mut used = 0;
     for f in 0..scene.frames() {
-        let status = calibrator.feed(scene.render(f).unwrap().into(), 320.0, 240.0);
+        let status = calibrator.feed(scene.render(n(f)).unwrap().into(), n(320.0), n(240.0));
         let status = status.unwrap();
         let flag = js_sys::Reflect::get(&status, &"used".into()).unwrap();
         used += usize::from(flag.as_bool().unwrap());
@@ -537,12 +550,12 @@ fn calibrator_recovers_the_scene_camera_from_the_field_of_view() {
     let camera = js_sys::Reflect::get(&estimate, &"camera".into()).unwrap();
     let config = obj("{}");
     js_sys::Reflect::set(&config, &"camera".into(), &camera).unwrap();
-    let mut tracker = JsTracker::new("lee-cpf", config).unwrap();
+    let mut tracker = JsTracker::new("lee-cpf".into(), config).unwrap();
     let options = obj(r#"{"seed": 1}"#);
     js_sys::Reflect::set(&options, &"camera".into(), &truth).unwrap();
-    let mut scene = JsScene::new("highway-straight", options).unwrap();
-    let rgba = scene.render(0).unwrap().to_vec();
-    assert!(tracker.step(&rgba, 320, 240).is_ok());
+    let mut scene = JsScene::new("highway-straight".into(), options).unwrap();
+    let rgba = scene.render(n(0)).unwrap().to_vec();
+    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
     // Reset forgets everything.
     calibrator.reset();
     assert!(calibrator.estimate().unwrap().is_null());
@@ -600,7 +613,10 @@ fn calibrator_rejects_bad_options_by_name() {
         "hfov_deg",
         JsValue::from_f64(f64::NAN),
     ));
-    assert!(e.contains("calibrator options.hfov_deg is NaN"), "{e}");
+    assert!(
+        e.contains("invalid calibrator options: hfov_deg is NaN"),
+        "{e}"
+    );
     let e = m(obj(r#"{"width": 320, "height": 240, "hfov_deg": 200}"#));
     assert!(e.contains("hfov_deg") && e.contains("20 to 150"), "{e}");
     let e = m(obj(r#"{"width": 320, "height": 240, "stable_frames": 0}"#));
@@ -629,47 +645,54 @@ fn calibrator_rejects_bad_options_by_name() {
 fn calibrator_rejects_bad_frames_and_keeps_working() {
     let mut calibrator = JsCalibrator::new(obj(r#"{"width": 320, "height": 240}"#)).unwrap();
     let mut scene = JsScene::new(
-        "highway-straight",
+        "highway-straight".into(),
         obj(r#"{"width": 320, "height": 240, "seed": 1}"#),
     )
     .unwrap();
     let frame = || js_sys::Uint8Array::new_with_length(320 * 240 * 4);
-    let e = message(calibrator.feed(js_sys::Uint8Array::new_with_length(12).into(), 320.0, 240.0));
+    let e = message(calibrator.feed(
+        js_sys::Uint8Array::new_with_length(12).into(),
+        n(320.0),
+        n(240.0),
+    ));
     assert!(e.contains("320x240"), "{e}");
-    let e = message(calibrator.feed(frame().into(), 640.0, 480.0));
+    let e = message(calibrator.feed(frame().into(), n(640.0), n(480.0)));
     assert!(e.contains("640x480") && e.contains("320x240"), "{e}");
-    let e = message(calibrator.feed(frame().into(), f64::NAN, 240.0));
-    assert!(e.contains("width = NaN"), "{e}");
-    let e = message(calibrator.feed(frame().into(), 320.5, 240.0));
+    let e = message(calibrator.feed(frame().into(), n(f64::NAN), n(240.0)));
+    assert!(e.contains("width is NaN"), "{e}");
+    let e = message(calibrator.feed(frame().into(), n(320.5), n(240.0)));
     assert!(e.contains("whole number"), "{e}");
-    let e = message(calibrator.feed(frame().into(), 320.0, 0.0));
-    assert!(e.contains("height = 0"), "{e}");
-    let e = message(calibrator.feed(frame().into(), 320.0, 1e9));
+    let e = message(calibrator.feed(frame().into(), n(320.0), n(0.0)));
+    assert!(e.contains("height is 0"), "{e}");
+    let e = message(calibrator.feed(frame().into(), n(320.0), n(1e9)));
     assert!(e.contains("16384"), "{e}");
-    let e = message(calibrator.feed(JsValue::from_str("pixels"), 320.0, 240.0));
-    assert!(e.contains("Uint8Array") && e.contains("not string"), "{e}");
-    let e = message(calibrator.feed(JsValue::NULL, 320.0, 240.0));
+    let e = message(calibrator.feed(JsValue::from_str("pixels"), n(320.0), n(240.0)));
+    assert!(
+        e.contains("Uint8Array") && e.contains("not the string"),
+        "{e}"
+    );
+    let e = message(calibrator.feed(JsValue::NULL, n(320.0), n(240.0)));
     assert!(e.contains("Uint8Array"), "{e}");
     let e = message(calibrator.feed(
         js_sys::Float32Array::new_with_length(320 * 240 * 4).into(),
-        320.0,
-        240.0,
+        n(320.0),
+        n(240.0),
     ));
     assert!(e.contains("Uint8Array"), "{e}");
     // Nothing was counted, and frames still go in: a Uint8ClampedArray (ImageData.data) and a
     // Uint8Array view into a larger buffer.
     for f in 0..3 {
         let status = calibrator
-            .feed(scene.render(f).unwrap().into(), 320.0, 240.0)
+            .feed(scene.render(n(f)).unwrap().into(), n(320.0), n(240.0))
             .unwrap();
         assert_eq!(num(&status, "frames_seen"), f64::from(f + 1));
     }
-    let pixels = scene.render(3).unwrap();
+    let pixels = scene.render(n(3)).unwrap();
     let big = js_sys::Uint8Array::new_with_length(pixels.length() + 8);
     big.subarray(8, pixels.length() + 8)
         .set(&js_sys::Uint8Array::new(&pixels.buffer()), 0);
     let view = big.subarray(8, pixels.length() + 8);
-    let status = calibrator.feed(view.into(), 320.0, 240.0).unwrap();
+    let status = calibrator.feed(view.into(), n(320.0), n(240.0)).unwrap();
     assert_eq!(num(&status, "frames_seen"), 4.0);
     let ego = js_sys::Reflect::get(&status, &"ego_found".into()).unwrap();
     assert_eq!(ego.as_bool(), Some(true), "the markings are found");

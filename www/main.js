@@ -58,12 +58,20 @@ const state = {
 };
 let calibration = null;
 
-/** What to do in this page about a tracker's error. */
-function hint(message) {
-  if (/needs the right image/.test(message)) {
+/**
+ * What to do in this page about a tracker's error, from its kind (`err.name`, see the package
+ * README) and the page's own state: the page calls the trackers correctly, so a state error
+ * of a stereo tracker is its missing right image, and a configuration error of one on a camera
+ * without a baseline is that baseline.
+ */
+function hint(err) {
+  if (![state.trackerId, state.compareId].includes('danescu-stereo')) return '';
+  if (err.name === 'LanepfStateError') {
     return ' In this page: tick Stereo and open a side-by-side video or left/right image pairs, or choose a simulator scene.';
   }
-  if (/baseline/.test(message)) return ' In this page: import a camera file with baseline_m, or pick a stereo preset under Camera calibration.';
+  if (err.name === 'LanepfConfigError' && !(state.camera ?? demo.camera)?.baseline_m) {
+    return ' In this page: import a camera file with baseline_m, or pick a stereo preset under Camera calibration.';
+  }
   return '';
 }
 
@@ -73,7 +81,7 @@ function run(fn) {
   demo.pending += 1;
   queue = queue.then(fn).catch((err) => {
     controls.setPaused(true);
-    controls.say(err.message + hint(err.message), true);
+    controls.say(err.message + hint(err), true);
   }).finally(() => {
     demo.pending -= 1;
   });

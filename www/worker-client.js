@@ -1,5 +1,6 @@
 // Talks to the tracking worker (worker.js) with request/response promises.
-// Every request carries an id; the worker answers { id, ok, result } or { id, ok: false, error }.
+// Every request carries an id; the worker answers { id, ok, result } or
+// { id, ok: false, error, name } (the message and the error's kind).
 
 export class WorkerClient {
   constructor(url = new URL('./worker.js', import.meta.url)) {
@@ -7,12 +8,13 @@ export class WorkerClient {
     this.pending = new Map();
     this.nextId = 1;
     this.worker.onmessage = (e) => {
-      const { id, ok, result, error, rgba } = e.data;
+      const { id, ok, result, error, name, rgba } = e.data;
       const p = this.pending.get(id);
       if (!p) return;
       this.pending.delete(id);
-      // A failed request hands transferred pixels back on the Error (`err.rgba`).
-      ok ? p.resolve(result) : p.reject(Object.assign(new Error(error), { rgba }));
+      // A failed request keeps the error's kind in `err.name` and hands transferred pixels back
+      // on the Error (`err.rgba`).
+      ok ? p.resolve(result) : p.reject(Object.assign(new Error(error), { rgba }, name ? { name } : {}));
     };
     this.worker.onerror = (e) => {
       const err = new Error(`worker failed: ${e.message ?? 'unknown error'}`);

@@ -62,6 +62,15 @@ function topView(rgba, width, height) {
   return { rgba: out, rows, cols, ...TOP };
 }
 
+/** A tracker config from the panel's options and the page's camera; a `camera` among the
+ *  options would be silently replaced, so it is refused. */
+function withCamera(options, camera) {
+  if (options && 'camera' in options) {
+    throw Object.assign(new Error('tracker options: `camera` comes from the camera panel, not the options'), { name: 'LanepfConfigError' });
+  }
+  return { ...(options ?? {}), camera };
+}
+
 function requireTracker() {
   if (!tracker) throw new Error('choose a tracker first');
   return tracker;
@@ -144,7 +153,7 @@ const handlers = {
     tracker = null;
     topLut = buildTopLut(camera);
     if (!trackerId) return { trackerId: null, stepNames: [] };
-    tracker = new Tracker(trackerId, { ...(options ?? {}), camera });
+    tracker = new Tracker(trackerId, withCamera(options, camera));
     return { trackerId: tracker.id, stepNames: tracker.stepNames(), isStereo: tracker.isStereo };
   },
   /**
@@ -163,7 +172,7 @@ const handlers = {
   async openCompare({ trackerId, camera, options }) {
     compare?.free();
     compare = null;
-    if (trackerId) compare = new Tracker(trackerId, { ...(options ?? {}), camera });
+    if (trackerId) compare = new Tracker(trackerId, withCamera(options, camera));
     return { trackerId: compare?.id ?? null };
   },
   /** Renders frame `index` of the open synthetic source with its truth and ego motion. */
@@ -248,6 +257,7 @@ self.onmessage = async (e) => {
     // Hand the pixels back even on failure, so the page can still draw the frame.
     const rgba = payload?.rgba;
     const transfer = rgba?.buffer && rgba.buffer.byteLength ? [rgba.buffer] : [];
-    self.postMessage({ id, ok: false, error: err?.message ?? String(err), rgba }, transfer);
+    // The error's kind (`name`, e.g. LanepfStateError) travels with its message.
+    self.postMessage({ id, ok: false, error: err?.message ?? String(err), name: err?.name, rgba }, transfer);
   }
 };

@@ -21,7 +21,8 @@ pub struct Hypothesis {
 /// drawing of a sample of the cloud shows its spread, not only its first particles.
 pub fn spread_indices(n: usize, max: usize) -> impl Iterator<Item = usize> {
     let count = n.min(max);
-    (0..count).map(move |k| k * n / count.max(1))
+    // In u64: k * n overflows a 32-bit usize (wasm32) from about 65 536 particles.
+    (0..count).map(move |k| (k as u64 * n as u64 / count.max(1) as u64) as usize)
 }
 
 #[cfg(test)]

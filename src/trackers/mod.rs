@@ -53,10 +53,10 @@ pub trait Tracker {
     /// before every [`Tracker::step`] / [`Tracker::begin_frame`].
     ///
     /// # Errors
-    /// [`Error::Config`] for a one-camera tracker; [`Error::BufferSize`] /
+    /// [`Error::State`] for a one-camera tracker; [`Error::BufferSize`] /
     /// [`Error::Dimensions`] as for a frame.
     fn set_right(&mut self, _rgba: &[u8], _width: usize, _height: usize) -> Result<()> {
-        Err(Error::Config(format!(
+        Err(Error::State(format!(
             "{} takes one camera; a right image is for danescu-stereo",
             self.id()
         )))
@@ -94,10 +94,10 @@ pub trait Tracker {
     /// steps gives exactly what [`Tracker::step`] gives.
     ///
     /// # Errors
-    /// As [`Tracker::step`] for a bad frame; [`Error::Config`] for a tracker without a
+    /// As [`Tracker::step`] for a bad frame; [`Error::State`] for a tracker without a
     /// per-step mode.
     fn begin_frame(&mut self, _rgba: &[u8], _width: usize, _height: usize) -> Result<()> {
-        Err(Error::Config(format!(
+        Err(Error::State(format!(
             "{} has no per-step mode yet; use step()",
             self.id()
         )))
@@ -106,9 +106,9 @@ pub trait Tracker {
     /// estimate after the last step, `None` before it.
     ///
     /// # Errors
-    /// [`Error::Config`] when no frame is in progress.
+    /// [`Error::State`] when no frame is in progress.
     fn advance(&mut self) -> Result<Option<LaneEstimate>> {
-        Err(Error::Config(format!(
+        Err(Error::State(format!(
             "{} has no per-step mode yet; use step()",
             self.id()
         )))
@@ -123,6 +123,7 @@ pub trait Tracker {
 /// The car's motion at a frame: its timestamp, speed and yaw rate (the frame interval is the
 /// difference of consecutive timestamps).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct EgoMotion {
     /// Frame timestamp, seconds.
     pub t_s: f64,
@@ -255,7 +256,8 @@ pub struct StageTimes {
 /// of the [`TrackerConfig`].
 ///
 /// # Errors
-/// [`Error::Config`] naming the tracker for an unknown option or a wrong type.
+/// [`Error::Config`] naming the tracker and the option's key path for an unknown option or a
+/// wrong type.
 pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
     id: &str,
     options: &BTreeMap<String, serde_json::Value>,
@@ -264,8 +266,15 @@ pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
         .iter()
         .map(|(k, v)| (k.clone(), v.clone()))
         .collect();
-    serde_json::from_value(serde_json::Value::Object(map))
-        .map_err(|e| Error::Config(format!("{id} options: {e}")))
+    serde_path_to_error::deserialize(serde_json::Value::Object(map)).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        if path == "." {
+            Error::Config(format!("{id} options: {inner}"))
+        } else {
+            Error::Config(format!("{id} options: {path}: {inner}"))
+        }
+    })
 }
 
 /// Checks that an RGBA frame has the camera's size.
@@ -286,7 +295,7 @@ pub(crate) fn check_frame(camera: &Camera, rgba: &[u8], width: usize, height: us
 
 /// The error of [`Tracker::advance`] without a frame in progress.
 pub(crate) fn no_frame_in_progress() -> Error {
-    Error::Config("no frame in progress: call beginFrame (begin_frame in Rust) first".into())
+    Error::State("no frame in progress: call beginFrame (begin_frame in Rust) first".into())
 }
 
 /// The ids of the trackers implemented so far.

@@ -1,10 +1,11 @@
 //! `Calibrator` for JavaScript: camera auto-calibration (pitch, yaw, height) from the lane
 //! markings of the frames it is fed (see `crate::calib`).
 
-use super::error::{from_js_object, to_js};
+use super::args;
+use super::error::{config, input, Kind, Thrown};
+use super::object;
 use crate::calib::{Calibrator, CalibratorConfig, FrameObservation};
 use crate::camera::CameraFile;
-use crate::image::MAX_SIDE;
 use serde::{Deserialize, Serialize};
 use wasm_bindgen::prelude::*;
 
@@ -61,72 +62,6 @@ pub struct JsCalibrator {
     frame: Vec<u8>,
 }
 
-/// A frame side given from JavaScript: a whole number from 1 to [`MAX_SIDE`].
-fn side(name: &str, v: f64) -> Result<usize, JsError> {
-    if !(v.is_finite() && v.fract() == 0.0 && (1.0..=MAX_SIDE as f64).contains(&v)) {
-        return Err(JsError::new(&format!(
-            "{name} = {v}: must be a whole number of pixels from 1 to {MAX_SIDE}"
-        )));
-    }
-    Ok(v as usize)
-}
-
-/// Copies a `width` x `height` RGBA frame (`Uint8Array` or `Uint8ClampedArray`) into `out`; an
-/// array of another length is refused before anything is copied.
-fn copy_rgba(
-    rgba: &JsValue,
-    [width, height]: [usize; 2],
-    out: &mut Vec<u8>,
-) -> Result<(), JsError> {
-    let view = if let Some(a) = rgba.dyn_ref::<js_sys::Uint8Array>() {
-        a.clone()
-    } else if let Some(a) = rgba.dyn_ref::<js_sys::Uint8ClampedArray>() {
-        js_sys::Uint8Array::new_with_byte_offset_and_length(
-            &a.buffer(),
-            a.byte_offset(),
-            a.length(),
-        )
-    } else {
-        return Err(JsError::new(&format!(
-            "the frame must be a Uint8Array or Uint8ClampedArray of RGBA pixels \
-             (ImageData.data), not {}",
-            describe(rgba)
-        )));
-    };
-    let (expected, actual) = (width * height * 4, view.length() as usize);
-    if actual != expected {
-        return Err(to_js(crate::Error::BufferSize {
-            what: format!("a {width}x{height} RGBA frame (width*height*4 bytes)"),
-            expected,
-            actual,
-        }));
-    }
-    out.resize(expected, 0);
-    view.copy_to(out);
-    Ok(())
-}
-
-/// What a JS value is, for an error message: its constructor's name for an object, else its
-/// type (`null`, `undefined`, `string`, ...).
-fn describe(value: &JsValue) -> String {
-    if value.is_null() {
-        return "null".into();
-    }
-    if value.is_object() {
-        let name = js_sys::Reflect::get(value, &"constructor".into())
-            .and_then(|c| js_sys::Reflect::get(&c, &"name".into()))
-            .ok()
-            .and_then(|n| n.as_string());
-        if let Some(name) = name.filter(|n| !n.is_empty()) {
-            return name;
-        }
-    }
-    value
-        .js_typeof()
-        .as_string()
-        .unwrap_or_else(|| "unknown".into())
-}
-
 #[wasm_bindgen(js_class = Calibrator)]
 impl JsCalibrator {
     /// `new Calibrator({ width, height, intrinsics?, lane_width_m?, hfov_deg?, stable_frames?,
@@ -137,21 +72,15 @@ impl JsCalibrator {
     #[wasm_bindgen(constructor)]
     pub fn new(
         #[wasm_bindgen(unchecked_param_type = "CalibratorOptions")] options: JsValue,
-    ) -> Result<JsCalibrator, JsError> {
-        let not_object = !options.is_object() || js_sys::Array::is_array(&options);
-        if !options.is_undefined() && !options.is_null() && not_object {
-            return Err(JsError::new(
-                "calibrator options must be an object: { width, height, ... }",
-            ));
-        }
-        let options: Options = from_js_object(&options, "calibrator options")?;
+    ) -> Result<JsCalibrator, Thrown> {
+        let options: Options = object::read(&options, "calibrator options", Kind::Config)?;
         let inner = Calibrator::new(
             options.width,
             options.height,
             options.intrinsics.as_ref(),
             options.config(),
         )
-        .map_err(to_js)?;
+        .map_err(config)?;
         Ok(JsCalibrator {
             inner,
             frame: Vec::new(),
@@ -174,7 +103,7 @@ impl JsCalibrator {
     #[wasm_bindgen(
         unchecked_return_type = "Required<Omit<CalibratorOptions, 'width' | 'height' | 'intrinsics'>>"
     )]
-    pub fn options(&self) -> Result<JsValue, JsError> {
+    pub fn options(&self) -> Result<JsValue, Thrown> {
         super::to_js_value(self.inner.config())
     }
 
@@ -185,18 +114,18 @@ impl JsCalibrator {
     pub fn feed(
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: JsValue,
-        width: f64,
-        height: f64,
-    ) -> Result<JsValue, JsError> {
-        let (w, h) = (side("width", width)?, side("height", height)?);
+        #[wasm_bindgen(unchecked_param_type = "number")] width: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] height: JsValue,
+    ) -> Result<JsValue, Thrown> {
+        let (w, h) = (args::side(&width, "width")?, args::side(&height, "height")?);
         let [cw, ch] = self.inner.size();
         if (w, h) != (cw, ch) {
-            return Err(JsError::new(&format!(
+            return Err(Thrown::input(format!(
                 "{w}x{h}: this calibrator takes {cw}x{ch} frames"
             )));
         }
-        copy_rgba(&rgba, [w, h], &mut self.frame)?;
-        let obs = self.inner.feed_rgba(&self.frame, w, h).map_err(to_js)?;
+        args::rgba(&rgba, "rgba", [w, h], &mut self.frame)?;
+        let obs = self.inner.feed_rgba(&self.frame, w, h).map_err(input)?;
         let (used, ego_found, straight, stable, vanishing_point) = (
             obs.used,
             obs.ego.is_some(),
@@ -220,7 +149,7 @@ impl JsCalibrator {
     /// vanishing_point, intrinsics_known }`; `camera` goes straight into `new Tracker(id, {
     /// camera })`.
     #[wasm_bindgen(unchecked_return_type = "CalibrationEstimate | null")]
-    pub fn estimate(&self) -> Result<JsValue, JsError> {
+    pub fn estimate(&self) -> Result<JsValue, Thrown> {
         match self.inner.estimate() {
             Some(e) => super::to_js_value(&e),
             None => Ok(JsValue::NULL),
@@ -232,7 +161,7 @@ impl JsCalibrator {
     /// used }`; line i runs x = x_ref + slope (y - y_ref) from y_top to y_bottom, in
     /// undistorted pixels; `ego` indexes `lines`.
     #[wasm_bindgen(unchecked_return_type = "CalibrationObservation")]
-    pub fn observation(&self) -> Result<JsValue, JsError> {
+    pub fn observation(&self) -> Result<JsValue, Thrown> {
         let obs: &FrameObservation = self.inner.last_observation();
         super::to_js_value(obs)
     }

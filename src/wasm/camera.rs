@@ -1,6 +1,8 @@
 //! `Camera` for JavaScript: built from a plain object in the `camera.json` format.
 
-use super::error::{from_js_object, to_js};
+use super::args;
+use super::error::{config, input, Kind, Thrown};
+use super::object;
 use crate::camera::{Camera, CameraFile};
 use wasm_bindgen::prelude::*;
 
@@ -11,13 +13,9 @@ pub struct JsCamera {
 }
 
 /// Reads a JS camera object into a validated core camera.
-pub fn camera_from_js(value: &JsValue) -> Result<Camera, JsError> {
-    let file: CameraFile = from_js_object(value, "camera")?;
-    Camera::from_file(&file).map_err(to_js)
-}
-
-fn finite(name: &str, v: f64) -> Result<f64, JsError> {
-    crate::error::require_finite(name, v).map_err(to_js)
+pub fn camera_from_js(value: &JsValue) -> Result<Camera, Thrown> {
+    let file: CameraFile = object::read(value, "camera", Kind::Config)?;
+    Camera::from_file(&file).map_err(config)
 }
 
 #[wasm_bindgen(js_class = Camera)]
@@ -27,7 +25,7 @@ impl JsCamera {
     #[wasm_bindgen(constructor)]
     pub fn new(
         #[wasm_bindgen(unchecked_param_type = "CameraConfig")] config: JsValue,
-    ) -> Result<JsCamera, JsError> {
+    ) -> Result<JsCamera, Thrown> {
         Ok(JsCamera {
             inner: camera_from_js(&config)?,
         })
@@ -48,30 +46,36 @@ impl JsCamera {
     /// Pixel `[u, v]` of the road point (x forward, y left, metres); throws when the point is
     /// behind the camera.
     #[wasm_bindgen(js_name = projectRoad)]
-    pub fn project_road(&self, x: f64, y: f64) -> Result<Vec<f64>, JsError> {
-        let (x, y) = (finite("x", x)?, finite("y", y)?);
+    pub fn project_road(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "number")] x: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] y: JsValue,
+    ) -> Result<Vec<f64>, Thrown> {
+        let (x, y) = (args::number(&x, "x")?, args::number(&y, "y")?);
         self.inner
             .road_to_pixel(x, y)
             .map(|p| p.to_vec())
-            .ok_or_else(|| JsError::new(&format!("road point ({x}, {y}) is behind the camera")))
+            .ok_or_else(|| Thrown::input(format!("road point ({x}, {y}) is behind the camera")))
     }
 
     /// Road point `[x, y]` (metres) seen at pixel (u, v); throws above the horizon.
     #[wasm_bindgen(js_name = roadPoint)]
-    pub fn road_point(&self, u: f64, v: f64) -> Result<Vec<f64>, JsError> {
-        let (u, v) = (finite("u", u)?, finite("v", v)?);
+    pub fn road_point(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "number")] u: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] v: JsValue,
+    ) -> Result<Vec<f64>, Thrown> {
+        let (u, v) = (args::number(&u, "u")?, args::number(&v, "v")?);
         self.inner
             .pixel_to_road(u, v)
             .map(|p| p.to_vec())
-            .map_err(to_js)
+            .map_err(input)
     }
 
     /// The camera as a plain object in the `camera.json` format.
     #[wasm_bindgen(js_name = toJSON, unchecked_return_type = "CameraConfig")]
-    pub fn to_json(&self) -> Result<JsValue, JsError> {
-        let text = serde_json::to_string(&self.inner.to_file())
-            .map_err(|e| JsError::new(&format!("cannot serialise the camera: {e}")))?;
-        js_sys::JSON::parse(&text).map_err(|_| JsError::new("cannot parse the camera JSON"))
+    pub fn to_json(&self) -> Result<JsValue, Thrown> {
+        super::to_js_value(&self.inner.to_file())
     }
 }
 

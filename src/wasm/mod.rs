@@ -1,12 +1,16 @@
 //! The JavaScript binding: the only module with wasm-bindgen types.
 //!
-//! Each class wraps a core type (`Camera`, `Scene`, `TestRoad`, `Tracker`, `Calibrator`); every fallible call returns
-//! `Result<_, JsError>`, so JavaScript gets a thrown `Error` with the core's message and the
-//! object stays usable.
+//! Each class wraps a core type (`Camera`, `Scene`, `TestRoad`, `Tracker`, `Calibrator`); every
+//! fallible call returns `Result<_, Thrown>`, so JavaScript gets a thrown `Error` with the
+//! core's message and its kind in `error.name` (`error.rs`), and the object stays usable.
+//! Arguments arrive as `JsValue` and are checked before anything is copied (`args.rs`);
+//! option objects are read once, bounded and without re-entrancy (`object.rs`).
 
+mod args;
 mod calibrator;
 mod camera;
 mod error;
+mod object;
 mod scene;
 mod test_road;
 mod tracker;
@@ -14,7 +18,7 @@ mod types;
 
 pub use calibrator::JsCalibrator;
 pub use camera::JsCamera;
-pub use error::to_js;
+pub use error::{Kind, Thrown};
 pub use scene::{scenarios, JsScene};
 pub use test_road::JsTestRoad;
 pub use tracker::{tracker_ids, JsTracker};
@@ -35,8 +39,8 @@ pub fn version() -> String {
 
 /// Serialises a core value into a plain JS object (by way of JSON, so field names are the
 /// contract's snake_case names).
-fn to_js_value<T: serde::Serialize>(value: &T) -> Result<JsValue, JsError> {
+fn to_js_value<T: serde::Serialize>(value: &T) -> Result<JsValue, Thrown> {
     let text = serde_json::to_string(value)
-        .map_err(|e| JsError::new(&format!("cannot serialise the result: {e}")))?;
-    js_sys::JSON::parse(&text).map_err(|_| JsError::new("cannot parse the result JSON"))
+        .map_err(|e| Thrown::input(format!("cannot serialise the result: {e}")))?;
+    js_sys::JSON::parse(&text).map_err(|_| Thrown::input("cannot parse the result JSON"))
 }

@@ -1,8 +1,12 @@
 //! `Scene` for JavaScript: the named synthetic scenarios with exact ground truth.
 
-use super::camera::camera_from_js;
-use super::error::to_js;
+use super::args;
+use super::error::{self, input, Kind, Thrown};
+use super::object;
+use crate::camera::{Camera, CameraFile};
 use crate::synth::{default_camera, scenario, Eye, Scene, SCENARIOS};
+use crate::Error;
+use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
 /// A named synthetic scenario rendered through a camera.
@@ -14,7 +18,7 @@ pub struct JsScene {
 
 /// The scenario names and descriptions: `[{ name, description }, ...]`.
 #[wasm_bindgen(unchecked_return_type = "ScenarioInfo[]")]
-pub fn scenarios() -> Result<JsValue, JsError> {
+pub fn scenarios() -> Result<JsValue, Thrown> {
     let list: Vec<serde_json::Value> = SCENARIOS
         .iter()
         .map(|(name, about)| serde_json::json!({ "name": name, "description": about }))
@@ -22,31 +26,34 @@ pub fn scenarios() -> Result<JsValue, JsError> {
     super::to_js_value(&list)
 }
 
-fn get(options: &JsValue, key: &str) -> Result<Option<JsValue>, JsError> {
-    if options.is_undefined() || options.is_null() {
-        return Ok(None);
-    }
-    let v = js_sys::Reflect::get(options, &JsValue::from_str(key))
-        .map_err(|_| JsError::new("scene options must be an object"))?;
-    Ok((!v.is_undefined() && !v.is_null()).then_some(v))
+/// The options of `new Scene(name, options)`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Options {
+    #[serde(default = "default_seed")]
+    seed: u64,
+    #[serde(default = "default_width")]
+    width: usize,
+    #[serde(default = "default_height")]
+    height: usize,
+    #[serde(default)]
+    camera: Option<CameraFile>,
 }
 
-fn whole_number(options: &JsValue, key: &str, default: f64, max: f64) -> Result<f64, JsError> {
-    match get(options, key)? {
-        None => Ok(default),
-        Some(v) => {
-            let n = v
-                .as_f64()
-                .ok_or_else(|| JsError::new(&format!("scene option `{key}` must be a number")))?;
-            if !(n.is_finite() && n >= 0.0 && n <= max && n.fract() == 0.0) {
-                return Err(JsError::new(&format!(
-                    "scene option `{key}` = {n}: must be a whole number from 0 to {max}"
-                )));
-            }
-            Ok(n)
-        }
-    }
+fn default_seed() -> u64 {
+    1
 }
+
+fn default_width() -> usize {
+    640
+}
+
+fn default_height() -> usize {
+    480
+}
+
+/// Largest seed: the largest whole number a JS number holds exactly (2^53 - 1).
+const MAX_SEED: u64 = (1 << 53) - 1;
 
 #[wasm_bindgen(js_class = Scene)]
 impl JsScene {
@@ -55,20 +62,29 @@ impl JsScene {
     /// camera of `width` x `height` (640x480). Throws for an unknown name or bad options.
     #[wasm_bindgen(constructor)]
     pub fn new(
-        #[wasm_bindgen(unchecked_param_type = "ScenarioName")] name: &str,
+        #[wasm_bindgen(unchecked_param_type = "ScenarioName")] name: JsValue,
         #[wasm_bindgen(unchecked_optional_param_type = "SceneOptions")] options: JsValue,
-    ) -> Result<JsScene, JsError> {
-        let config = scenario(name).map_err(to_js)?;
-        let seed = whole_number(&options, "seed", 1.0, 9.007_199_254_740_991e15)? as u64;
-        let camera = match get(&options, "camera")? {
-            Some(c) => camera_from_js(&c)?,
-            None => {
-                let w = whole_number(&options, "width", 640.0, 16384.0)? as usize;
-                let h = whole_number(&options, "height", 480.0, 16384.0)? as usize;
-                default_camera(w, h).map_err(to_js)?
-            }
+    ) -> Result<JsScene, Thrown> {
+        let config = scenario(&args::name(&name, "scenario name")?).map_err(error::config)?;
+        let options: Options = object::read_optional(&options, "scene options", Kind::Config)?
+            .unwrap_or(Options {
+                seed: default_seed(),
+                width: default_width(),
+                height: default_height(),
+                camera: None,
+            });
+        if options.seed > MAX_SEED {
+            return Err(error::config(Error::parameter(
+                "seed",
+                options.seed,
+                "must be at most 2^53 - 1",
+            )));
+        }
+        let camera = match &options.camera {
+            Some(file) => Camera::from_file(file).map_err(error::config)?,
+            None => default_camera(options.width, options.height).map_err(error::config)?,
         };
-        let scene = Scene::new(config, camera, seed).map_err(to_js)?;
+        let scene = Scene::new(config, camera, options.seed).map_err(error::config)?;
         let frame = vec![0; scene.width() * scene.height() * 4];
         Ok(JsScene { scene, frame })
     }
@@ -93,7 +109,7 @@ impl JsScene {
 
     /// The camera, as a plain `camera.json` object (with the stereo baseline).
     #[wasm_bindgen(unchecked_return_type = "CameraConfig")]
-    pub fn camera(&self) -> Result<JsValue, JsError> {
+    pub fn camera(&self) -> Result<JsValue, Thrown> {
         let mut file = self.scene.camera().to_file();
         file.baseline_m = Some(self.scene.baseline());
         super::to_js_value(&file)
@@ -101,26 +117,38 @@ impl JsScene {
 
     /// Renders frame `index` of the left camera: a new `Uint8ClampedArray` (width*height*4).
     #[wasm_bindgen(unchecked_return_type = "Uint8ClampedArray<ArrayBuffer>")]
-    pub fn render(&mut self, index: u32) -> Result<js_sys::Uint8ClampedArray, JsError> {
+    pub fn render(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
+    ) -> Result<js_sys::Uint8ClampedArray, Thrown> {
+        let index = args::index(&index, "index")?;
         self.scene
             .render(index, Eye::Left, &mut self.frame, None)
-            .map_err(to_js)?;
+            .map_err(input)?;
         Ok(js_sys::Uint8ClampedArray::from(&self.frame[..]))
     }
 
     /// Renders frame `index` of the right camera of the stereo pair.
     #[wasm_bindgen(js_name = renderRight, unchecked_return_type = "Uint8ClampedArray<ArrayBuffer>")]
-    pub fn render_right(&mut self, index: u32) -> Result<js_sys::Uint8ClampedArray, JsError> {
+    pub fn render_right(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
+    ) -> Result<js_sys::Uint8ClampedArray, Thrown> {
+        let index = args::index(&index, "index")?;
         self.scene
             .render(index, Eye::Right, &mut self.frame, None)
-            .map_err(to_js)?;
+            .map_err(input)?;
         Ok(js_sys::Uint8ClampedArray::from(&self.frame[..]))
     }
 
     /// Exact ground truth of frame `index`: `{ frame, valid, boundaries: [{ role, points,
     /// road_points }], lateral_offset_m, heading_rad, curvature_per_m, lane_width_m, state }`.
     #[wasm_bindgen(unchecked_return_type = "Truth")]
-    pub fn truth(&self, index: u32) -> Result<JsValue, JsError> {
+    pub fn truth(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
+    ) -> Result<JsValue, Thrown> {
+        let index = args::index(&index, "index")?;
         super::to_js_value(&self.scene.truth(index))
     }
 }

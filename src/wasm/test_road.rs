@@ -1,7 +1,9 @@
 //! `TestRoad` for JavaScript: the straight synthetic road with ground truth.
 
+use super::args;
 use super::camera::camera_from_js;
-use super::error::{from_js_object, to_js};
+use super::error::{self, input, Kind, Thrown};
+use super::object;
 use crate::synth::{TestRoad, TestRoadConfig};
 use wasm_bindgen::prelude::*;
 
@@ -20,14 +22,11 @@ impl JsTestRoad {
     pub fn new(
         #[wasm_bindgen(unchecked_param_type = "CameraConfig")] camera: JsValue,
         #[wasm_bindgen(unchecked_optional_param_type = "TestRoadOptions")] options: JsValue,
-    ) -> Result<JsTestRoad, JsError> {
+    ) -> Result<JsTestRoad, Thrown> {
         let camera = camera_from_js(&camera)?;
-        let config: TestRoadConfig = if options.is_undefined() || options.is_null() {
-            TestRoadConfig::default()
-        } else {
-            from_js_object(&options, "test road options")?
-        };
-        let road = TestRoad::new(camera, config).map_err(to_js)?;
+        let config: TestRoadConfig =
+            object::read_optional(&options, "test road options", Kind::Config)?.unwrap_or_default();
+        let road = TestRoad::new(camera, config).map_err(error::config)?;
         let frame = vec![0; road.width() * road.height() * 4];
         Ok(JsTestRoad { road, frame })
     }
@@ -47,15 +46,23 @@ impl JsTestRoad {
     /// Renders frame `index` and returns a new `Uint8ClampedArray` (width*height*4, RGBA) that
     /// can go straight into `new ImageData(...)`.
     #[wasm_bindgen(unchecked_return_type = "Uint8ClampedArray<ArrayBuffer>")]
-    pub fn render(&mut self, index: u32) -> Result<js_sys::Uint8ClampedArray, JsError> {
-        self.road.render(index, &mut self.frame).map_err(to_js)?;
+    pub fn render(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
+    ) -> Result<js_sys::Uint8ClampedArray, Thrown> {
+        let index = args::index(&index, "index")?;
+        self.road.render(index, &mut self.frame).map_err(input)?;
         Ok(js_sys::Uint8ClampedArray::from(&self.frame[..]))
     }
 
     /// Ground truth of frame `index`: `{ valid, boundaries: [{ role, points, road_points }],
     /// lateral_offset_m, heading_rad, curvature_per_m, lane_width_m, ... }`.
     #[wasm_bindgen(unchecked_return_type = "LaneEstimate")]
-    pub fn truth(&self, index: u32) -> Result<JsValue, JsError> {
+    pub fn truth(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
+    ) -> Result<JsValue, Thrown> {
+        let index = args::index(&index, "index")?;
         super::to_js_value(&self.road.truth(index))
     }
 }

@@ -1,6 +1,9 @@
 //! The `Tracker` factory for JavaScript: `new Tracker(id, config)`.
 
-use super::error::{from_js_object, to_js};
+use super::args;
+use super::error::{self, input, Kind, Thrown};
+use super::object;
+use crate::camera::CameraFile;
 use crate::trackers::{self, TrackerConfig};
 use wasm_bindgen::prelude::*;
 
@@ -8,6 +11,26 @@ use wasm_bindgen::prelude::*;
 #[wasm_bindgen(js_name = Tracker)]
 pub struct JsTracker {
     inner: Box<dyn trackers::Tracker>,
+    /// The last frame's pixels, copied out of the JS array (reused).
+    frame: Vec<u8>,
+}
+
+/// Reads a tracker config: the camera first (so that its errors name `camera.<key>`), then the
+/// whole.
+fn read_config(value: &JsValue) -> Result<TrackerConfig, Thrown> {
+    const WHAT: &str = "tracker config";
+    let config = object::read_value(value, WHAT, Kind::Config)?;
+    match config.get("camera") {
+        Some(camera) => {
+            object::deserialize::<CameraFile>(camera.clone(), WHAT, "camera", Kind::Config)?;
+        }
+        None => {
+            return Err(Thrown::config(format!(
+                "invalid {WHAT}: `camera` is missing"
+            )))
+        }
+    }
+    object::deserialize(config, WHAT, "", Kind::Config)
 }
 
 /// The ids `new Tracker(id, ...)` accepts.
@@ -26,9 +49,10 @@ pub fn tracker_ids() -> Vec<String> {
     unchecked_return_type = "Omit<TrackerConfig, 'camera' | 'seed'> & { particles: number }"
 )]
 pub fn tracker_defaults(
-    #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: &str,
-) -> Result<JsValue, JsError> {
-    super::to_js_value(&trackers::default_options(id).map_err(to_js)?)
+    #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: JsValue,
+) -> Result<JsValue, Thrown> {
+    let id = args::name(&id, "tracker id")?;
+    super::to_js_value(&trackers::default_options(&id).map_err(error::config)?)
 }
 
 #[wasm_bindgen(js_class = Tracker)]
@@ -37,12 +61,28 @@ impl JsTracker {
     /// unknown id (listing the available ones) or a bad configuration.
     #[wasm_bindgen(constructor)]
     pub fn new(
-        #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: &str,
+        #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: JsValue,
         #[wasm_bindgen(unchecked_param_type = "TrackerConfig")] config: JsValue,
-    ) -> Result<JsTracker, JsError> {
-        let config: TrackerConfig = from_js_object(&config, "tracker config")?;
-        let inner = trackers::create(id, &config).map_err(to_js)?;
-        Ok(JsTracker { inner })
+    ) -> Result<JsTracker, Thrown> {
+        let id = args::name(&id, "tracker id")?;
+        let options = read_config(&config)?;
+        let inner = trackers::create(&id, &options).map_err(error::config)?;
+        Ok(JsTracker {
+            inner,
+            frame: Vec::new(),
+        })
+    }
+
+    /// Checks a frame's size and copies its pixels into `self.frame`.
+    fn take_frame(
+        &mut self,
+        rgba: &JsValue,
+        width: &JsValue,
+        height: &JsValue,
+    ) -> Result<[usize; 2], Thrown> {
+        let size = [args::side(width, "width")?, args::side(height, "height")?];
+        args::rgba(rgba, "rgba", size, &mut self.frame)?;
+        Ok(size)
     }
 
     /// The tracker's id.
@@ -55,11 +95,12 @@ impl JsTracker {
     #[wasm_bindgen(unchecked_return_type = "LaneEstimate")]
     pub fn step(
         &mut self,
-        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: &[u8],
-        width: usize,
-        height: usize,
-    ) -> Result<JsValue, JsError> {
-        let estimate = self.inner.step(rgba, width, height).map_err(to_js)?;
+        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] width: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] height: JsValue,
+    ) -> Result<JsValue, Thrown> {
+        let [w, h] = self.take_frame(&rgba, &width, &height)?;
+        let estimate = self.inner.step(&self.frame, w, h).map_err(input)?;
         super::to_js_value(&estimate)
     }
 
@@ -81,7 +122,7 @@ impl JsTracker {
     /// x0, dx, y_axis, y0, dy, values }` for the 3-D density image and its column maxima;
     /// grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres left).
     #[wasm_bindgen(unchecked_return_type = "Layer[]")]
-    pub fn layers(&self) -> Result<JsValue, JsError> {
+    pub fn layers(&self) -> Result<JsValue, Thrown> {
         super::to_js_value(&self.inner.layers())
     }
 
@@ -89,8 +130,14 @@ impl JsTracker {
     /// for: `[{ weight, group, boundaries: [{ role, points, road_points }] }]` (weight: the
     /// normalised weight; group: adachi-mmpf the model r, lee-cpf the stage, danescu-* the
     /// MBSAS cluster or -1, liu-ppf 0). For drawing the cloud without knowing each model.
+    /// `max` is a whole number; above the particle count it means every particle.
     #[wasm_bindgen(unchecked_return_type = "Hypothesis[]")]
-    pub fn hypotheses(&self, max: usize) -> Result<JsValue, JsError> {
+    pub fn hypotheses(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "number")] max: JsValue,
+    ) -> Result<JsValue, Thrown> {
+        let max = args::whole(&max, "max", 0.0, 9_007_199_254_740_991.0)?;
+        let max = max as usize; // saturates: 2^32 and above mean every particle on wasm32
         super::to_js_value(&self.inner.hypotheses(max))
     }
 
@@ -103,14 +150,14 @@ impl JsTracker {
     /// The car's motion for the next frame: `{ t_s, speed_mps, yaw_rate }` (timestamp in
     /// seconds, speed in m/s, yaw rate in rad/s positive turning left). danescu-mono and
     /// danescu-stereo drift their particles by it; the other trackers ignore it. Throws for a
-    /// missing field or a NaN or out-of-range value.
+    /// missing or unknown field or a NaN or out-of-range value.
     #[wasm_bindgen(js_name = setEgoMotion)]
     pub fn set_ego_motion(
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "EgoMotion")] motion: JsValue,
-    ) -> Result<(), JsError> {
-        let motion: trackers::EgoMotion = from_js_object(&motion, "ego motion")?;
-        self.inner.set_ego_motion(motion).map_err(to_js)
+    ) -> Result<(), Thrown> {
+        let motion: trackers::EgoMotion = object::read(&motion, "ego motion", Kind::Input)?;
+        self.inner.set_ego_motion(motion).map_err(input)
     }
 
     /// Whether the tracker needs the right image of every frame (`setRight`): danescu-stereo.
@@ -124,11 +171,16 @@ impl JsTracker {
     #[wasm_bindgen(js_name = setRight)]
     pub fn set_right(
         &mut self,
-        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: &[u8],
-        width: usize,
-        height: usize,
-    ) -> Result<(), JsError> {
-        self.inner.set_right(rgba, width, height).map_err(to_js)
+        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] width: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] height: JsValue,
+    ) -> Result<(), Thrown> {
+        if !self.inner.is_stereo() {
+            // The tracker's own refusal, before the frame is even looked at.
+            return self.inner.set_right(&[], 0, 0).map_err(input);
+        }
+        let [w, h] = self.take_frame(&rgba, &width, &height)?;
+        self.inner.set_right(&self.frame, w, h).map_err(input)
     }
 
     /// Forgets the past.
@@ -152,18 +204,19 @@ impl JsTracker {
     #[wasm_bindgen(js_name = beginFrame)]
     pub fn begin_frame(
         &mut self,
-        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: &[u8],
-        width: usize,
-        height: usize,
-    ) -> Result<(), JsError> {
-        self.inner.begin_frame(rgba, width, height).map_err(to_js)
+        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] width: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "number")] height: JsValue,
+    ) -> Result<(), Thrown> {
+        let [w, h] = self.take_frame(&rgba, &width, &height)?;
+        self.inner.begin_frame(&self.frame, w, h).map_err(input)
     }
 
     /// Runs the next step; returns the estimate after the last step and `null` before it (read
     /// `particles()` in between to watch the cloud move). Throws when no frame is in progress.
     #[wasm_bindgen(unchecked_return_type = "LaneEstimate | null")]
-    pub fn advance(&mut self) -> Result<JsValue, JsError> {
-        match self.inner.advance().map_err(to_js)? {
+    pub fn advance(&mut self) -> Result<JsValue, Thrown> {
+        match self.inner.advance().map_err(input)? {
             Some(estimate) => super::to_js_value(&estimate),
             None => Ok(JsValue::NULL),
         }

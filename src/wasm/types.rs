@@ -1,7 +1,7 @@
 //! TypeScript types of the plain objects that cross the binding (configurations, options and
 //! results), added to the generated `lanepf.d.ts`. The bound functions name them with
 //! `unchecked_param_type` / `unchecked_return_type`; the objects themselves are still checked
-//! at run time by serde (unknown fields, wrong types and NaN throw an `Error`).
+//! at run time (unknown fields, wrong types, `null` and NaN throw a `LanepfError`).
 //!
 //! Keep these in step with the Rust types they describe: `camera::CameraFile`,
 //! `trackers::TrackerConfig` and each tracker's config (`trackers::*::config`), the vision
@@ -15,6 +15,19 @@ use wasm_bindgen::prelude::*;
 
 #[wasm_bindgen(typescript_custom_section)]
 const TYPES: &'static str = r#"
+/**
+ * What kind of mistake a thrown `LanepfError` reports: `LanepfConfigError` (a constructor's id,
+ * name or option object), `LanepfInputError` (a call's data: frames, sizes, indices, points,
+ * ego motion), `LanepfStateError` (a call the object cannot take now: `advance()` with no frame
+ * in progress, a stereo step without `setRight`, `setRight` on a one-camera tracker).
+ */
+export type LanepfErrorName = 'LanepfConfigError' | 'LanepfInputError' | 'LanepfStateError';
+
+/** Every `Error` lanepf throws; its message names the argument or key path and the value. */
+export interface LanepfError extends Error {
+  name: LanepfErrorName;
+}
+
 /** The ids `new Tracker(id, ...)` accepts (see `trackerIds()`). */
 export type TrackerId =
   | 'adachi-mmpf' | 'danescu-mono' | 'danescu-stereo' | 'lee-cpf' | 'liu-ppf' | 'liu-ppf-nokernel';
@@ -447,7 +460,7 @@ export interface DanescuOptions {
 /**
  * `new Tracker(id, config)`: the camera, particles and seed, plus the options of the chosen
  * tracker. The type allows every tracker's options; at run time a tracker refuses an option
- * that is not its own with an `Error` naming it.
+ * that is not its own with a `LanepfConfigError` naming it.
  */
 export interface TrackerConfig
   extends TrackerBaseConfig, AdachiOptions, LeeOptions, LiuOptions, DanescuOptions {}

@@ -109,10 +109,10 @@ test('Calibrator in Node: bad options and frames throw Errors that say what to d
   const frame = new Uint8ClampedArray(64 * 48 * 4).fill(90);
   throws(() => c.feed(new Uint8Array(10), 64, 48), /64x48/);
   throws(() => c.feed(frame, 128, 48), /128x48: this calibrator takes 64x48/);
-  throws(() => c.feed(frame, NaN, 48), /width = NaN/);
-  throws(() => c.feed(frame, 64, -48), /height = -48/);
-  throws(() => c.feed([1, 2, 3], 64, 48), /Uint8Array or Uint8ClampedArray of RGBA pixels \(ImageData\.data\), not Array/);
-  throws(() => c.feed(new Float32Array(64 * 48 * 4), 64, 48), /not Float32Array/);
+  throws(() => c.feed(frame, NaN, 48), /width is NaN/);
+  throws(() => c.feed(frame, 64, -48), /height is -48/);
+  throws(() => c.feed([1, 2, 3], 64, 48), /Uint8Array or Uint8ClampedArray of RGBA pixels \(ImageData\.data\), not an array/);
+  throws(() => c.feed(new Float32Array(64 * 48 * 4), 64, 48), /not a Float32Array/);
   throws(() => c.feed(null, 64, 48), /not null/);
   assert.equal(c.feed(frame, 64, 48).frames_seen, 1, 'the failed calls counted nothing');
   assert.deepEqual(c.options(), { lane_width_m: 3.6, hfov_deg: 60, stable_frames: 5, max_bend_px: 1.5 });

@@ -14,6 +14,12 @@
 //! Every error is one line on stderr (`lanepf: error: ...`) and exit status 1; usage errors
 //! exit with 2 (clap's convention).
 
+// Errors, not panics, for anything a user's files or flags can reach (tests may unwrap).
+#![cfg_attr(
+    not(test),
+    deny(clippy::unwrap_used, clippy::expect_used, clippy::panic)
+)]
+
 mod bench;
 mod calibrate;
 mod eval;

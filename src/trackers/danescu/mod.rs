@@ -246,10 +246,10 @@ impl DanescuTracker {
     /// Gives the right frame of the next step (danescu-stereo).
     ///
     /// # Errors
-    /// [`Error::Config`] for the monocular tracker; buffer and size errors as for a frame.
+    /// [`Error::State`] for the monocular tracker; buffer and size errors as for a frame.
     pub fn set_right(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         if self.stereo.is_none() {
-            return Err(Error::Config(format!(
+            return Err(Error::State(format!(
                 "{} takes one camera; a right image is for {ID_STEREO}",
                 self.id
             )));
@@ -266,12 +266,12 @@ impl DanescuTracker {
     ///
     /// # Errors
     /// [`crate::error::Error::BufferSize`] / [`crate::error::Error::Dimensions`] for a frame
-    /// that does not match the camera; [`Error::Config`] for the stereo tracker without a
+    /// that does not match the camera; [`Error::State`] for the stereo tracker without a
     /// right frame.
     pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         super::check_frame(&self.camera, rgba, width, height)?;
         if self.stereo.is_some() && !self.right_ready {
-            return Err(Error::Config(format!(
+            return Err(Error::State(format!(
                 "{ID_STEREO} needs the right image of every frame: call set_right (setRight in \
                  JS) before each step, or use {ID_MONO} for one camera"
             )));

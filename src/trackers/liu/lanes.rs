@@ -32,8 +32,8 @@ impl F32x4 {
     /// The four floats `v[j..j + 4]` (panics, as slicing does, when they are not all there).
     #[inline]
     pub fn load(v: &[f32], j: usize) -> Self {
-        let four: &[f32; 4] = v[j..j + 4].try_into().expect("four floats");
-        Self(imp::load(four))
+        let four = [v[j], v[j + 1], v[j + 2], v[j + 3]];
+        Self(imp::load(&four))
     }
     /// Mask of `self > b` (false where either is NaN).
     #[inline]
