@@ -45,10 +45,12 @@ test-wasm:
 test-chromium:
 	E2E_BROWSERS=chromium node --test tests/node/ tests/e2e/ tests/npm/
 
-# The slow tier: cross-browser.test.mjs in Firefox ESR and WebKitGTK, then the wasm API fuzz run.
+# The slow tier: cross-browser.test.mjs in Firefox ESR and WebKitGTK, then the wasm API fuzz runs
+# (tracker options near their defaults, then drawn wide: every option's range is checked).
 test-slow: setup pkg
 	E2E_BROWSERS=firefox,webkit node --test tests/e2e/cross-browser.test.mjs
 	node scripts/fuzz-wasm.mjs
+	node scripts/fuzz-wasm.mjs --wide
 
 ## 100 000 seeded random calls on the wasm package's API: 0 traps, 0 hangs, memory bounded
 ## (FUZZ_ARGS="--calls N --seed S" to change them).
