@@ -14,7 +14,7 @@
 //! radius that is 1.6 m, so no peak is left and the frame is invalid. Every boundary of the road
 //! shares (s1, s2), so the shape that straightens them all is the one that makes the
 //! histogram of `rho - s1 x - s2 x^2` sharpest. We take the sharpness as sum_j H_j^2 (the
-//! number of pairs of edge points sharing a bin), search it on a grid (coarse, then twice
+//! number of pairs of edge points sharing a bin), search it on a grid (coarse, then four times
 //! finer around the best), and follow it in time with the gain `shape_gain`
 //! (s_t = s_{t-1} + gain (s_best - s_{t-1}), gain 1 on the first frame). The paper's
 //! filter then runs unchanged on the straightened votes. A tie keeps the straighter shape, so a
@@ -28,6 +28,9 @@ pub type Shape = [f64; 2];
 const COARSE_SHIFT_BINS: f64 = 8.0;
 /// Finer passes after the coarse one, each halving the step around the best shape so far.
 const REFINEMENTS: usize = 4;
+/// Most coarse steps to each side of straight, per parameter: bounds the search's work for any
+/// bin size, region and limit (the defaults need 11 and 15).
+const MAX_SPAN: i64 = 20;
 /// The coarse pass scores every k-th point, k chosen to leave at most this many: it only has to
 /// land within a coarse step of the best, and it costs most of the search.
 const COARSE_POINTS: usize = 500;
@@ -45,6 +48,8 @@ pub struct ShapeSearch {
     bins: usize,
     counts: Vec<u32>,
     touched: Vec<u32>,
+    /// Histograms scored by the last [`ShapeSearch::best`].
+    pub evaluations: usize,
 }
 
 impl ShapeSearch {
@@ -67,6 +72,7 @@ impl ShapeSearch {
             bins,
             counts: vec![0; bins],
             touched: Vec::new(),
+            evaluations: 0,
         }
     }
 
@@ -79,6 +85,7 @@ impl ShapeSearch {
 
     /// sum_j H_j^2 of every `stride`-th point straightened by `shape`.
     fn sharpness(&mut self, points: &[(f32, f32)], stride: usize, shape: Shape) -> u64 {
+        self.evaluations += 1;
         let mut score = 0u64;
         for &(x, rho) in points.iter().step_by(stride) {
             if let Some(j) = self.bin(x, rho, shape) {
@@ -100,20 +107,29 @@ impl ShapeSearch {
     /// The shape within the limits that makes the straightened histogram of `points`
     /// (x ahead, rho) sharpest; (0, 0) when there are none. Ties keep the straighter shape.
     pub fn best(&mut self, points: &[(f32, f32)]) -> Shape {
+        self.evaluations = 0;
         if points.is_empty() {
             return [0.0, 0.0];
         }
         let shift = COARSE_SHIFT_BINS * self.bin_m;
-        let mut step = [shift / self.far_m, shift / (self.far_m * self.far_m)];
+        // At most 2 MAX_SPAN + 1 coarse steps a side, whatever the bin, region and limits.
+        let mut step = [
+            (shift / self.far_m).max(self.max_s1 / MAX_SPAN as f64),
+            (shift / (self.far_m * self.far_m)).max(self.max_s2 / MAX_SPAN as f64),
+        ];
         let mut stride = points.len().div_ceil(COARSE_POINTS);
         let mut best = [0.0, 0.0];
         let mut best_score = self.sharpness(points, stride, best);
         let mut best_size = 0.0;
         // Coarse grid over the whole range, then finer grids of +-2 steps around the best.
-        let mut span = [
-            (self.max_s1 / step[0]).ceil() as i64,
-            (self.max_s2 / step[1]).ceil() as i64,
-        ];
+        let span_of = |max: f64, step: f64| {
+            if step > 0.0 {
+                ((max / step).ceil() as i64).min(MAX_SPAN)
+            } else {
+                0
+            }
+        };
+        let mut span = [span_of(self.max_s1, step[0]), span_of(self.max_s2, step[1])];
         let mut centre = best;
         for pass in 0..=REFINEMENTS {
             if pass > 0 {
@@ -198,6 +214,25 @@ mod tests {
         points.extend((0..40).map(|k| (6.0 + 0.4 * k as f32, -6.0 + 0.3 * k as f32)));
         assert_eq!(search().best(&points), [0.0, 0.0]);
         assert_eq!(search().best(&[]), [0.0, 0.0]);
+    }
+
+    /// The finest bin and the farthest region the ranges allow, with the widest limits: the
+    /// coarse grid is capped, so the work stays that of (2 MAX_SPAN + 1)^2 histograms plus the
+    /// refinements' 25 each (without the cap: 5001 x 50001).
+    #[test]
+    fn the_work_is_bounded_for_any_options() {
+        let mut s = ShapeSearch::new(0.5, 0.05, 200.0, 0.005, -8.0, 3200);
+        let points = boundaries(&[-1.8, 1.8], [0.02, 0.001]);
+        s.best(&points);
+        let cap = (2 * MAX_SPAN as usize + 1).pow(2) + 25 * REFINEMENTS + 2;
+        assert!(s.evaluations <= cap, "{} histograms", s.evaluations);
+        let mut d = search();
+        d.best(&points);
+        assert!(
+            d.evaluations > 100 && d.evaluations <= cap,
+            "{}",
+            d.evaluations
+        );
     }
 
     #[test]
