@@ -28,11 +28,14 @@ use std::path::{Path, PathBuf};
 
 /// Each row: a tracker id and the options it runs with (JSON; `{}` the defaults), so that a
 /// named option beyond a paper is reported beside the paper's method.
-const TRACKERS: [(&str, &str); 6] = [
+const TRACKERS: [(&str, &str); 9] = [
     ("adachi-mmpf", "{}"),
     ("adachi-mmpf", r#"{"lane_shape": "curved"}"#),
+    ("adachi-mmpf", r#"{"relock_share": 0.05}"#),
     ("danescu-mono", "{}"),
+    ("danescu-mono", r#"{"relock_share": 0.1}"#),
     ("lee-cpf", "{}"),
+    ("lee-cpf", r#"{"relock_share": 0.05}"#),
     ("liu-ppf", "{}"),
     ("liu-ppf-nokernel", "{}"),
 ];

@@ -172,6 +172,9 @@ pub struct Calibrator {
     samples: VecDeque<Sample>,
     frames_seen: usize,
     last: FrameObservation,
+    /// Where the road vanishes when the camera is known (see
+    /// [`Calibrator::set_known_vanishing_point`]).
+    known_vanishing_point: Option<[f64; 2]>,
 }
 
 impl Calibrator {
@@ -242,6 +245,7 @@ impl Calibrator {
             samples: VecDeque::with_capacity(MAX_SAMPLES),
             frames_seen: 0,
             last: FrameObservation::default(),
+            known_vanishing_point: None,
         };
         if !distortion.is_none() {
             calibrator.undistort = Some(calibrator.undistortion_table());
@@ -311,6 +315,21 @@ impl Calibrator {
         self.points
             .iter()
             .map(move |p| [p[0] as f64 * s, p[1] as f64 * s])
+    }
+
+    /// Uses `vp` (undistorted pixels), where a known camera's road vanishes, as the prior of
+    /// every frame instead of learning it from the frames: the ego pair is then the pair of
+    /// lines through it nearest the middle, from the first frame on. For a lane detector
+    /// whose camera is known (`relock_share` of the trackers), not for calibrating.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for a non-finite `vp`.
+    pub fn set_known_vanishing_point(&mut self, vp: [f64; 2]) -> Result<()> {
+        for v in vp {
+            crate::error::require_finite("vanishing point", v)?;
+        }
+        self.known_vanishing_point = Some(vp);
+        Ok(())
     }
 
     /// Forgets every frame.
@@ -420,7 +439,7 @@ impl Calibrator {
             l.bend *= s;
         }
         let bottom_row = bottom as f64 * s;
-        let (left, right) = Self::sides(&lines);
+        let (left, right) = self.sides(&lines);
         let ego = self.ego_pair(&lines, &left, &right, prior, bottom_row);
         self.vote_crossings(&lines, &left, &right);
         let vanishing_point = ego.and_then(|[l, r]| crossing(&lines[l], &lines[r]));
@@ -476,6 +495,9 @@ impl Calibrator {
     /// line crossings once it holds a fair share of them (it follows the road and cannot lock
     /// onto the calibrator's own earlier choices), else the estimate once it has a few frames.
     fn prior_vanishing_point(&self) -> Option<[f64; 2]> {
+        if self.known_vanishing_point.is_some() {
+            return self.known_vanishing_point;
+        }
         match self.votes.mode() {
             Some((mode, share))
                 if self.frames_seen > 5 && share >= 0.15 && self.votes.total() >= 50.0 =>
@@ -487,10 +509,18 @@ impl Calibrator {
         }
     }
 
-    /// The strong left-leaning (dx/dy < 0) and right-leaning lines.
-    fn sides(lines: &[LineFit]) -> (Vec<usize>, Vec<usize>) {
+    /// The strong left-leaning (dx/dy < 0) and right-leaning lines: with at least a quarter of
+    /// the strongest line's support, or an eighth when the vanishing point is known (a weak
+    /// line through a known vanishing point is most likely a dashed boundary beside a solid
+    /// one, a dash covering about a quarter of its line).
+    fn sides(&self, lines: &[LineFit]) -> (Vec<usize>, Vec<usize>) {
         let strongest = lines.iter().map(|l| l.support).max().unwrap_or(0);
-        let strong = |l: &LineFit| 4 * l.support >= strongest;
+        let ratio = if self.known_vanishing_point.is_some() {
+            8
+        } else {
+            4
+        };
+        let strong = |l: &LineFit| ratio * l.support >= strongest;
         let pick = |left: bool| {
             (0..lines.len())
                 .filter(|&i| strong(&lines[i]) && (lines[i].slope < 0.0) == left)

@@ -43,6 +43,7 @@
 //! estimate.
 
 pub mod calibrator;
+pub mod ego_on_road;
 pub mod hough;
 pub mod marking_image;
 pub mod pose;

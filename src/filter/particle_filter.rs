@@ -325,6 +325,36 @@ impl<S: Clone> ParticleFilter<S> {
             *w = mean;
             *l = crate::math::ln(mean);
         }
+        self.renormalise_replaced();
+        self.injected = k;
+    }
+
+    /// Data-driven injection: replaces every k-th particle (k = round(1 / `share`), spread
+    /// over the cloud so that no ancestor's run of copies loses more than its share) by
+    /// `draw(old, rng)`, a draw from a proposal the caller builds from the frame (e.g. a
+    /// bottom-up detection). The new particles carry the average weight; returns how many
+    /// were replaced (0 for `share` <= 0 or an empty filter).
+    pub fn replace_share(&mut self, share: f64, mut draw: impl FnMut(&S, &mut Rng) -> S) -> usize {
+        let n = self.len();
+        let positive = share > 0.0;
+        if !positive || n == 0 {
+            return 0;
+        }
+        let every = (1.0 / share.min(1.0)).round().max(1.0) as usize;
+        let mean = 1.0 / n as f64;
+        let mut count = 0;
+        for i in (0..n).step_by(every) {
+            self.states[i] = draw(&self.states[i], &mut self.rng);
+            self.weights[i] = mean;
+            count += 1;
+        }
+        self.renormalise_replaced();
+        count
+    }
+
+    /// Weights back to a sum of 1 (and their logs and the ESS) after some particles were
+    /// given a new weight.
+    fn renormalise_replaced(&mut self) {
         let total: f64 = self.weights.iter().sum();
         for (l, w) in self.log_weights.iter_mut().zip(self.weights.iter_mut()) {
             *w /= total;
@@ -335,7 +365,6 @@ impl<S: Clone> ParticleFilter<S> {
             };
         }
         self.ess = effective_sample_size(&self.weights);
-        self.injected = k;
     }
 
     /// One frame: resample, inject, predict, weigh (see the module docs).
@@ -501,5 +530,55 @@ mod tests {
             ..Default::default()
         };
         assert!(ParticleFilter::new(10, bad, 1, &m).is_err());
+    }
+
+    /// A cloud stuck far from the data (every particle at 10, the data at 0, random walk too
+    /// small to cross the gap) stays stuck; replacing a share by draws around a detection of
+    /// the right answer re-locks it within a frame, and the replaced particles are spread over
+    /// the cloud with the average weight.
+    #[test]
+    fn replacing_a_share_from_a_detection_relocks_a_stuck_cloud() {
+        let m = Linear {
+            a: 1.0,
+            q: 1e-4,
+            r: 0.01,
+            p0: 1.0,
+        };
+        let config = FilterConfig {
+            policy: ResamplePolicy::Always,
+            ..Default::default()
+        };
+        let run = |share: f64| {
+            let mut pf = ParticleFilter::new(200, config, 7, &m).unwrap();
+            pf.states_mut().fill(10.0);
+            let mut replaced = Vec::new();
+            for _ in 0..3 {
+                pf.resample();
+                pf.predict(&m);
+                replaced.push(pf.replace_share(share, |_, rng| rng.gaussian(0.0, 0.1)));
+                let total: f64 = pf.weights().iter().sum();
+                assert!((total - 1.0).abs() < 1e-12, "weights sum to {total}");
+                pf.weigh(&m, &0.0);
+            }
+            (
+                weighted_mean(pf.states(), pf.weights(), |x| [*x])[0],
+                replaced,
+            )
+        };
+        let (stuck, none) = run(0.0);
+        assert!(
+            stuck > 9.9 && none == [0, 0, 0],
+            "no proposal: mean {stuck}"
+        );
+        let (relocked, count) = run(0.05);
+        assert!(relocked.abs() < 0.1, "with the proposal: mean {relocked}");
+        assert_eq!(count, [10, 10, 10], "every 20th of 200 particles");
+        let mut pf = ParticleFilter::new(10, config, 7, &m).unwrap();
+        let before = pf.states().to_vec();
+        assert_eq!(pf.replace_share(f64::NAN, |_, _| 99.0), 0);
+        assert_eq!(pf.states(), &before[..]);
+        assert_eq!(pf.replace_share(0.5, |_, _| 99.0), 5);
+        let at: Vec<usize> = (0..10).filter(|&i| pf.states()[i] == 99.0).collect();
+        assert_eq!(at, [0, 2, 4, 6, 8], "spread over the cloud");
     }
 }

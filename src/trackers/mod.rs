@@ -15,6 +15,7 @@ pub mod liu;
 #[cfg(test)]
 mod option_fuzz;
 mod ranges;
+pub mod relock;
 
 pub use defaults::default_options;
 pub use hypothesis::{spread_indices, Hypothesis};

@@ -77,6 +77,7 @@ const LEE: &[&[OptionRange]] = &[
         r("start_spread", 1.0, 100.0),
         r("start_fresh", 0.0, 1.0),
         r("lost_restart", 0.0, 100_000.0),
+        r("relock_share", 0.0, 0.5),
         r("kalman_process_sd[0]", 1e-9, 1.0),
         r("kalman_process_sd[1]", 1e-9, 10.0),
         r("kalman_process_sd[2]", 1e-9, 5.0),
@@ -137,6 +138,7 @@ const ADACHI: &[&[OptionRange]] = &[&[
     r("max_heading_rad", 0.0, 0.5),
     r("max_curvature_per_m", 0.0, 0.05),
     r("shape_gain", 0.01, 1.0),
+    r("relock_share", 0.0, 0.5),
 ]];
 
 const DANESCU: &[&[OptionRange]] = &[
@@ -207,6 +209,7 @@ const DANESCU: &[&[OptionRange]] = &[
         r("valid_distance_px", 0.1, 100.0),
         r("valid_support", 0.0, 1.0),
         r("valid_cluster_share", 0.0, 1.0),
+        r("relock_share", 0.0, 0.5),
     ],
 ];
 

@@ -256,6 +256,11 @@ export interface AdachiOptions {
   max_curvature_per_m?: number;
   /** 'curved' only: how far the followed road shape moves to each frame's best (0.5; 0.01 to 1). */
   shape_gain?: number;
+  /** Share of the particles replaced each frame by draws around the ego pair a bottom-up
+   *  line detector finds (not in the paper; 0, off; 0 to 0.5). */
+  /** Share of the stage-1 particles replaced each frame by draws around the ego pair a
+   *  bottom-up line detector finds (not in the paper; 0, off; 0 to 0.5). */
+  relock_share?: number;
 }
 
 /** Options of `lee-cpf` (all optional; defaults shown). */
@@ -322,6 +327,7 @@ export interface LeeOptions {
   start_fresh?: number;
   /** Restart after this many frames with no marking near either boundary (2; 0: never). */
   lost_restart?: number;
+  relock_share?: number;
   /** Kalman smoothing of the output (true). */
   kalman?: boolean;
   /** Kalman process noise, same order as process_sd ([0.003, 0.03, 0.01, 0.0005, 2, 0.0002]). */
@@ -455,6 +461,9 @@ export interface DanescuOptions {
   valid_support?: number;
   /** Validity: share of particles in the estimate's cluster (0.3). */
   valid_cluster_share?: number;
+  /** Share of the particles replaced each frame by draws around the ego pair a bottom-up
+   *  line detector finds (not in the paper; 0, off; 0 to 0.5). */
+  relock_share?: number;
 }
 
 /**

@@ -74,6 +74,12 @@ pub struct AdachiConfig {
     pub max_curvature_per_m: f64,
     /// `curved` only: how far the followed shape moves to each frame's best (0.01 to 1).
     pub shape_gain: f64,
+    /// Share of the particles replaced, each frame the auto-calibration's line detector finds
+    /// an ego pair, by draws around that pair on the road (its centre where the votes measure
+    /// q, its width, with sigma_q and sigma_w; the model r kept): a data-driven proposal that
+    /// lets a cloud stuck on a wrong lane re-lock (ours, beyond the paper; 0: off, the
+    /// paper's filter; see [`crate::trackers::relock`]).
+    pub relock_share: f64,
 }
 
 impl Default for AdachiConfig {
@@ -103,6 +109,7 @@ impl Default for AdachiConfig {
             max_heading_rad: 0.1,
             max_curvature_per_m: 0.012,
             shape_gain: 0.5,
+            relock_share: 0.0,
         }
     }
 }

@@ -25,7 +25,9 @@
 //! Boundaries are the straight lines rho_l parallel to the car (the paper's model assumes
 //! straight lanes along the driving direction), drawn from `near_m` to 3 `far_m`. With
 //! `lane_shape: "curved"` (ours, see [`road_shape`]) the votes are straightened by the road's
-//! bend first and the boundaries are drawn along rho_l + s1 x + s2 x^2.
+//! bend first and the boundaries are drawn along rho_l + s1 x + s2 x^2. With a positive
+//! `relock_share` (ours, off by default) a share of the particles is drawn each frame around the ego pair
+//! a bottom-up line detector finds ([`super::relock`]).
 
 pub mod config;
 pub mod grid;
@@ -36,6 +38,7 @@ pub mod motion;
 pub mod road_shape;
 pub mod votes;
 
+use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -79,6 +82,8 @@ pub struct AdachiTracker {
     /// The estimate's q followed without wrapping, and the lane index it implies.
     q_track: Option<f64>,
     lane_index: i64,
+    /// The bottom-up detector of `relock_share` (`None` when it is off).
+    detector: Option<RelockDetector>,
     frame: Option<Frame>,
 }
 
@@ -160,6 +165,11 @@ impl AdachiTracker {
             config.seed,
             &initial,
         )?;
+        let detector = if adachi.relock_share > 0.0 {
+            Some(RelockDetector::new(&camera)?)
+        } else {
+            None
+        };
         Ok(Self {
             camera,
             config: adachi,
@@ -173,8 +183,39 @@ impl AdachiTracker {
             first: true,
             q_track: None,
             lane_index: 0,
+            detector,
             frame: None,
         })
+    }
+
+    /// Replaces `relock_share` of the particles by draws around the detector's ego pair (see
+    /// `relock_share`), when it found one of an accepted width. q is the pair's centre where
+    /// the votes place it: mid-region for straight lanes, at the car for curved ones (whose
+    /// votes are straightened to x = 0).
+    fn relock(&mut self) {
+        let Some(d) = self.detector.as_ref().and_then(RelockDetector::detection) else {
+            return;
+        };
+        let [lo, hi] = self.config.width_range_m;
+        let w = d.width();
+        if !(lo..=hi).contains(&w) {
+            return;
+        }
+        let x = match self.config.lane_shape {
+            config::LaneShape::Straight => 0.5 * (self.config.near_m + self.config.far_m),
+            config::LaneShape::Curved => 0.0,
+        };
+        let q = -(d.centre() + x * crate::math::tan(d.heading()));
+        let (sq, sw) = (self.config.sigma_q_m, self.config.sigma_w_m);
+        self.filter
+            .replace_share(self.config.relock_share, |old, rng| Regime {
+                model: old.model,
+                state: Lane {
+                    q: rng.gaussian(q, sq),
+                    w: rng.gaussian(w, sw).clamp(lo, hi),
+                    change: 0,
+                },
+            });
     }
 
     /// The vote histogram H_j of the last frame and the rho of its first bin and bin size.
@@ -237,6 +278,9 @@ impl AdachiTracker {
         let t0 = now();
         let votes = self.votes.vote(rgba);
         self.likelihood.prepare(&self.votes);
+        if let Some(d) = self.detector.as_mut() {
+            d.feed(&self.camera, rgba, width, height)?;
+        }
         let first = self.first;
         self.first = false;
         self.frame = Some(Frame {
@@ -282,6 +326,7 @@ impl AdachiTracker {
             1 => {
                 if !frame.first {
                     self.filter.predict(&motion);
+                    self.relock();
                 }
                 frame.times.predict += now() - t;
             }
@@ -450,6 +495,9 @@ impl Tracker for AdachiTracker {
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
         self.votes.reset_shape();
+        if let Some(d) = self.detector.as_mut() {
+            d.reset();
+        }
         self.first = true;
         self.q_track = None;
         self.lane_index = 0;

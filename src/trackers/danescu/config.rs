@@ -102,6 +102,12 @@ pub struct DanescuConfig {
     pub valid_support: f64,
     /// ... and its cluster holds at least this share of the resampled particles.
     pub valid_cluster_share: f64,
+    /// Share of the particles replaced, after the drift, each frame the auto-calibration's
+    /// line detector finds an ego pair, by draws around that pair on the road (X_CW, psi and
+    /// W_0 from it with the diffusion's spreads, the rest kept): a data-driven proposal beside
+    /// the generic one of `init_fraction` (ours, beyond the paper; 0: off, the paper's
+    /// filter; see [`crate::trackers::relock`]).
+    pub relock_share: f64,
 }
 
 impl Default for DanescuConfig {
@@ -157,6 +163,7 @@ impl Default for DanescuConfig {
             valid_distance_px: 2.0,
             valid_support: 0.15,
             valid_cluster_share: 0.3,
+            relock_share: 0.0,
         }
     }
 }

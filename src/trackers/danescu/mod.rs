@@ -35,6 +35,10 @@
 //! resampled particles and, on each side, at least `valid_support` of the estimate's
 //! inner-edge points are within `valid_distance_px` of a road edge (our definition, as for
 //! `lee-cpf`; the paper's validation step is not spelled out).
+//!
+//! With a positive `relock_share` (ours, off by default) a share of the particles is drawn each frame,
+//! after the drift, around the ego pair a bottom-up line detector finds ([`super::relock`]),
+//! beside the paper's generic `init_fraction`.
 
 pub mod config;
 pub mod cues;
@@ -42,6 +46,7 @@ pub mod elevation;
 pub mod model;
 pub mod stereo;
 
+use super::relock::RelockDetector;
 use super::{
     now, spread_indices, EgoMotion, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig,
 };
@@ -148,6 +153,8 @@ pub struct DanescuTracker {
     motion: Option<EgoMotion>,
     last_time: Option<f64>,
     first: bool,
+    /// The bottom-up detector of `relock_share` (`None` when it is off).
+    detector: Option<RelockDetector>,
     frame: Option<Frame>,
     times: StageTimes,
 }
@@ -168,6 +175,11 @@ impl DanescuTracker {
         let camera = config.validate()?;
         let danescu = DanescuConfig::from_options(&config.options, id)?;
         let cues = ImageCues::new(&camera, &danescu)?;
+        let detector = if danescu.relock_share > 0.0 {
+            Some(RelockDetector::new(&camera)?)
+        } else {
+            None
+        };
         let is_stereo = id == ID_STEREO;
         let n_pixels = camera.width() * camera.height();
         let stereo = if is_stereo {
@@ -225,6 +237,7 @@ impl DanescuTracker {
             motion: None,
             last_time: None,
             first: true,
+            detector,
             frame: None,
             times: StageTimes::default(),
         })
@@ -284,6 +297,9 @@ impl DanescuTracker {
             disparity = stereo.process(&self.right, &mut self.cues)?;
         }
         self.cues.finish()?;
+        if let Some(d) = self.detector.as_mut() {
+            d.feed(&self.camera, rgba, width, height)?;
+        }
         let (travelled_m, turned_rad) = match self.motion.take() {
             Some(m) => {
                 let dt = self
@@ -340,6 +356,7 @@ impl DanescuTracker {
             1 => {
                 if !frame.first {
                     self.filter.predict(&frame.motion);
+                    self.relock(&frame.motion);
                 }
                 frame.times.predict += now() - t;
             }
@@ -362,6 +379,31 @@ impl DanescuTracker {
         }
         self.frame = Some(frame);
         None
+    }
+
+    /// Replaces `relock_share` of the particles by draws around the detector's ego pair (see
+    /// `relock_share`), when it found one of an accepted width. The detector measures marking
+    /// centres; W_0 is between the inner edges, so each draw keeps its particle's marking
+    /// widths and subtracts their halves.
+    fn relock(&mut self, motion: &Motion) {
+        let Some(d) = self.detector.as_ref().and_then(RelockDetector::detection) else {
+            return;
+        };
+        let [lo, hi] = self.config.width_range_m;
+        if !(lo..=hi).contains(&d.width()) {
+            return;
+        }
+        // Lane3d is positive to the right, the road frame to the left.
+        let (xcw, psi, width) = (-d.centre(), -crate::math::tan(d.heading()), d.width());
+        let sd = motion.diffusion;
+        self.filter
+            .replace_share(self.config.relock_share, |old, rng| {
+                let mut lane = *old;
+                lane.xcw = rng.gaussian(xcw, sd[5]);
+                lane.psi = rng.gaussian(psi, sd[8]);
+                lane.w0 = rng.gaussian(width - 0.5 * (old.wl_mark + old.wr_mark), sd[0]);
+                lane
+            });
     }
 
     fn estimate(&mut self) -> DanescuEstimate {
@@ -543,6 +585,9 @@ impl Tracker for DanescuTracker {
 
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
+        if let Some(d) = self.detector.as_mut() {
+            d.reset();
+        }
         self.labels_current = false;
         self.right_ready = false;
         self.first = true;

@@ -100,6 +100,12 @@ pub struct LeeConfig {
     /// Restart from the initial distribution after this many consecutive frames in which no
     /// marking supports either boundary of the estimate (ours; 0: never).
     pub lost_restart: usize,
+    /// Share of the stage-1 particles replaced, each frame the auto-calibration's line
+    /// detector finds an ego pair, by draws around that pair on the road (its centre, width
+    /// and heading with the process noise Q; w', c and delta kept): a data-driven proposal
+    /// that lets a cloud stuck on a wrong lane re-lock (ours, beyond the paper; 0: off, the
+    /// paper's filter).
+    pub relock_share: f64,
     /// Kalman smoothing of the CPF output (Fig. 4).
     pub kalman: bool,
     /// Kalman process noise per frame, same order as `process_sd`.
@@ -152,6 +158,7 @@ impl Default for LeeConfig {
             start_spread: 10.0,
             start_fresh: 0.2,
             lost_restart: 2,
+            relock_share: 0.0,
             kalman: true,
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],

@@ -22,6 +22,8 @@
 //! consecutive frames with no marking near either boundary the filter starts again. Without
 //! them a cold start on a dashed-line scene locked half a lane off, at the width limit, from
 //! about half of its start frames (see `a_cold_start_finds_the_lane_from_almost_any_frame`).
+//! With a positive `relock_share` (ours, off by default) a share of stage 1's particles is drawn each
+//! frame around the ego pair a bottom-up line detector finds ([`super::relock`]).
 //!
 //! Lane changes (our addition; the paper shows the lateral offset jumping by a lane width at
 //! each change, Fig. 10, without saying how): when the stage-1 estimate of y0 leaves
@@ -47,6 +49,7 @@ pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
 
+use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -215,6 +218,8 @@ pub struct LeeTracker {
     first: bool,
     /// Consecutive frames whose estimate no marking supports (see `lost_restart`).
     lost: usize,
+    /// The bottom-up detector of `relock_share` (`None` when it is off).
+    detector: Option<RelockDetector>,
     frame: Option<Frame>,
 }
 
@@ -322,6 +327,11 @@ impl LeeTracker {
             None
         };
         let smoother = Smoother::new(lee.kalman_process_sd, lee.kalman_measurement_sd);
+        let detector = if lee.relock_share > 0.0 {
+            Some(RelockDetector::new(&camera)?)
+        } else {
+            None
+        };
         Ok(Self {
             gray: Image::new(w, h)?,
             gray_rows,
@@ -338,6 +348,7 @@ impl LeeTracker {
             times: StageTimes::default(),
             first: true,
             lost: 0,
+            detector,
             frame: None,
             camera,
             config: lee,
@@ -401,6 +412,27 @@ impl LeeTracker {
             let fresh = self.initial.sample(self.stage1.rng_mut());
             self.stage1.states_mut()[i] = fresh;
         }
+    }
+
+    /// Replaces `relock_share` of the stage-1 particles by draws around the detector's ego
+    /// pair (see `relock_share`), when it found one within the state limits.
+    fn relock(&mut self) {
+        let Some(d) = self.detector.as_ref().and_then(RelockDetector::detection) else {
+            return;
+        };
+        let (psi, y0, w) = (d.heading(), d.centre(), d.width());
+        let l = self.limits;
+        if psi.abs() > l.heading || w < l.width[0] || w > l.width[1] {
+            return;
+        }
+        let sd = self.config.process_sd;
+        self.stage1
+            .replace_share(self.config.relock_share, |old, rng| LaneState {
+                psi: rng.gaussian(psi, sd[0]).clamp(-l.heading, l.heading),
+                y0: rng.gaussian(y0, sd[1]),
+                w: rng.gaussian(w, sd[2]).clamp(l.width[0], l.width[1]),
+                ..*old
+            });
     }
 
     fn motion(&self, part: Part) -> Motion {
@@ -470,6 +502,9 @@ impl LeeTracker {
         self.candidates
             .detect(&self.gray, &self.camera, &mut self.map)?;
         self.far.detect(&self.gray)?;
+        if let Some(d) = self.detector.as_mut() {
+            d.feed(&self.camera, rgba, width, height)?;
+        }
         let first = self.first;
         self.first = false;
         self.frame = Some(Frame {
@@ -508,6 +543,7 @@ impl LeeTracker {
                         Part::FirstOrder
                     };
                     self.stage1.predict(&self.motion(part));
+                    self.relock();
                 }
                 frame.times.predict += now() - t;
             }
@@ -778,6 +814,9 @@ impl Tracker for LeeTracker {
 
     fn reset(&mut self) {
         self.restart();
+        if let Some(d) = self.detector.as_mut() {
+            d.reset();
+        }
         self.frame = None;
     }
 
