@@ -118,6 +118,7 @@ const LIU: &[&[OptionRange]] = &[&[
     r("default_width_m", 0.5, 10.0),
     r("default_heading_rad", 0.0, 0.9),
     r("default_jitter_m", 0.0, 2.0),
+    r("relock_share", 0.0, 0.5),
 ]];
 
 const ADACHI: &[&[OptionRange]] = &[&[

@@ -378,6 +378,9 @@ export interface LiuOptions {
   default_heading_rad?: number;
   /** Default lane model: spread of each boundary, metres (0.1). */
   default_jitter_m?: number;
+  /** Share of the particles replaced each frame by default-model lanes on the ego pair a
+   *  bottom-up line detector finds (not in the paper; 0, off; 0 to 0.5). */
+  relock_share?: number;
 }
 
 /** Options of `danescu-mono` and `danescu-stereo` (all optional; defaults shown). */

@@ -65,6 +65,12 @@ pub struct LiuConfig {
     pub default_heading_rad: f64,
     /// Default lane model: spread of each boundary about the parallel set, metres.
     pub default_jitter_m: f64,
+    /// Share of the particles replaced, after the linear part's random walk, each frame the
+    /// auto-calibration's line detector finds an ego pair, by default-model lanes placed on
+    /// that pair (its width and heading, boundaries jittered by `default_jitter_m`): a
+    /// data-driven proposal beside the paper's N' default-model particles (ours, beyond the
+    /// paper; 0: off; see [`crate::trackers::relock`]).
+    pub relock_share: f64,
 }
 
 impl Default for LiuConfig {
@@ -95,6 +101,7 @@ impl Default for LiuConfig {
             default_width_m: [3.0, 4.0],
             default_heading_rad: 0.05,
             default_jitter_m: 0.1,
+            relock_share: 0.0,
         }
     }
 }

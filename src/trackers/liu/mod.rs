@@ -23,6 +23,10 @@
 //! lateral offset and width come from the ego boundaries' near lines at the car, the heading
 //! from their slope, the curvature from the far parabolas (y'' = -2 e / s at s metres per
 //! pixel; the near part is straight by the model's definition).
+//!
+//! With a positive `relock_share` (ours, off by default) a share of the particles is replaced
+//! each frame by default-model lanes on the ego pair a bottom-up line detector finds
+//! ([`super::relock`]).
 
 pub mod config;
 pub mod descriptors;
@@ -31,6 +35,7 @@ pub mod kernels;
 pub mod lanes;
 pub mod model;
 
+use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -104,6 +109,8 @@ pub struct LiuTracker {
     model: PpfModel,
     initial: DefaultLanes,
     filter: ParticleFilter<LaneParticle>,
+    /// The bottom-up detector of `relock_share` (`None` when it is off).
+    detector: Option<RelockDetector>,
     times: StageTimes,
     frame: Option<Frame>,
 }
@@ -159,6 +166,11 @@ impl LiuTracker {
             config.seed,
             &initial,
         )?;
+        let detector = if liu.relock_share > 0.0 {
+            Some(RelockDetector::new(&camera)?)
+        } else {
+            None
+        };
         Ok(Self {
             id,
             camera,
@@ -167,6 +179,7 @@ impl LiuTracker {
             model,
             initial,
             filter,
+            detector,
             times: StageTimes::default(),
             frame: None,
         })
@@ -215,6 +228,9 @@ impl LiuTracker {
         super::check_frame(&self.camera, rgba, width, height)?;
         let t0 = now();
         self.descriptors.compute(rgba, width, height)?;
+        if let Some(d) = self.detector.as_mut() {
+            d.feed(&self.camera, rgba, width, height)?;
+        }
         self.frame = Some(Frame {
             next: 0,
             times: StageTimes {
@@ -245,6 +261,9 @@ impl LiuTracker {
             }
             1 | 4 => {
                 self.filter.partitioned_predict(&self.model, step / 4);
+                if step == 1 {
+                    self.relock();
+                }
                 frame.times.predict += now() - t;
             }
             2 | 5 => {
@@ -265,6 +284,23 @@ impl LiuTracker {
         }
         self.frame = Some(frame);
         None
+    }
+
+    /// Replaces `relock_share` of the particles by default-model lanes on the detector's ego
+    /// pair (see `relock_share`), when it found one of a default-model width.
+    fn relock(&mut self) {
+        let Some(d) = self.detector.as_ref().and_then(RelockDetector::detection) else {
+            return;
+        };
+        let [lo, hi] = self.config.default_width_m;
+        if !(lo..=hi).contains(&d.width()) {
+            return;
+        }
+        let initial = &self.initial;
+        self.filter
+            .replace_share(self.config.relock_share, |_, rng| {
+                initial.on_ego_pair(&d, rng)
+            });
     }
 
     /// The weighted mean of (rho, theta, d) over the mode of the best particle: the particles
@@ -457,6 +493,9 @@ impl Tracker for LiuTracker {
 
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
+        if let Some(d) = self.detector.as_mut() {
+            d.reset();
+        }
         self.frame = None;
     }
 

@@ -41,6 +41,7 @@ use super::descriptors::{wrap_half_turn, Descriptors, MaskPixel};
 use super::exp_table::{ExpTable, RANGE};
 use super::kernels::GaussHermite;
 use super::lanes::F32x4;
+use crate::calib::ego_on_road::EgoOnRoad;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
 use crate::math;
@@ -572,6 +573,31 @@ impl DefaultLanes {
         let b = slope;
         let m = LinearParabolic::from_line(a, b, b, self.y_m);
         [m.rho, m.theta, m.d]
+    }
+}
+
+impl DefaultLanes {
+    /// Default-model lanes on a detected ego pair: the lane width and heading of `ego`, its
+    /// boundaries as the middle two of the n parallel ones (the left one of the middle pair
+    /// for an odd n), each jittered by `default_jitter_m` (the `relock_share` proposal).
+    pub fn on_ego_pair(&self, ego: &EgoOnRoad, rng: &mut Rng) -> LaneParticle {
+        let w = ego.width();
+        let slope = math::tan(ego.heading());
+        let centre = (self.n as f64 - 1.0) / 2.0;
+        // Boundary k lies at shift + (centre - k) w: the middle pair on the ego boundaries.
+        let shift = if self.n % 2 == 0 {
+            ego.centre()
+        } else {
+            ego.left.offset
+        };
+        let mut p = LaneParticle {
+            boundaries: [[0.0; 3]; MAX_BOUNDARIES],
+        };
+        for k in 0..self.n {
+            let y0 = shift + (centre - k as f64) * w + rng.gaussian(0.0, self.jitter_m);
+            p.boundaries[k] = self.straight_boundary(y0, slope);
+        }
+        p
     }
 }
 
