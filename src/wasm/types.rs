@@ -19,7 +19,7 @@ const TYPES: &'static str = r#"
  * What kind of mistake a thrown `LanepfError` reports: `LanepfConfigError` (a constructor's id,
  * name or option object), `LanepfInputError` (a call's data: frames, sizes, indices, points,
  * ego motion), `LanepfStateError` (a call the object cannot take now: `advance()` with no frame
- * in progress, a stereo step without `setRight`, `setRight` on a one-camera tracker).
+ * in progress, a stereo step without a right frame, a right frame for a one-camera tracker).
  */
 export type LanepfErrorName = 'LanepfConfigError' | 'LanepfInputError' | 'LanepfStateError';
 
