@@ -8,7 +8,8 @@ export type { FrameSource } from '../frames/index.js';
 
 /** How `TrackerWorker.create` starts the worker. */
 export interface TrackerWorkerOptions {
-  /** A Worker already running this package's `worker/worker.js` (default: one is started with
+  /** A Worker running this package's `worker/worker.js`, or one of your own that calls `serve()`
+   *  of `lanepf/worker/serve.js` (default: one is started with
    *  `new Worker(new URL('./worker.js', import.meta.url), { type: 'module' })`). */
   worker?: Worker;
   /** Where the worker fetches `lanepf_bg.wasm` (default: next to the package's `web/lanepf.js`). */
@@ -79,6 +80,12 @@ export class TrackerWorker {
   particles(): Promise<Float32Array>;
   hypotheses(max: number): Promise<Hypothesis[]>;
   layers(): Promise<Layer[]>;
+  /** Replaces the tracker in the same worker (same wasm instance); rejects as `create` does. */
+  open(id: TrackerId, config: TrackerConfig): Promise<this>;
+  /** Frees the tracker, keeping the worker. */
+  close(): Promise<void>;
+  /** Sends a request to an op of a worker of your own (`serve({ op(args, ctx) { ... } })`). */
+  request<T = unknown>(op: string, args?: Record<string, unknown>, transfer?: Transferable[]): Promise<T>;
   /** Stops the worker; pending calls reject with a `LanepfStateError`. */
   terminate(): void;
   [Symbol.dispose](): void;

@@ -39,16 +39,17 @@ export class TrackerWorker {
    *
    * @param id a tracker id (`trackerIds()`)
    * @param config the tracker's config, as for `new Tracker(id, config)`
-   * @param options `{ worker, wasm }`: a Worker running this package's `worker/worker.js` to use
-   *   instead of starting one; where the worker fetches `lanepf_bg.wasm` from (default: next to
-   *   the package's `web/lanepf.js`)
+   * @param options `{ worker, wasm }`: a Worker to use instead of starting one (running this
+   *   package's `worker/worker.js`, or a worker of your own that calls `serve()` from
+   *   `worker/serve.js`); where the worker fetches `lanepf_bg.wasm` from (default: next to the
+   *   package's `web/lanepf.js`)
    */
   static async create(id, config, options = {}) {
     const worker = options.worker
       ?? new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
     const client = new TrackerWorker(worker);
     try {
-      const info = await client.call('open', { id, config, wasm: options.wasm && String(options.wasm) });
+      const info = await client.request('open', { id, config, wasm: options.wasm && String(options.wasm) });
       Object.assign(client, { info });
     } catch (e) {
       client.terminate();
@@ -81,8 +82,11 @@ export class TrackerWorker {
     worker.onmessageerror = () => fail('a message could not be read');
   }
 
-  /** Sends one request; resolves with its result. */
-  call(op, args = {}, transfer = []) {
+  /**
+   * Sends one request `{ op, args }` (with `transfer`, the buffers to move); resolves with its
+   * result. For ops a worker of your own adds with `serve({ op(args, ctx) { ... } })`.
+   */
+  request(op, args = {}, transfer = []) {
     if (this.closed) return Promise.reject(errorOf('the TrackerWorker was terminated', 'LanepfStateError'));
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
@@ -135,7 +139,7 @@ export class TrackerWorker {
    */
   async step(frame, options) {
     const { args, transfer } = this.frameArgs(frame, options);
-    return this.call('step', args, transfer);
+    return this.request('step', args, transfer);
   }
 
   /**
@@ -145,32 +149,49 @@ export class TrackerWorker {
    */
   async track(frame, options = {}) {
     const { args, transfer } = this.frameArgs(frame, options);
-    return this.call('track', { ...args, want: options.want ?? {} }, transfer);
+    return this.request('track', { ...args, want: options.want ?? {} }, transfer);
   }
 
   /** Starts a frame in per-step mode (same arguments as `step`). */
   async beginFrame(frame, options) {
     const { args, transfer } = this.frameArgs(frame, options);
-    return this.call('beginFrame', args, transfer);
+    return this.request('beginFrame', args, transfer);
+  }
+
+  /**
+   * Replaces the tracker in the same worker (same wasm instance): e.g. another id, or the same
+   * one for a new camera. Rejects as `create` does; the worker then has no tracker until the
+   * next successful `open`.
+   */
+  async open(id, config) {
+    this.info = null;
+    this.info = await this.request('open', { id, config });
+    return this;
+  }
+
+  /** Frees the tracker, keeping the worker (calls other than `open` then reject). */
+  async close() {
+    this.info = null;
+    await this.request('close');
   }
 
   /** Runs the next filter step: the estimate after the last, `null` before it. */
-  advance() { return this.call('advance'); }
+  advance() { return this.request('advance'); }
 
   /** Index into `stepNames` of the next step, or `null` when no frame is in progress. */
-  nextStep() { return this.call('nextStep'); }
+  nextStep() { return this.request('nextStep'); }
 
   /** Forgets the past. */
-  reset() { return this.call('reset'); }
+  reset() { return this.request('reset'); }
 
   /** The particle cloud after the last step (`particleStride` numbers per particle). */
-  particles() { return this.call('particles'); }
+  particles() { return this.request('particles'); }
 
   /** At most `max` particles drawn as lane hypotheses. */
-  hypotheses(max) { return this.call('hypotheses', { max }); }
+  hypotheses(max) { return this.request('hypotheses', { max }); }
 
   /** Pictures of the tracker's cues after the last frame. */
-  layers() { return this.call('layers'); }
+  layers() { return this.request('layers'); }
 
   /** Stops the worker (its wasm memory goes with it); pending calls reject. */
   terminate() {

@@ -2,7 +2,8 @@
 // tarball into small apps, each run in headless Chromium:
 //   web/index.html   plain ES modules with an import map (no bundler)
 //   web/worker.html  the package inside a module Web Worker
-//   web/client.html  `lanepf/worker` (TrackerWorker) and `lanepf/frames` (readFrame, FrameReader)
+//   web/client.html  `lanepf/worker` (TrackerWorker, on its own worker and on one of the app's
+//                    that serves ops of its own) and `lanepf/frames` (readFrame, FrameReader)
 //   vite/            a Vite app: index.html uses `lanepf` with init(), on the main thread and in
 //                    a worker it bundles; bundler.html uses `lanepf/bundler` (no init()) and
 //                    `lanepf/worker`; built (`vite build`, with and without vite-plugin-wasm)
@@ -84,7 +85,8 @@ test.after(() => env.close());
 test('the tarball holds one wasm, the entries, their types and the README, and nothing else', () => {
   const expected = ['README.md', 'package.json', 'web/lanepf.js', 'web/lanepf.d.ts', 'web/lanepf_bg.wasm',
     'web/lanepf_bg.wasm.d.ts', 'bundler/index.js', 'bundler/index.d.ts', 'worker/index.js',
-    'worker/index.d.ts', 'worker/worker.js', 'frames/index.js', 'frames/index.d.ts'];
+    'worker/index.d.ts', 'worker/worker.js', 'worker/serve.js', 'worker/serve.d.ts',
+    'frames/index.js', 'frames/index.d.ts'];
   assert.deepEqual([...packedFiles].sort(), expected.sort());
   assert.equal(packedFiles.filter((f) => f.endsWith('.wasm')).length, 1);
 });
@@ -223,6 +225,17 @@ test('plain ES modules: lanepf/worker (TrackerWorker) and lanepf/frames', { time
   const r = await resultOf(join(tmp, 'web'), 'client.html', true);
   assertWorker(r.worker, 'plain TrackerWorker');
   assertFrames(r.frames);
+  const c = r.custom;
+  assert.ok(c && !c.failed, c?.failed ?? 'no result');
+  assert.equal(c.rendered, 320 * 240 * 4, 'an op of the worker\'s own answered');
+  assert.deepEqual(c.same, [true, true, true], 'the tracker in the custom worker equals the main thread\'s');
+  assert.equal(c.idBefore, 'lee-cpf');
+  assert.deepEqual(c.idAfter, ['adachi-mmpf', 'adachi-mmpf'], 'open() replaced the tracker in place');
+  assert.ok(c.stepAfterOpen > 0);
+  assert.match(c.unknownOp?.message ?? '', /unknown request 'nope'/);
+  assert.equal(c.badOpen?.name, 'LanepfConfigError', JSON.stringify(c.badOpen));
+  assert.equal(c.afterBadOpen?.name, 'LanepfStateError', JSON.stringify(c.afterBadOpen));
+  assert.equal(c.afterClose?.name, 'LanepfStateError', JSON.stringify(c.afterClose));
 });
 
 /** Builds the Vite app with `config`; returns the output folder and vite's output. */
