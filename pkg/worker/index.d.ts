@@ -59,9 +59,14 @@ export interface TrackResult {
  * `LanepfInputError`, `LanepfStateError`).
  */
 export class TrackerWorker {
+  /** Starts the worker with no tracker yet (`open` builds one); for a worker of your own. */
+  static connect(options?: TrackerWorkerOptions): Promise<TrackerWorker>;
   /** Starts the worker and builds the tracker; rejects with the constructor's Error. */
   static create(id: TrackerId, config: TrackerConfig, options?: TrackerWorkerOptions): Promise<TrackerWorker>;
   private constructor(worker: Worker);
+  /** The package's version, as the worker reports it. */
+  readonly version: string;
+  /** The tracker's id (undefined while no tracker is open). */
   readonly id: TrackerId;
   readonly isStereo: boolean;
   readonly particleStride: number;

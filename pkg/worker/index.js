@@ -45,12 +45,27 @@ export class TrackerWorker {
    *   package's `web/lanepf.js`)
    */
   static async create(id, config, options = {}) {
+    const client = await TrackerWorker.connect(options);
+    try {
+      await client.open(id, config);
+    } catch (e) {
+      client.terminate();
+      throw e;
+    }
+    return client;
+  }
+
+  /**
+   * Starts the worker (or takes `options.worker`) and instantiates the wasm module in it, with
+   * no tracker yet: `open(id, config)` builds one. For an app whose own worker serves other ops
+   * first (a scene, a calibrator). Rejects when the worker or the wasm fails to start.
+   */
+  static async connect(options = {}) {
     const worker = options.worker
       ?? new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
     const client = new TrackerWorker(worker);
     try {
-      const info = await client.request('open', { id, config, wasm: options.wasm && String(options.wasm) });
-      Object.assign(client, { info });
+      client.version = await client.request('version', { wasm: options.wasm && String(options.wasm) });
     } catch (e) {
       client.terminate();
       throw e;
@@ -64,6 +79,7 @@ export class TrackerWorker {
     this.pending = new Map();
     this.nextId = 1;
     this.info = null;
+    this.version = null;
     this.closed = false;
     worker.onmessage = (e) => {
       const { id, ok, result, error, name, frame } = e.data ?? {};

@@ -34,6 +34,9 @@ function extras(t, want) {
 }
 
 const ops = {
+  version() {
+    return { result: lanepf.version() };
+  },
   open({ id, config }) {
     tracker?.free();
     tracker = null;

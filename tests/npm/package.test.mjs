@@ -228,6 +228,9 @@ test('plain ES modules: lanepf/worker (TrackerWorker) and lanepf/frames', { time
   const c = r.custom;
   assert.ok(c && !c.failed, c?.failed ?? 'no result');
   assert.equal(c.rendered, 320 * 240 * 4, 'an op of the worker\'s own answered');
+  assert.match(c.version, /^\d+\.\d+\.\d+/, 'connect() reports the version');
+  assert.equal(c.idBeforeOpen, null, 'connect() opens no tracker');
+  assert.equal(c.stepBeforeOpen?.name, 'LanepfStateError', JSON.stringify(c.stepBeforeOpen));
   assert.deepEqual(c.same, [true, true, true], 'the tracker in the custom worker equals the main thread\'s');
   assert.equal(c.idBefore, 'lee-cpf');
   assert.deepEqual(c.idAfter, ['adachi-mmpf', 'adachi-mmpf'], 'open() replaced the tracker in place');
