@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the npm package in pkg/ from the crate: a release wasm32 build, wasm-bindgen for the
-# `web` target (plain ES modules, the demo) and the `bundler` target (Vite, webpack), then
-# wasm-opt -O3 on both. The committed pkg/package.json and pkg/README.md are kept as they are.
+# `web` target (plain ES modules, the demo) into pkg/web/, then wasm-opt -O3. That is the only
+# generated part: the other entries (pkg/bundler/, pkg/worker/, pkg/frames/), package.json and
+# README.md are committed sources that import ../web/, so the tarball has one wasm file.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,11 +12,12 @@ cargo build --lib --release --target wasm32-unknown-unknown
 # turns on for wasm32; wasm-opt must accept them all.
 features=(--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext
           --enable-mutable-globals --enable-reference-types --enable-multivalue --enable-simd)
-for target in web bundler; do
-  out=pkg/$target
-  rm -rf "$out"
-  wasm-bindgen --target "$target" --out-dir "$out" --out-name lanepf "$wasm"
-  node_modules/.bin/wasm-opt -O3 "${features[@]}" "$out/lanepf_bg.wasm" -o "$out/lanepf_bg.wasm"
-  rm -f "$out/.gitignore"
-done
+out=pkg/web
+rm -rf "$out"
+wasm-bindgen --target web --out-dir "$out" --out-name lanepf "$wasm"
+node_modules/.bin/wasm-opt -O3 "${features[@]}" "$out/lanepf_bg.wasm" -o "$out/lanepf_bg.wasm"
+rm -f "$out/.gitignore"
+# What builds before the committed bundler entry generated the `bundler` target there.
+rm -f pkg/bundler/lanepf.js pkg/bundler/lanepf.d.ts pkg/bundler/lanepf_bg.js pkg/bundler/lanepf_bg.wasm \
+      pkg/bundler/lanepf_bg.wasm.d.ts
 ls -l pkg/web/lanepf_bg.wasm | awk '{printf "[build-pkg] pkg/web/lanepf_bg.wasm: %d bytes\n", $5}'

@@ -55,11 +55,13 @@ if [ "$have" != "$wb_version" ] || ! command -v wasm-bindgen-test-runner >/dev/n
 fi
 
 # 3. npm tools: binaryen (wasm-opt 132; Debian's is too old), playwright-core and puppeteer-core
-#    (no browser download).
+#    (no browser download), and what the npm package's test builds its fixture apps with:
+#    Vite (and vite-plugin-wasm), webpack 5 and TypeScript.
 if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ] \
-   || [ ! -d node_modules/puppeteer-core ] \
+   || [ ! -d node_modules/puppeteer-core ] || [ ! -d node_modules/vite ] || [ ! -d node_modules/webpack ] \
+   || [ ! -d node_modules/typescript ] || [ ! -d node_modules/vite-plugin-wasm ] \
    || [ package.json -nt node_modules/.package-lock.json ]; then
-  say "installing npm dev tools (binaryen, playwright-core, puppeteer-core)"
+  say "installing npm dev tools (binaryen, playwright-core, puppeteer-core, vite, webpack, typescript)"
   if [ -f package-lock.json ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
 fi
 

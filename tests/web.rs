@@ -238,7 +238,7 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     let mut last = JsValue::UNDEFINED;
     for f in 0..5 {
         let rgba = scene.render(n(f)).unwrap().to_vec();
-        last = tracker.step(px(&rgba), n(320), n(240)).unwrap();
+        last = tracker.step(px(&rgba), Some(n(320)), Some(n(240))).unwrap();
     }
     let q = js_sys::Reflect::get(&last, &"lateral_offset_m".into())
         .unwrap()
@@ -263,10 +263,10 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     assert_eq!(values.length(), 320);
     assert_eq!(field("start").as_f64(), Some(-8.0));
     // A wrong buffer throws, and the tracker carries on.
-    let m = message(tracker.step(px(&[0; 12]), n(320), n(240)));
+    let m = message(tracker.step(px(&[0; 12]), Some(n(320)), Some(n(240))));
     assert!(m.contains("320x240"), "{m}");
     let rgba = scene.render(n(5)).unwrap().to_vec();
-    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
+    assert!(tracker.step(px(&rgba), Some(n(320)), Some(n(240))).is_ok());
 }
 
 /// `lateral_offset_m` of an estimate.
@@ -299,8 +299,10 @@ fn track_five_frames_both_ways(
     let (mut last, mut last_stepped) = (JsValue::UNDEFINED, JsValue::UNDEFINED);
     for f in 0..5 {
         let rgba = scene.render(n(f)).unwrap().to_vec();
-        last = tracker.step(px(&rgba), n(320), n(240)).unwrap();
-        stepped.begin_frame(px(&rgba), n(320), n(240)).unwrap();
+        last = tracker.step(px(&rgba), Some(n(320)), Some(n(240))).unwrap();
+        stepped
+            .begin_frame(px(&rgba), Some(n(320)), Some(n(240)))
+            .unwrap();
         for k in 0..steps {
             assert_eq!(stepped.next_step(), Some(k));
             last_stepped = stepped.advance().unwrap();
@@ -339,10 +341,10 @@ fn lee_tracker_runs_in_the_browser_with_the_native_result() {
     js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
     let m = message(JsTracker::new("lee-cpf".into(), bad));
     assert!(m.contains("sigma_q"), "{m}");
-    let m = message(tracker.step(px(&[0; 12]), n(320), n(240)));
+    let m = message(tracker.step(px(&[0; 12]), Some(n(320)), Some(n(240))));
     assert!(m.contains("320x240"), "{m}");
     let rgba = scene.render(n(5)).unwrap().to_vec();
-    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
+    assert!(tracker.step(px(&rgba), Some(n(320)), Some(n(240))).is_ok());
 }
 
 #[wasm_bindgen_test]
@@ -379,10 +381,10 @@ fn liu_tracker_runs_in_the_browser_with_the_native_result() {
     js_sys::Reflect::set(&bad, &"camera".into(), &camera).unwrap();
     let m = message(JsTracker::new("liu-ppf".into(), bad));
     assert!(m.contains("boundaries"), "{m}");
-    let m = message(tracker.step(px(&[0; 12]), n(320), n(240)));
+    let m = message(tracker.step(px(&[0; 12]), Some(n(320)), Some(n(240))));
     assert!(m.contains("320x240"), "{m}");
     let rgba = scene.render(n(5)).unwrap().to_vec();
-    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
+    assert!(tracker.step(px(&rgba), Some(n(320)), Some(n(240))).is_ok());
 }
 
 #[wasm_bindgen_test]
@@ -416,7 +418,7 @@ fn danescu_mono_runs_in_the_browser_with_the_native_result() {
     let m = message(JsTracker::new("danescu-mono".into(), bad));
     assert!(m.contains("points"), "{m}");
     let rgba = scene.render(n(5)).unwrap().to_vec();
-    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
+    assert!(tracker.step(px(&rgba), Some(n(320)), Some(n(240))).is_ok());
 }
 
 #[wasm_bindgen_test]
@@ -436,7 +438,7 @@ fn danescu_stereo_runs_in_the_browser_with_the_native_result() {
     assert!(tracker.is_stereo());
     let first = scene.render(n(0)).unwrap().to_vec();
     // Without the right image: a thrown Error that says what to do, and the tracker goes on.
-    let m = message(tracker.step(px(&first), n(320), n(240)));
+    let m = message(tracker.step(px(&first), Some(n(320)), Some(n(240))));
     assert!(m.contains("setRight") && m.contains("danescu-mono"), "{m}");
     let m = message(tracker.set_right(px(&[0; 12]), n(320), n(240)));
     assert!(m.contains("320x240") || m.contains("bytes"), "{m}");
@@ -445,7 +447,7 @@ fn danescu_stereo_runs_in_the_browser_with_the_native_result() {
         let left = scene.render(n(f)).unwrap().to_vec();
         let right = scene.render_right(n(f)).unwrap().to_vec();
         tracker.set_right(px(&right), n(320), n(240)).unwrap();
-        last = tracker.step(px(&left), n(320), n(240)).unwrap();
+        last = tracker.step(px(&left), Some(n(320)), Some(n(240))).unwrap();
     }
     let state = js_sys::Reflect::get(&last, &"state".into()).unwrap();
     let alpha = js_sys::Reflect::get(&state, &"danescu.alpha".into())
@@ -555,7 +557,7 @@ fn calibrator_recovers_the_scene_camera_from_the_field_of_view() {
     js_sys::Reflect::set(&options, &"camera".into(), &truth).unwrap();
     let mut scene = JsScene::new("highway-straight".into(), options).unwrap();
     let rgba = scene.render(n(0)).unwrap().to_vec();
-    assert!(tracker.step(px(&rgba), n(320), n(240)).is_ok());
+    assert!(tracker.step(px(&rgba), Some(n(320)), Some(n(240))).is_ok());
     // Reset forgets everything.
     calibrator.reset();
     assert!(calibrator.estimate().unwrap().is_null());

@@ -97,6 +97,13 @@ pub fn index(value: &JsValue, what: &str) -> Result<u32, Thrown> {
     Ok(whole(value, what, 0.0, f64::from(u32::MAX))? as u32)
 }
 
+/// Whether `value` is a real `Uint8Array` or `Uint8ClampedArray` (what a frame's bytes are).
+pub fn is_frame_bytes(value: &JsValue) -> bool {
+    is_view(value)
+        && (value.is_instance_of::<js_sys::Uint8Array>()
+            || value.is_instance_of::<js_sys::Uint8ClampedArray>())
+}
+
 /// Copies a `width` x `height` RGBA frame (`Uint8Array` or `Uint8ClampedArray`) into `out`,
 /// reusing its allocation; anything else, or an array of another length, is refused before
 /// anything is allocated or copied.
@@ -109,10 +116,7 @@ pub fn rgba(
     [width, height]: [usize; 2],
     out: &mut Vec<u8>,
 ) -> Result<(), Thrown> {
-    let bytes = is_view(value)
-        && (value.is_instance_of::<js_sys::Uint8Array>()
-            || value.is_instance_of::<js_sys::Uint8ClampedArray>());
-    if !bytes {
+    if !is_frame_bytes(value) {
         return Err(Thrown::input(format!(
             "{what} must be a Uint8Array or Uint8ClampedArray of RGBA pixels (ImageData.data), \
              not {}",

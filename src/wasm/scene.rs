@@ -2,6 +2,7 @@
 
 use super::args;
 use super::error::{self, input, Kind, Thrown};
+use super::estimate::{self, Keep};
 use super::object;
 use crate::camera::{Camera, CameraFile};
 use crate::synth::{default_camera, scenario, Eye, Scene, SCENARIOS};
@@ -149,6 +150,6 @@ impl JsScene {
         #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
     ) -> Result<JsValue, Thrown> {
         let index = args::index(&index, "index")?;
-        super::to_js_value(&self.scene.truth(index))
+        estimate::to_js(&self.scene.truth(index), Keep::Frame)
     }
 }

@@ -3,6 +3,7 @@
 use super::args;
 use super::camera::camera_from_js;
 use super::error::{self, input, Kind, Thrown};
+use super::estimate::{self, Keep};
 use super::object;
 use crate::synth::{TestRoad, TestRoadConfig};
 use wasm_bindgen::prelude::*;
@@ -63,6 +64,6 @@ impl JsTestRoad {
         #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
     ) -> Result<JsValue, Thrown> {
         let index = args::index(&index, "index")?;
-        super::to_js_value(&self.road.truth(index))
+        estimate::to_js(&self.road.truth(index), Keep::Neither)
     }
 }

@@ -2,7 +2,9 @@
 
 use super::args;
 use super::error::{self, input, Kind, Thrown};
+use super::estimate::{self, Keep};
 use super::object;
+use super::step_input;
 use crate::camera::CameraFile;
 use crate::trackers::{self, TrackerConfig};
 use wasm_bindgen::prelude::*;
@@ -13,24 +15,30 @@ pub struct JsTracker {
     inner: Box<dyn trackers::Tracker>,
     /// The last frame's pixels, copied out of the JS array (reused).
     frame: Vec<u8>,
+    /// The last right frame given in `step`'s options (reused).
+    right: Vec<u8>,
+    /// The camera's frame size, [width, height].
+    size: [usize; 2],
 }
 
 /// Reads a tracker config: the camera first (so that its errors name `camera.<key>`), then the
-/// whole.
-fn read_config(value: &JsValue) -> Result<TrackerConfig, Thrown> {
+/// whole; returns it with the camera's frame size.
+fn read_config(value: &JsValue) -> Result<(TrackerConfig, [usize; 2]), Thrown> {
     const WHAT: &str = "tracker config";
     let config = object::read_value(value, WHAT, Kind::Config)?;
-    match config.get("camera") {
+    let size = match config.get("camera") {
         Some(camera) => {
-            object::deserialize::<CameraFile>(camera.clone(), WHAT, "camera", Kind::Config)?;
+            let camera: CameraFile =
+                object::deserialize(camera.clone(), WHAT, "camera", Kind::Config)?;
+            [camera.width, camera.height]
         }
         None => {
             return Err(Thrown::config(format!(
                 "invalid {WHAT}: `camera` is missing"
             )))
         }
-    }
-    object::deserialize(config, WHAT, "", Kind::Config)
+    };
+    Ok((object::deserialize(config, WHAT, "", Kind::Config)?, size))
 }
 
 /// The ids `new Tracker(id, ...)` accepts.
@@ -65,11 +73,13 @@ impl JsTracker {
         #[wasm_bindgen(unchecked_param_type = "TrackerConfig")] config: JsValue,
     ) -> Result<JsTracker, Thrown> {
         let id = args::name(&id, "tracker id")?;
-        let options = read_config(&config)?;
+        let (options, size) = read_config(&config)?;
         let inner = trackers::create(&id, &options).map_err(error::config)?;
         Ok(JsTracker {
             inner,
+            size,
             frame: Vec::new(),
+            right: Vec::new(),
         })
     }
 
@@ -91,17 +101,54 @@ impl JsTracker {
         self.inner.id().to_string()
     }
 
-    /// Processes one RGBA frame (`ImageData.data`) and returns the estimate.
+    /// Processes one frame and returns the estimate: `step(frame, { right?, motion? })` with
+    /// an `ImageData` or `{ data, width, height }` (the right camera's frame of a stereo
+    /// tracker and the car's motion in the options), or `step(rgba, width, height)`.
     #[wasm_bindgen(unchecked_return_type = "LaneEstimate")]
     pub fn step(
         &mut self,
-        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: JsValue,
-        #[wasm_bindgen(unchecked_param_type = "number")] width: JsValue,
-        #[wasm_bindgen(unchecked_param_type = "number")] height: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "RgbaFrame")] frame: JsValue,
+        #[wasm_bindgen(unchecked_optional_param_type = "StepOptions")] options: Option<JsValue>,
+        // Only in the older form, `(rgba, width, height)`, declared in `types.rs`.
+        #[wasm_bindgen(unchecked_optional_param_type = "undefined")] height: Option<JsValue>,
     ) -> Result<JsValue, Thrown> {
-        let [w, h] = self.take_frame(&rgba, &width, &height)?;
+        let [w, h] = self.take_step_input(&frame, options.as_ref(), height.as_ref())?;
         let estimate = self.inner.step(&self.frame, w, h).map_err(input)?;
-        super::to_js_value(&estimate)
+        estimate::to_js(&estimate, Keep::Neither)
+    }
+
+    /// Reads a `step` / `beginFrame` call's arguments ([`step_input::read`]) and, once all of
+    /// them are checked, hands the motion and the right frame to the tracker; returns the
+    /// left frame's size (its pixels are in `self.frame`).
+    fn take_step_input(
+        &mut self,
+        frame: &JsValue,
+        options: Option<&JsValue>,
+        height: Option<&JsValue>,
+    ) -> Result<[usize; 2], Thrown> {
+        let (size, extras) =
+            step_input::read(frame, options, height, &mut self.frame, &mut self.right)?;
+        if extras.right.is_some() && !self.inner.is_stereo() {
+            // The tracker's own refusal (a one-camera tracker), before anything is applied.
+            return self.inner.set_right(&[], 0, 0).map(|_| size).map_err(input);
+        }
+        if (extras.right.is_some() || extras.motion.is_some()) && size != self.size {
+            // Refused here rather than by the step, after the motion and the right frame had
+            // been handed over.
+            let ([w, h], [cw, ch]) = (size, self.size);
+            return Err(Thrown::input(format!(
+                "frame is {w}x{h} but the tracker's camera is {cw}x{ch}: frames must have the \
+                 camera's size"
+            )));
+        }
+        // Neither can fail now: the motion is checked and the right frame has the camera's size.
+        if let Some([w, h]) = extras.right {
+            self.inner.set_right(&self.right, w, h).map_err(input)?;
+        }
+        if let Some(motion) = extras.motion {
+            self.inner.set_ego_motion(motion).map_err(input)?;
+        }
+        Ok(size)
     }
 
     /// The particle cloud after the last step as a `Float32Array` of `particleStride` numbers
@@ -151,6 +198,8 @@ impl JsTracker {
     /// seconds, speed in m/s, yaw rate in rad/s positive turning left). danescu-mono and
     /// danescu-stereo drift their particles by it; the other trackers ignore it. Throws for a
     /// missing or unknown field or a NaN or out-of-range value.
+    ///
+    /// @deprecated Pass the motion with the frame instead: `step(frame, { motion })`.
     #[wasm_bindgen(js_name = setEgoMotion)]
     pub fn set_ego_motion(
         &mut self,
@@ -168,6 +217,8 @@ impl JsTracker {
 
     /// The right camera's RGBA frame for the next `step` / `beginFrame` of a stereo tracker
     /// (used once). Throws for a one-camera tracker or a frame of the wrong size.
+    ///
+    /// @deprecated Pass the right frame with the left one instead: `step(left, { right })`.
     #[wasm_bindgen(js_name = setRight)]
     pub fn set_right(
         &mut self,
@@ -200,15 +251,17 @@ impl JsTracker {
     }
 
     /// Starts a frame in per-step mode (computes its image cues); then call `advance()` once
-    /// per step. Throws for a bad frame or a tracker without a per-step mode.
+    /// per step. Takes the same arguments as `step`. Throws for a bad frame or a tracker
+    /// without a per-step mode.
     #[wasm_bindgen(js_name = beginFrame)]
     pub fn begin_frame(
         &mut self,
-        #[wasm_bindgen(unchecked_param_type = "Rgba")] rgba: JsValue,
-        #[wasm_bindgen(unchecked_param_type = "number")] width: JsValue,
-        #[wasm_bindgen(unchecked_param_type = "number")] height: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "RgbaFrame")] frame: JsValue,
+        #[wasm_bindgen(unchecked_optional_param_type = "StepOptions")] options: Option<JsValue>,
+        // Only in the older form, `(rgba, width, height)`, declared in `types.rs`.
+        #[wasm_bindgen(unchecked_optional_param_type = "undefined")] height: Option<JsValue>,
     ) -> Result<(), Thrown> {
-        let [w, h] = self.take_frame(&rgba, &width, &height)?;
+        let [w, h] = self.take_step_input(&frame, options.as_ref(), height.as_ref())?;
         self.inner.begin_frame(&self.frame, w, h).map_err(input)
     }
 
@@ -217,7 +270,7 @@ impl JsTracker {
     #[wasm_bindgen(unchecked_return_type = "LaneEstimate | null")]
     pub fn advance(&mut self) -> Result<JsValue, Thrown> {
         match self.inner.advance().map_err(input)? {
-            Some(estimate) => super::to_js_value(&estimate),
+            Some(estimate) => estimate::to_js(&estimate, Keep::Neither),
             None => Ok(JsValue::NULL),
         }
     }

@@ -19,7 +19,7 @@ const TYPES: &'static str = r#"
  * What kind of mistake a thrown `LanepfError` reports: `LanepfConfigError` (a constructor's id,
  * name or option object), `LanepfInputError` (a call's data: frames, sizes, indices, points,
  * ego motion), `LanepfStateError` (a call the object cannot take now: `advance()` with no frame
- * in progress, a stereo step without `setRight`, `setRight` on a one-camera tracker).
+ * in progress, a stereo step without a right frame, a right frame for a one-camera tracker).
  */
 export type LanepfErrorName = 'LanepfConfigError' | 'LanepfInputError' | 'LanepfStateError';
 
@@ -510,12 +510,8 @@ export interface Delimiter extends Boundary {
 
 /** A tracker's estimate (or the ground truth) of one frame. */
 export interface LaneEstimate {
-  /** Frame name ('' for a tracker's estimate). */
-  frame: string;
   /** Whether the tracker is confident in this estimate. */
   valid: boolean;
-  /** Always 0 from `step`, `advance` and `truth` (the command line fills it in). */
-  ms: number;
   /** The boundaries, in any order. */
   boundaries: Boundary[];
   /** Camera left of the lane centre, metres (ISO 8855 y). */
@@ -564,6 +560,8 @@ export interface TruthState {
 
 /** The exact ground truth of a scene frame. */
 export interface Truth extends LaneEstimate {
+  /** The frame's file name as `lanepf synth` writes it: '000042.png' for frame 42. */
+  frame: string;
   state: TruthState;
 }
 
@@ -712,4 +710,35 @@ export interface CalibrationObservation {
 
 /** An RGBA frame: `ImageData.data`, `Scene.render(f)` or any width*height*4 bytes. */
 export type Rgba = Uint8Array | Uint8ClampedArray;
+
+/**
+ * A frame with its size: an `ImageData`, or any object with RGBA bytes in `data`
+ * (`width * height * 4` of them) and the size in pixels.
+ */
+export interface RgbaFrame {
+  data: Rgba;
+  width: number;
+  height: number;
+}
+
+/** The older form of `step` and `beginFrame`: the bytes and the size (declaration merging adds
+ *  these overloads to the class). */
+export interface Tracker {
+  /** Processes one frame of RGBA bytes (`ImageData.data`) of `width` x `height` pixels. */
+  step(rgba: Rgba, width: number, height: number): LaneEstimate;
+  /** Starts a frame of RGBA bytes of `width` x `height` pixels in per-step mode. */
+  beginFrame(rgba: Rgba, width: number, height: number): void;
+}
+
+/**
+ * What `step(frame, options)` and `beginFrame(frame, options)` take besides the frame, for this
+ * frame only. Unknown keys and `null` are refused.
+ */
+export interface StepOptions {
+  /** The right camera's frame, same size (`danescu-stereo` only; a one-camera tracker throws a
+   *  `LanepfStateError`). */
+  right?: RgbaFrame;
+  /** The car's motion at this frame (the Danescu trackers drift by it; the others ignore it). */
+  motion?: EgoMotion;
+}
 "#;
