@@ -133,13 +133,21 @@ export class Controls {
     return Number(this.cueLayer.value) || 0;
   }
 
-  /** Fills the tracker list: "no tracker" and then every registered id. */
+  /**
+   * The tracker lists: "no tracker" (or "nothing" to compare with) and then every registered id.
+   * index.html lists them already, so the menus work while the module loads; they are rebuilt
+   * only if the module's list differs, keeping the choice.
+   */
   setTrackers(ids) {
-    this.tracker.replaceChildren();
-    this.tracker.add(new Option('no tracker (frames only)', ''));
-    for (const id of ids) this.tracker.add(new Option(id, id));
-    this.tracker.disabled = false;
-    this.compare.replaceChildren(new Option('nothing', ''), ...ids.map((id) => new Option(id, id)));
+    const fill = (select, none) => {
+      const have = [...select.options].map((o) => o.value);
+      if (have.join('\n') === ['', ...ids].join('\n')) return;
+      const chosen = select.value;
+      select.replaceChildren(new Option(none, ''), ...ids.map((id) => new Option(id, id)));
+      select.value = ids.includes(chosen) ? chosen : '';
+    };
+    fill(this.tracker, 'no tracker (frames only)');
+    fill(this.compare, 'nothing');
   }
 
   /** Adds the simulator's scenarios after the built-in sources. */

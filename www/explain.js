@@ -78,7 +78,7 @@ TRACKERS['liu-ppf-nokernel'] = {
   ...TRACKERS['liu-ppf'],
   title: 'Liu et al. 2013, PPF-NoKernel: the paper’s baseline without the kernels',
   text: [
-    'The same partitioned particle filter, but each edge pixel counts only by its brightness, without the orientation and intensity kernels (Sec. V-A). Compare it with liu-ppf on the same scene to see what the kernels buy.',
+    'The same partitioned particle filter, but each edge pixel near a boundary counts only by the intensity kernel K_c of its grey level (eqs. 26-27, Sec. V-A): no position kernel, no orientation kernel, no gradient term. Compare it with liu-ppf on the same scene to see what the kernels buy.',
   ],
 };
 

@@ -35,18 +35,21 @@ const ENTRIES = [
 ];
 
 export class Legend {
-  /** Fills the list `ul` with one item per entry: a sample canvas and its label. */
+  /**
+   * Fills the list `ul` with one item per entry: a sample canvas and its label. Items already
+   * in the list (index.html has them, so the page does not move when this runs) are reused:
+   * their samples are drawn here and their labels set to the entries' own.
+   */
   constructor(ul) {
     this.items = new Map();
     for (const e of ENTRIES) {
-      const li = document.createElement('li');
+      const li = ul.querySelector(`li[data-key="${e.key}"]`) ?? ul.appendChild(document.createElement('li'));
       li.dataset.key = e.key;
       const canvas = document.createElement('canvas');
       canvas.width = SAMPLE_W;
       canvas.height = SAMPLE_H;
       canvas.setAttribute('aria-hidden', 'true');
-      li.append(canvas, ` ${e.label}`);
-      ul.append(li);
+      li.replaceChildren(canvas, ` ${e.label}`);
       this.items.set(e.key, { li, ctx: canvas.getContext('2d'), entry: e });
     }
     this.update({});

@@ -19,6 +19,7 @@ import { Plots, plotsCaption } from './plots.js';
 import { Departure } from './departure.js';
 import { appendCapped } from './capped.js';
 import { ParamsPanel } from './params-panel.js';
+import { Pacer } from './pacer.js';
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
@@ -37,6 +38,8 @@ const auto = new AutoCalibration();
 const autoText = document.getElementById('auto-calibration');
 const autoToggle = document.getElementById('auto-calibrate');
 const showCalibration = document.getElementById('show-calibration');
+const pacer = new Pacer();
+const paceText = document.getElementById('pace');
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
@@ -57,6 +60,33 @@ const state = {
   lastResult: null,
 };
 let calibration = null;
+
+// Before the WebAssembly module loads: the menus, the teaching text and the canvases as they
+// will be, so nothing moves when the first frame comes (the menus list the registry's ids in
+// index.html; main() checks them against the module's own list).
+const params = new URLSearchParams(location.search);
+const firstSource = params.get('source') ?? 'clip';
+state.trackerId = params.get('tracker') ?? 'lee-cpf';
+state.compareId = params.get('compare') ?? '';
+controls.tracker.value = state.trackerId;
+controls.compare.value = state.compareId;
+// The simulator's scenes and the test road are 640x480; the bundled clip 640x360 (index.html).
+if (!['clip', 'webcam', 'file'].includes(firstSource)) {
+  for (const id of ['view', 'view2']) document.getElementById(id).height = 480;
+}
+panel.show(state.trackerId, null);
+showNames();
+// A tracker chosen while the module loads is the one opened (main() then takes over these).
+controls.onTracker = (id) => { state.trackerId = id; };
+controls.onCompare = (id) => { state.compareId = id; };
+
+/** Names the tracker each view shows, on the view itself. */
+function showNames() {
+  const name = document.getElementById('view-name');
+  name.textContent = state.trackerId || 'no tracker';
+  name.hidden = false;
+  document.getElementById('compare-name').textContent = state.compareId;
+}
 
 /**
  * What to do in this page about a tracker's error, from its kind (`err.name`, see the package
@@ -155,6 +185,8 @@ function draw(frame, result, redraw = false) {
 /** The second tracker's view: the same frame with its boundaries and particles. */
 function drawCompare(frame, compared, truth, byGroup) {
   document.getElementById('compare-figure').hidden = !compared;
+  // Side by side on a wide screen (style.css), the teaching panel then below them.
+  document.body.classList.toggle('comparing', !!compared);
   if (!compared) return;
   drawFrame(ctx2, frame.rgba, frame.width, frame.height);
   drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
@@ -172,7 +204,7 @@ function drawCompare(frame, compared, truth, byGroup) {
 
 function record(frame, result) {
   if (!result?.estimate) return;
-  plots.push(result.estimate, frame.truth, result);
+  plots.push(result.estimate, frame.truth, result, result.compare ?? null);
   document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
   const t = frame.motion?.t_s ?? frame.t ?? null;
   const status = departure.update(result.estimate, t, frame.motion?.speed_mps ?? null);
@@ -231,11 +263,16 @@ async function stepFrame() {
     await finishStepping();
     return;
   }
+  const t0 = performance.now();
   const frame = await nextFrame();
   if (!frame) return;
+  const t1 = performance.now();
   const result = await toWorker('track', frame, { motion: frame.motion, right: frame.right });
+  const t2 = performance.now();
   record(frame, result);
   draw(frame, result);
+  // Where a frame's time goes (ms): reading it, the worker's round trip, drawing it here.
+  demo.frameMs = { source: t1 - t0, worker: t2 - t1, page: performance.now() - t2 };
   await autoCalibrate(result.calibration);
 }
 
@@ -307,7 +344,10 @@ async function openTracker({ keepLog = false } = {}) {
     trackerId: trackerId ? state.compareId : '', camera: state.camera, options: { seed: options.seed },
   });
   controls.setStepNames(info.stepNames);
-  document.getElementById('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length);
+  showNames();
+  document.getElementById('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length,
+    trackerId ? state.compareId : '');
+  pacer.reset();
   demo.camera = state.camera;
   if (keepLog) return;
   Object.assign(demo, { frames: 0, lastEstimate: null, lastHypotheses: null, lastLayer: null });
@@ -382,8 +422,10 @@ async function openSource(next, name) {
   autoToggle.disabled = auto.mode === 'off';
   showAuto();
   calibration.show(state.camera, name);
+  pacer.start(next.fps ?? null, { live: next instanceof WebcamSource });
   await openTracker();
-  controls.say(next.label + note);
+  state.sourceStatus = next.label + note;
+  controls.say(state.sourceStatus);
   controls.setProgress(next.progress ?? null);
 }
 
@@ -422,6 +464,27 @@ function showTruthControls(hasTruth) {
     : 'Camera view: the estimate and the particles (colours below). Drop a video or images here.';
 }
 
+/** The status line after the tracker changed: the source's description and the tracker. */
+function sayTracking() {
+  const trackers = [state.trackerId, state.compareId].filter(Boolean).join(' and ');
+  controls.say(`${state.sourceStatus ?? state.source?.label ?? ''} · tracking with ${trackers || 'no tracker'}`);
+}
+
+let paceShown = 0;
+/** The rate played at, and whether the tracker keeps up with the source (at most twice a second). */
+function showPace(now = false) {
+  const t = performance.now();
+  if (!now && t - paceShown < 500) return;
+  paceShown = t;
+  const what = state.source instanceof SceneSource || state.source instanceof TestRoadSource ? 'the simulator'
+    : state.source?.size && state.source.fps ? 'the video' : 'the source';
+  paceText.textContent = controls.paused ? '' : pacer.describe(what);
+  const behind = !controls.paused && pacer.behind();
+  paceText.classList.toggle('warn', behind);
+  paceText.dataset.behind = String(behind);
+  demo.pace = { fps: pacer.fps, rate: pacer.rate(), behind, workMs: pacer.workMs() };
+}
+
 function redrawLast() {
   if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
 }
@@ -448,12 +511,7 @@ async function main() {
   controls.version.textContent = `lanepf ${version}`;
   controls.setTrackers(trackers);
   controls.setScenarios(scenarios);
-  const params = new URLSearchParams(location.search);
-  const first = params.get('source') ?? 'clip';
-  state.trackerId = params.get('tracker') ?? 'lee-cpf';
-  controls.tracker.value = state.trackerId;
-  state.compareId = params.get('compare') ?? '';
-  controls.compare.value = state.compareId;
+  const first = firstSource;
   controls.source.value = first;
   controls.lastSource = first;
   // A source or tracker that fails to open leaves a message, not a dead page.
@@ -480,11 +538,14 @@ async function main() {
   controls.onTracker = (id) => run(async () => {
     state.trackerId = id;
     await openTracker();
+    // The status line spoke of the old tracker (a step it ran, say): back to the source's.
+    sayTracking();
   });
   panel.onChange = () => run(openTracker);
   controls.onCompare = (id) => run(async () => {
     state.compareId = id;
     await openTracker();
+    sayTracking();
   });
   autoToggle.addEventListener('change', () => run(async () => {
     auto.setMode(autoToggle.checked ? 'auto' : 'manual');
@@ -498,6 +559,7 @@ async function main() {
   controls.onRestart = () => run(async () => {
     state.source.restart();
     await client.request('reset');
+    pacer.reset();
     state.inFrame = null;
     demo.results = [];
     demo.droppedResults = 0;
@@ -531,19 +593,38 @@ async function main() {
   // A frame the play loop queued behind another task (a camera change, say) is dropped if
   // that task paused the demo, e.g. with an error: the error stays on screen instead of the
   // next frame's redraw replacing it.
+  // Frames start when the pacer says they are due (the source's frame rate, pacer.js), woken
+  // by a timer: animation frames come late and irregularly on a busy machine, timers less so.
   const playFrame = async () => {
-    if (!controls.paused) await stepFrame();
+    if (controls.paused) return;
+    const t0 = performance.now();
+    pacer.begin(t0);
+    await stepFrame();
+    pacer.end(performance.now() - t0);
+    showPace();
   };
-  let busy = false;
-  const loop = async () => {
-    if (!controls.paused && !busy) {
-      busy = true;
-      await run(playFrame);
-      busy = false;
+  let playing = false;
+  const tick = async () => {
+    if (controls.paused) {
+      if (playing) {
+        // A pause is not a slow frame: the schedule starts afresh on Play.
+        playing = false;
+        pacer.reset();
+        showPace(true);
+      }
+      setTimeout(tick, 30);
+      return;
     }
-    requestAnimationFrame(loop);
+    const wait = pacer.wait(performance.now());
+    if (wait > 0) {
+      setTimeout(tick, wait);
+      return;
+    }
+    playing = true;
+    await run(playFrame);
+    setTimeout(tick, 0);
   };
-  requestAnimationFrame(loop);
+  tick();
 }
 
 main().catch((err) => {

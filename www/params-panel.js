@@ -38,7 +38,11 @@ export class ParamsPanel {
     this.onChange(this.options, this.seedValue());
   }
 
-  /** Shows tracker `id` (null: none) with its `defaults` (trackerDefaults(id)). */
+  /**
+   * Shows tracker `id` (null: none) with its `defaults` (trackerDefaults(id)); with no defaults
+   * yet (the module still loading) the sliders are there but disabled, so the page does not move
+   * when they come.
+   */
   show(id, defaults) {
     this.id = id;
     const info = id ? TRACKERS[id] : null;
@@ -51,7 +55,7 @@ export class ParamsPanel {
     this.defaults = defaults;
     this.title.textContent = info.title;
     this.text.replaceChildren(...info.text.map((t) => Object.assign(this.doc.createElement('p'), { textContent: t })));
-    const current = { ...defaults, ...this.options };
+    const current = defaults ? { ...defaults, ...this.options } : null;
     this.form.replaceChildren(...info.params.map((p) => this.control(p, current)));
   }
 
@@ -61,7 +65,8 @@ export class ParamsPanel {
     name.textContent = p.label;
     const input = this.doc.createElement('input');
     input.name = p.path;
-    const value = getPath(current, p.path);
+    input.disabled = !current;
+    const value = current ? getPath(current, p.path) : p.min;
     const out = this.doc.createElement('output');
     if (p.kind === 'bool') {
       input.type = 'checkbox';
@@ -77,7 +82,7 @@ export class ParamsPanel {
     input.type = 'range';
     Object.assign(input, { min: p.min, max: p.max, step: p.step });
     input.value = value;
-    out.textContent = `${value}`;
+    out.textContent = current ? `${value}` : '…';
     input.addEventListener('input', () => { out.textContent = input.value; });
     input.addEventListener('change', () => {
       this.options = this.trim(setPath({ ...this.defaults, ...this.options }, p.path, Number(input.value)));

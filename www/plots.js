@@ -1,6 +1,7 @@
 // Live plots of the estimate over the last frames: one strip per quantity, the estimate as a
-// line, the ground truth (when the source has one) dashed, lee-cpf's raw particle-filter output
-// before its Kalman smoother in orange, the latest value written beside.
+// line, the second tracker's (compare mode) in pink, the ground truth (when the source has one)
+// dashed, lee-cpf's raw particle-filter output before its Kalman smoother in orange, the latest
+// values written beside.
 
 const RAD_TO_DEG = 180 / Math.PI;
 const ESS_KEYS = ['lee.ess2', 'danescu.ess', 'adachi.ess', 'liu.ess', 'lee.ess1'];
@@ -16,13 +17,18 @@ export const SERIES = [
   { name: 'time', unit: 'ms/frame', of: (e, r) => r?.trackMs, truth: false },
 ];
 
+/** The second tracker's colour in the plots. */
+export const COMPARE_COLOUR = '#f48fb1';
+
 /**
- * The plots' caption: whose estimate is plotted (`trackerId`, '' for none), the ground truth
- * only for a source that has one, lee-cpf's raw filter only for lee-cpf.
+ * The plots' caption: whose estimate is plotted (`trackerId`, '' for none), the second
+ * tracker's (`compareId`, '' for none), the ground truth only for a source that has one,
+ * lee-cpf's raw filter only for lee-cpf.
  */
-export function plotsCaption(trackerId, hasTruth, length = 300) {
+export function plotsCaption(trackerId, hasTruth, length = 300, compareId = '') {
   if (!trackerId) return 'No tracker: nothing to plot (choose one under Tracker)';
   const parts = [`${trackerId}’s estimate (blue)`];
+  if (compareId) parts.push(`${compareId}’s (pink)`);
   if (hasTruth) parts.push('the ground truth (grey, dashed)');
   if (trackerId === 'lee-cpf') parts.push('its raw filter before the Kalman smoother (orange)');
   const list = parts.length > 1 ? `${parts.slice(0, -1).join(', ')} and ${parts.at(-1)}` : parts[0];
@@ -41,22 +47,26 @@ export class Plots {
     this.points = SERIES.map(() => []);
     this.truth = SERIES.map(() => []);
     this.raw = SERIES.map(() => []);
+    this.other = SERIES.map(() => []);
     this.draw();
   }
 
-  /** Adds a frame's estimate (and truth, when known). */
-  push(estimate, truth, result) {
+  /**
+   * Adds a frame's estimate (and truth, when known; and `compare`, the second tracker's
+   * { estimate, trackMs }, in compare mode).
+   */
+  push(estimate, truth, result, compare = null) {
     SERIES.forEach((s, k) => {
       const v = estimate ? s.of(estimate, result) : null;
       const t = truth && s.truth !== false ? s.of(truth) : null;
       const raw = estimate && s.raw ? s.raw(estimate) : null;
+      const o = compare?.estimate ? s.of(compare.estimate, compare) : null;
       this.points[k].push(Number.isFinite(v) ? v : null);
       this.truth[k].push(Number.isFinite(t) ? t : null);
       this.raw[k].push(Number.isFinite(raw) ? raw : null);
+      this.other[k].push(Number.isFinite(o) ? o : null);
       if (this.points[k].length > this.length) {
-        this.points[k].shift();
-        this.truth[k].shift();
-        this.raw[k].shift();
+        for (const series of [this.points, this.truth, this.raw, this.other]) series[k].shift();
       }
     });
     this.draw();
@@ -72,7 +82,7 @@ export class Plots {
     ctx.font = '12px system-ui, sans-serif';
     SERIES.forEach((s, k) => {
       const top = k * strip;
-      const values = [...this.points[k], ...this.truth[k], ...this.raw[k]].filter((v) => v !== null);
+      const values = [...this.points[k], ...this.truth[k], ...this.raw[k], ...this.other[k]].filter((v) => v !== null);
       let lo = Math.min(...values);
       let hi = Math.max(...values);
       if (!values.length) [lo, hi] = [0, 1];
@@ -106,12 +116,20 @@ export class Plots {
       };
       line(this.truth[k], '#8a949e', [4, 3]);
       line(this.raw[k], '#ff8a65', []);
+      line(this.other[k], COMPARE_COLOUR, []);
       line(this.points[k], '#4fc3f7', []);
-      const last = this.points[k].filter((v) => v !== null).at(-1);
+      const latest = (series) => {
+        const last = series.filter((v) => v !== null).at(-1);
+        return last === undefined ? '–' : last.toFixed(Math.abs(last) < 10 ? 3 : 1);
+      };
       ctx.fillStyle = '#e6e9ec';
       ctx.fillText(`${s.name} (${s.unit})`, 6, top + 16);
       ctx.fillStyle = '#4fc3f7';
-      ctx.fillText(last === undefined ? '–' : last.toFixed(Math.abs(last) < 10 ? 3 : 1), 6, top + 32);
+      ctx.fillText(latest(this.points[k]), 6, top + 32);
+      if (this.other[k].some((v) => v !== null)) {
+        ctx.fillStyle = COMPARE_COLOUR;
+        ctx.fillText(latest(this.other[k]), 72, top + 32);
+      }
       ctx.fillStyle = '#8a949e';
       ctx.fillText(`${hi.toPrecision(3)} … ${lo.toPrecision(3)}`, 6, top + 48);
     });

@@ -13,6 +13,8 @@ export class TestRoadSource {
     this.camera = camera;
     this.options = options;
     this.index = 0;
+    // Frames per second of its motion (the simulator's default; playback is paced at it).
+    this.fps = options.fps ?? 30;
     this.label = 'Synthetic test road (straight, dashed markings, known ground truth)';
   }
 
@@ -42,6 +44,8 @@ export class SceneSource {
     this.name = name;
     this.options = options;
     this.index = 0;
+    // Frames per second of the car's motion (the simulator's default; playback is paced at it).
+    this.fps = options.fps ?? 30;
     this.frames = 1;
     this.progress = 0;
     this.label = `Synthetic scene “${name}”: ${description}`;

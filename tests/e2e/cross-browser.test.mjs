@@ -57,6 +57,10 @@ const idle = (page) => page.waitFor(() => window.lanepfDemo.pending === 0);
 const setChecked = async (page, selector, on) => {
   if (await page.eval((s) => document.querySelector(s).checked, selector) !== on) await page.click(selector);
 };
+/** Opens the "Your own media" disclosure (stereo, camera file), as a person would. */
+const openAdvanced = async (page) => {
+  if (!await page.eval(() => document.getElementById('advanced').open)) await page.click('#advanced summary');
+};
 /** Types `value` into input `selector` and lets go of it (its change event). */
 const setValue = (page, selector, value) => page.eval((s, v) => {
   const i = document.querySelector(s);
@@ -345,6 +349,7 @@ for (const driver of DRIVERS) {
       // Eight frames of a scene as PNG files (OffscreenCanvas.convertToBlob), and the scene's
       // camera as a camera.json.
       const { left: pngs, camera, truth } = await scenePngs(page, 'highway-straight', 3, 8);
+      await openAdvanced(page);
       await page.setFiles('#camera-file', [writeFile('sim.camera.json', JSON.stringify(camera))]);
       await page.waitFor(() => /Camera “sim\.camera\.json”/.test(document.getElementById('status').textContent));
       const paths = pngs.map((b64, f) => writeFile(`frame-${f}.png`, Buffer.from(b64, 'base64')));
@@ -674,6 +679,7 @@ for (const driver of DRIVERS) {
       const { left, right, sbs, camera, truth } = await scenePngs(page, 'highway-straight', 2, 16, true);
       assert.ok(camera.baseline_m > 0, 'the scene camera is a stereo rig');
       const png = (name, b64) => writeFile(name, Buffer.from(b64, 'base64'));
+      await openAdvanced(page);
       await page.setFiles('#camera-file', [writeFile('rig.camera.json', JSON.stringify(camera))]);
       await page.waitFor(() => /Camera “rig\.camera\.json”/.test(document.getElementById('status').textContent));
       // (The error paused the page; opening a source keeps it paused until Play.)

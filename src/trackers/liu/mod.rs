@@ -552,14 +552,27 @@ impl Tracker for LiuTracker {
         }
     }
 
-    /// The measurement pixels' weights K_c sqrt(|grad I| / 2 pi) (PPF-NoKernel: K_c) relative
-    /// to half the frame's largest, clipped at 1, and the top view itself (grey / 255).
+    /// The measurement pixels' weights and the top view itself (grey / 255). PPF-Kernel's
+    /// weights K_c sqrt(|grad I| / 2 pi) relative to half the frame's largest, clipped at 1 (the
+    /// gradient term has a long tail); PPF-NoKernel's, the intensity kernel K_c alone, relative
+    /// to the largest (no clipping: K_c is bounded, and half of it saturates nearly every pixel).
     fn layers(&self) -> Vec<Layer> {
         let d = &self.descriptors;
         let (w, h) = (d.width(), d.height());
         let v = &self.config.top_view;
+        let kernel = self.id == ID;
         let max = d.weight.iter().copied().fold(0.0f32, f32::max);
-        let scale = if max > 0.0 { 1.0 / (0.5 * max) } else { 0.0 };
+        let top_share = if kernel { 0.5 } else { 1.0 };
+        let scale = if max > 0.0 {
+            1.0 / (top_share * max)
+        } else {
+            0.0
+        };
+        let measurement = if kernel {
+            "measurement pixels: intensity and orientation kernel weight"
+        } else {
+            "measurement pixels: intensity kernel K_c alone (PPF-NoKernel, eqs. 26-27: no position or orientation kernel)"
+        };
         // Grid rows run from near to far: flip the top view's rows.
         let flip = |f: &dyn Fn(usize) -> f32| -> Vec<f32> {
             (0..h)
@@ -579,10 +592,7 @@ impl Tracker for LiuTracker {
         };
         let top = d.top_view().data();
         vec![
-            grid(
-                "measurement pixels: intensity and orientation kernel weight",
-                flip(&|i| (d.weight[i] * scale).min(1.0)),
-            ),
+            grid(measurement, flip(&|i| (d.weight[i] * scale).min(1.0))),
             grid(
                 "top view (grey / 255)",
                 flip(&|i| f32::from(top[i]) / 255.0),
