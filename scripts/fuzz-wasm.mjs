@@ -234,6 +234,17 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
     const m = { t_s: R.float(0, 100), speed_mps: R.float(-40, 40), yaw_rate: R.float(-0.5, 0.5) };
     return R.chance(0.7) ? m : R.chance(0.7) ? mutateObject(m) : hostileValue();
   };
+  // The frame-object form of step (issue 21): `{ data, width, height }` and `{ right, motion }`.
+  const frameObjectArg = (m, right = false) => {
+    const f = { data: frameArg(m, right), width: sizeArg(m.w), height: sizeArg(m.h) };
+    return R.chance(0.85) ? f : R.chance(0.5) ? mutateObject(f) : hostileValue();
+  };
+  const stepOptionsArg = (m) => {
+    const o = {};
+    if (R.chance(0.5)) o.right = frameObjectArg(m, true);
+    if (R.chance(0.5)) o.motion = motionArg();
+    return R.chance(0.85) ? o : R.chance(0.5) ? mutateObject(o) : hostileValue();
+  };
 
   // --- calls -----------------------------------------------------------------------------
   const construct = () => {
@@ -285,6 +296,8 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
       case 'tracker': return R.pick([
         () => { if (obj.isStereo && R.chance(0.8)) obj.setRight(R.pick(m.right), m.w, m.h); return call('step', frameArg(m), w, h); },
         () => call('setRight', frameArg(m, true), w, h),
+        () => call('step', frameObjectArg(m), stepOptionsArg(m)),
+        () => call('beginFrame', frameObjectArg(m), stepOptionsArg(m)),
         () => call('beginFrame', frameArg(m), w, h),
         () => call('advance'),
         () => call('setEgoMotion', motionArg()),

@@ -439,7 +439,10 @@ fn danescu_stereo_runs_in_the_browser_with_the_native_result() {
     let first = scene.render(n(0)).unwrap().to_vec();
     // Without the right image: a thrown Error that says what to do, and the tracker goes on.
     let m = message(tracker.step(px(&first), Some(n(320)), Some(n(240))));
-    assert!(m.contains("setRight") && m.contains("danescu-mono"), "{m}");
+    assert!(
+        m.contains("step(left, { right })") && m.contains("danescu-mono"),
+        "{m}"
+    );
     let m = message(tracker.set_right(px(&[0; 12]), n(320), n(240)));
     assert!(m.contains("320x240") || m.contains("bytes"), "{m}");
     let mut last = JsValue::UNDEFINED;

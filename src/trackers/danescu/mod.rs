@@ -285,8 +285,9 @@ impl DanescuTracker {
         super::check_frame(&self.camera, rgba, width, height)?;
         if self.stereo.is_some() && !self.right_ready {
             return Err(Error::State(format!(
-                "{ID_STEREO} needs the right image of every frame: call set_right (setRight in \
-                 JS) before each step, or use {ID_MONO} for one camera"
+                "{ID_STEREO} needs the right image of every frame: give it with the frame (JS: \
+                 step(left, {{ right }}); Rust: set_right before each step), or use {ID_MONO} \
+                 for one camera"
             )));
         }
         let t0 = now();
