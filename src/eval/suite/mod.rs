@@ -14,3 +14,6 @@ mod table;
 pub use cell::{CellRow, SeedScore, SuiteCell};
 pub use run::{run_member, score_run, MemberRun};
 pub use table::markdown_table;
+
+#[cfg(test)]
+mod tests;
