@@ -50,17 +50,7 @@ pub struct LaneChangeCounts {
     pub spurious: usize,
 }
 
-impl LaneChangeCounts {
-    /// The sum of two counts (for pooling sequences).
-    pub fn add(self, other: Self) -> Self {
-        Self {
-            truth: self.truth + other.truth,
-            right: self.right + other.right,
-            missed: self.missed + other.missed,
-            spurious: self.spurious + other.spurious,
-        }
-    }
-}
+impl LaneChangeCounts {}
 
 /// The lane changes of the ground truth (see the module docs).
 pub fn truth_lane_changes(gt: &[LaneEstimate]) -> Vec<LaneChange> {
@@ -134,6 +124,19 @@ pub fn lane_change_counts(
     preds: &[Option<&LaneEstimate>],
 ) -> LaneChangeCounts {
     match_lane_changes(&truth_lane_changes(gt), &predicted_lane_changes(preds))
+}
+
+/// Pools the counts of two sequences.
+impl std::ops::Add for LaneChangeCounts {
+    type Output = Self;
+    fn add(self, other: Self) -> Self {
+        Self {
+            truth: self.truth + other.truth,
+            right: self.right + other.right,
+            missed: self.missed + other.missed,
+            spurious: self.spurious + other.spurious,
+        }
+    }
 }
 
 #[cfg(test)]

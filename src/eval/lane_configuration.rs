@@ -29,15 +29,6 @@ impl LaneConfigurationCounts {
         (self.frames > 0 && self.reports_neighbours)
             .then(|| self.correct as f64 / self.frames as f64)
     }
-
-    /// The sum of two counts (for pooling sequences).
-    pub fn add(self, other: Self) -> Self {
-        Self {
-            frames: self.frames + other.frames,
-            correct: self.correct + other.correct,
-            reports_neighbours: self.reports_neighbours || other.reports_neighbours,
-        }
-    }
 }
 
 /// (lane on the left, lane on the right) of an estimate.
@@ -62,6 +53,18 @@ pub fn lane_configuration_counts(
         c.reports_neighbours |= predicted.0 || predicted.1;
     }
     c
+}
+
+/// Pools the counts of two sequences.
+impl std::ops::Add for LaneConfigurationCounts {
+    type Output = Self;
+    fn add(self, other: Self) -> Self {
+        Self {
+            frames: self.frames + other.frames,
+            correct: self.correct + other.correct,
+            reports_neighbours: self.reports_neighbours || other.reports_neighbours,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -51,7 +51,7 @@ use super::ego::{EgoConfig, LaneChange};
 use super::markings::{BoundaryStyle, MarkingConfig, MarkingStyle, Paint, Pattern, Wear};
 use super::mount::CameraMount;
 use super::road::{LaneGap, RoadConfig, Segment, WidthChange};
-use super::scenarios::{scenario, SCENARIOS};
+use super::scenarios::{arc, scenario, straight, street_markings, transition, SCENARIOS};
 use super::scene::{Appearance, RoadPaint, SceneConfig, Shadow, Vehicle, VerticalProfile};
 use super::simulator::Scene;
 use crate::error::{Error, Result};
@@ -168,31 +168,6 @@ pub fn reference_member(name: &str, seed: u64) -> Result<FamilyMember> {
         mount: CameraMount::REFERENCE,
         seed,
     })
-}
-
-fn straight(length_m: f64) -> Segment {
-    Segment {
-        length_m,
-        curvature: 0.0,
-        curvature_rate: 0.0,
-    }
-}
-
-/// A clothoid from curvature `from` to `to` over `length_m`.
-fn transition(length_m: f64, from: f64, to: f64) -> Segment {
-    Segment {
-        length_m,
-        curvature: from,
-        curvature_rate: (to - from) / length_m,
-    }
-}
-
-fn arc(length_m: f64, curvature: f64) -> Segment {
-    Segment {
-        length_m,
-        curvature,
-        curvature_rate: 0.0,
-    }
 }
 
 /// A straight of `straight_m` (drawn) then a clothoid of `clothoid_m` (drawn) to a curvature
@@ -630,11 +605,6 @@ fn urban(d: &mut Draw) -> SceneConfig {
         sway_period_s: d.range(6.0, 10.0),
         ..EgoConfig::default()
     };
-    let curb = MarkingStyle {
-        pattern: Pattern::Curb,
-        paint: Paint::White,
-        width_m: 0.15,
-    };
     let centre = MarkingStyle {
         pattern: Pattern::Double {
             gap_m: d.range(0.1, 0.2),
@@ -643,20 +613,7 @@ fn urban(d: &mut Draw) -> SceneConfig {
         width_m: d.range(0.10, 0.15),
     };
     let markings = MarkingConfig {
-        overrides: vec![
-            BoundaryStyle {
-                boundary: 0,
-                style: curb,
-            },
-            BoundaryStyle {
-                boundary: 2,
-                style: curb,
-            },
-            BoundaryStyle {
-                boundary: 1,
-                style: centre,
-            },
-        ],
+        overrides: street_markings(centre),
         ..MarkingConfig::default()
     };
     let parked = d.int(3, 8);

@@ -150,9 +150,9 @@ impl SuiteCell {
         }
         self.boundaries += o.boundaries;
         self.correct_boundaries += o.correct_boundaries;
-        self.configuration = self.configuration.add(o.configuration);
+        self.configuration = self.configuration + o.configuration;
         self.recoveries.extend(&o.recoveries);
-        self.lane_changes = self.lane_changes.add(o.lane_changes);
+        self.lane_changes = self.lane_changes + o.lane_changes;
         self.ms_sum += o.ms_sum;
         self.ms_frames += o.ms_frames;
     }
