@@ -186,6 +186,23 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
     assert!(js_sys::Array::from(&boundaries).length() >= 2);
 }
 
+/// A scenario family member (the road, events and camera its seed draws) renders the same
+/// bits as natively: the native unit test asserts the same fingerprint.
+#[wasm_bindgen_test]
+fn a_family_member_renders_the_native_fingerprint() {
+    let (name, seed, frame) = lanepf::synth::FINGERPRINT_MEMBER;
+    let member = lanepf::synth::draw_scenario(name, seed).unwrap();
+    let mut scene = member.scene(160, 120).unwrap();
+    let mut rgba = vec![0; 160 * 120 * 4];
+    scene
+        .render(frame, lanepf::synth::Eye::Left, &mut rgba, None)
+        .unwrap();
+    assert_eq!(
+        lanepf::synth::frame_fingerprint(&rgba),
+        lanepf::synth::FAMILY_FINGERPRINT
+    );
+}
+
 #[wasm_bindgen_test]
 fn scenes_reject_unknown_names_and_bad_options() {
     let e = message(JsScene::new("moon".into(), JsValue::UNDEFINED));

@@ -24,7 +24,10 @@
 
 pub mod caltech;
 pub mod culane;
+pub mod lane_changes;
+pub mod lane_configuration;
 pub mod params;
+pub mod suite;
 pub mod synthetic;
 pub mod tusimple;
 

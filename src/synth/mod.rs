@@ -6,9 +6,12 @@
 //! the exact depth of every pixel.
 
 mod appearance;
+mod draw;
 mod ego;
+mod family;
 mod kerbs;
 mod markings;
+mod mount;
 mod render;
 mod road;
 mod scenarios;
@@ -19,7 +22,12 @@ mod truth;
 
 pub use appearance::hash_unit;
 pub use ego::{EgoConfig, LaneChange, Pose};
+pub use family::{
+    draw_scenario, family_names, reference_member, FamilyMember, FAMILY_FINGERPRINT,
+    FINGERPRINT_MEMBER, RANDOM_SCENARIO,
+};
 pub use markings::{BoundaryStyle, Coverage, MarkingConfig, MarkingStyle, Paint, Pattern, Wear};
+pub use mount::{CameraMount, MOUNT_RANGES};
 pub use render::MAX_RANGE_M;
 pub use road::{LaneGap, Road, RoadConfig, Sample, Segment, WidthChange};
 pub use scenarios::{scenario, SCENARIOS};

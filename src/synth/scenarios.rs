@@ -47,7 +47,8 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     ),
 ];
 
-fn straight(length_m: f64) -> Segment {
+/// A straight segment.
+pub(super) fn straight(length_m: f64) -> Segment {
     Segment {
         length_m,
         curvature: 0.0,
@@ -56,7 +57,7 @@ fn straight(length_m: f64) -> Segment {
 }
 
 /// A clothoid from curvature `from` to `to` over `length_m`.
-fn transition(length_m: f64, from: f64, to: f64) -> Segment {
+pub(super) fn transition(length_m: f64, from: f64, to: f64) -> Segment {
     Segment {
         length_m,
         curvature: from,
@@ -64,7 +65,8 @@ fn transition(length_m: f64, from: f64, to: f64) -> Segment {
     }
 }
 
-fn arc(length_m: f64, curvature: f64) -> Segment {
+/// An arc of constant curvature.
+pub(super) fn arc(length_m: f64, curvature: f64) -> Segment {
     Segment {
         length_m,
         curvature,
@@ -109,6 +111,29 @@ fn car(lane: usize, start_s: f64, speed_mps: f64, rgb: [u8; 3]) -> Vehicle {
         rgb,
         offset_m: 0.0,
     }
+}
+
+/// A two-lane street's boundaries: kerbs at both edges, `centre` between the lanes.
+pub(super) fn street_markings(centre: MarkingStyle) -> Vec<BoundaryStyle> {
+    let curb = MarkingStyle {
+        pattern: Pattern::Curb,
+        paint: Paint::White,
+        width_m: 0.15,
+    };
+    vec![
+        BoundaryStyle {
+            boundary: 0,
+            style: curb,
+        },
+        BoundaryStyle {
+            boundary: 2,
+            style: curb,
+        },
+        BoundaryStyle {
+            boundary: 1,
+            style: centre,
+        },
+    ]
 }
 
 /// The scenario `name`.
@@ -329,29 +354,11 @@ pub fn scenario(name: &str) -> Result<SceneConfig> {
                 sway_amplitude_m: 0.2,
                 ..Default::default()
             };
-            let curb = MarkingStyle {
-                pattern: Pattern::Curb,
-                paint: Paint::White,
-                width_m: 0.15,
-            };
-            c.markings.overrides = vec![
-                BoundaryStyle {
-                    boundary: 0,
-                    style: curb,
-                },
-                BoundaryStyle {
-                    boundary: 2,
-                    style: curb,
-                },
-                BoundaryStyle {
-                    boundary: 1,
-                    style: MarkingStyle {
-                        pattern: Pattern::Double { gap_m: 0.1 },
-                        paint: Paint::Yellow,
-                        width_m: 0.1,
-                    },
-                },
-            ];
+            c.markings.overrides = street_markings(MarkingStyle {
+                pattern: Pattern::Double { gap_m: 0.1 },
+                paint: Paint::Yellow,
+                width_m: 0.1,
+            });
             c.vehicles = (0..6)
                 .map(|k| Vehicle {
                     offset_m: -1.15,

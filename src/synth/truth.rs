@@ -275,15 +275,29 @@ mod tests {
     fn truth_lands_on_markings(w: usize, h: usize, frames: &[u32]) {
         let cam = camera(w, h);
         for (name, _) in SCENARIOS {
-            let mut scene = Scene::new(scenario(name).unwrap(), cam.clone(), 3).unwrap();
-            let mut unpainted = scenario(name).unwrap();
+            truth_lands_on_markings_of(name, scenario(name).unwrap(), &cam, 3, frames);
+        }
+    }
+
+    /// [`truth_lands_on_markings`] for one scene.
+    fn truth_lands_on_markings_of(
+        name: &str,
+        config: crate::synth::SceneConfig,
+        cam: &Camera,
+        seed: u64,
+        frames: &[u32],
+    ) {
+        let (w, h) = (cam.width(), cam.height());
+        {
+            let mut scene = Scene::new(config.clone(), cam.clone(), seed).unwrap();
+            let mut unpainted = config;
             unpainted.markings.wear = vec![crate::synth::Wear {
                 from_s: -1e9,
                 to_s: 1e9,
                 boundary: None,
                 visibility: 0.0,
             }];
-            let mut bare_scene = Scene::new(unpainted, cam.clone(), 3).unwrap();
+            let mut bare_scene = Scene::new(unpainted, cam.clone(), seed).unwrap();
             let mut bare = vec![0; w * h * 4];
             let mut rgba = vec![0; w * h * 4];
             let mut depth = vec![0.0; w * h];
@@ -384,6 +398,19 @@ mod tests {
     #[test]
     fn truth_lands_on_rendered_markings_in_every_scenario() {
         truth_lands_on_markings(320, 240, &[0, 45, 120, 200]);
+    }
+
+    /// The same on drawn family members: drawn roads, markings and cameras (yaw, roll, field
+    /// of view) render where the truth says.
+    #[test]
+    fn truth_lands_on_rendered_markings_of_family_members() {
+        for (name, _) in SCENARIOS {
+            for seed in 1..=2 {
+                let m = crate::synth::draw_scenario(name, seed).unwrap();
+                let cam = m.mount.camera(320, 240).unwrap();
+                truth_lands_on_markings_of(name, m.config, &cam, seed, &[30, 150]);
+            }
+        }
     }
 
     #[test]

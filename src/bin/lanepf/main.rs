@@ -1,7 +1,7 @@
 //! `lanepf`: the command-line tool (see ../shared/DESIGN.md, "The command-line contract").
 //!
 //! ```text
-//! lanepf synth --scenario NAME --seed N --frames N [--width W --height H] [--stereo] --out DIR
+//! lanepf synth --scenario NAME --seed N [--reference] --frames N [--width W --height H] [--stereo] --out DIR
 //! lanepf track --tracker ID --camera FILE --frames DIR [--right DIR] [--seed N] [--config FILE]
 //!              [--still K] --out FILE.jsonl
 //!     (--camera auto estimates the camera from the frames first, as `calibrate` does)
@@ -9,6 +9,8 @@
 //!              [--seconds N [--fps F]] [--json] --out camera.json
 //! lanepf eval --pred FILE.jsonl --gt PATH --format synthetic|caltech|tusimple|culane [--json]
 //! lanepf bench [--tracker ID|all] [--frames N] [--width W --height H] [--json]
+//! lanepf eval-suite --tracker ID|all --seeds A..B [--scenarios a,b,...] [--width W --height H]
+//!              [--frames N] [--tracker-seed N] --out DIR
 //! ```
 //!
 //! Every error is one line on stderr (`lanepf: error: ...`) and exit status 1; usage errors
@@ -23,6 +25,7 @@
 mod bench;
 mod calibrate;
 mod eval;
+mod eval_suite;
 mod frames;
 mod synth;
 mod track;
@@ -50,6 +53,8 @@ enum Command {
     Eval(eval::Args),
     /// Time trackers on a standard synthetic sequence.
     Bench(bench::Args),
+    /// Render, track and score trackers on scenario families over seeds: one table.
+    EvalSuite(eval_suite::Args),
 }
 
 /// Writes `text` to standard output. A closed pipe (`lanepf eval ... | head`) ends the output
@@ -77,6 +82,7 @@ fn main() -> ExitCode {
         Command::Calibrate(args) => calibrate::run(args),
         Command::Eval(args) => eval::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::EvalSuite(args) => eval_suite::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
