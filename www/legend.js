@@ -27,8 +27,8 @@ const ENTRIES = [
   },
   {
     key: 'particles',
-    label: 'particles: thin, more opaque when heavier',
-    draw: (ctx, { byGroup }) => drawHypotheses(ctx, [0.2, 0.6, 1].map((weight, k) => ({
+    label: 'particles: thin, coloured by weight, light (blue) to heaviest (yellow)',
+    draw: (ctx, { byGroup }) => drawHypotheses(ctx, [0, 0.5, 1].map((weight, k) => ({
       weight, group: k, boundaries: [line(k === 1 ? 'ego-right' : 'ego-left', 3 + 5 * k)],
     })), null, byGroup),
   },
@@ -64,7 +64,24 @@ export class Legend {
       ctx.clearRect(0, 0, SAMPLE_W, SAMPLE_H);
       entry.draw(ctx, { byGroup });
       if (entry.key === 'truth') li.hidden = !hasTruth;
+      if (entry.key === 'particles') {
+        li.childNodes[1].textContent = byGroup
+          ? ' particles: thin, coloured by group (model, stage or cluster), heavier more opaque'
+          : ` ${entry.label}`;
+      }
     }
+  }
+
+  /** The particles' entry says how many are drawn of the tracker's total (null: unknown). */
+  count(drawn, total) {
+    const item = this.items.get('particles');
+    if (!item) return;
+    let span = item.li.querySelector('.count');
+    if (!span) {
+      span = item.li.appendChild(document.createElement('span'));
+      span.className = 'count';
+    }
+    span.textContent = total ? ` · ${drawn} of ${total} drawn` : '';
   }
 }
 

@@ -20,6 +20,8 @@ import { Departure } from './departure.js';
 import { appendCapped } from './capped.js';
 import { ParamsPanel } from './params-panel.js';
 import { Pacer } from './pacer.js';
+import { drawWeights } from './weights.js';
+import { resampleText } from './resampling.js';
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
@@ -40,6 +42,10 @@ const autoToggle = document.getElementById('auto-calibrate');
 const showCalibration = document.getElementById('show-calibration');
 const pacer = new Pacer();
 const paceText = document.getElementById('pace');
+const whyLink = document.getElementById('why-link');
+whyLink.addEventListener('click', () => {
+  document.getElementById('why-resample').open = true;
+});
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
@@ -157,6 +163,7 @@ function draw(frame, result, redraw = false) {
     drawLayer(cues, layer, { hypotheses: result?.hypotheses, probabilities });
     document.getElementById('cues-caption').textContent = layer.name;
   }
+  drawWeighing(result, estimate);
   if (redraw) return;
   Object.assign(demo, {
     lastLayer: layer ?? null,
@@ -180,6 +187,24 @@ function draw(frame, result, redraw = false) {
   }
   controls.timing.textContent = text;
   controls.setProgress(state.source?.progress ?? null);
+}
+
+/**
+ * The weight histogram after the frame or the step just run, and how many particles the view
+ * draws of the tracker's total (in the legend).
+ */
+function drawWeighing(result, estimate) {
+  const weighing = result?.weighing ?? null;
+  const figure = document.getElementById('weights-figure');
+  figure.hidden = !weighing || !controls.showPlots.checked;
+  const drawn = controls.showParticles.checked ? (result?.hypotheses?.length ?? 0) : 0;
+  legend.count(drawn, weighing?.count ?? 0);
+  if (!weighing) return;
+  const step = result.done !== undefined && result.done !== null ? controls.stepNames[result.done] : null;
+  let label = step ? `after “${step}”` : 'after the whole frame';
+  if (!step && !estimate && state.inFrame) label = 'at the start of the frame';
+  document.getElementById('weights-caption').textContent = drawWeights(document.getElementById('weights'), weighing, label);
+  demo.lastWeighing = { ...weighing, weights: undefined, n: weighing.weights.length, label };
 }
 
 /** The second tracker's view: the same frame with its boundaries and particles. */
@@ -321,7 +346,11 @@ async function stepStage() {
   } else {
     controls.updateStageButton(result.nextStep);
   }
-  controls.say(`${state.trackerId}: ran “${controls.stepNames[result.done]}”`);
+  let text = `${state.trackerId}: ran “${controls.stepNames[result.done]}”`;
+  if (result.resampling) text += ` · ${resampleText(result.resampling)}`;
+  controls.say(text);
+  whyLink.hidden = !result.resampling;
+  demo.lastResampling = result.resampling ?? null;
 }
 
 async function finishStepping() {
