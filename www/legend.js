@@ -71,18 +71,15 @@ export class Legend {
       }
     }
   }
+}
 
-  /** The particles' entry says how many are drawn of the tracker's total (null: unknown). */
-  count(drawn, total) {
-    const item = this.items.get('particles');
-    if (!item) return;
-    let span = item.li.querySelector('.count');
-    if (!span) {
-      span = item.li.appendChild(document.createElement('span'));
-      span.className = 'count';
-    }
-    span.textContent = total ? ` · ${drawn} of ${total} drawn` : '';
-  }
+/**
+ * The tag on a view saying how many particles are drawn of the tracker's total (hidden with
+ * none drawn or no tracker).
+ */
+export function showCount(tag, drawn, total) {
+  tag.hidden = !(drawn > 0 && total > 0);
+  tag.textContent = tag.hidden ? '' : `particles: ${drawn} of ${total} drawn`;
 }
 
 /** The badge on a view: whether the shown estimate is valid; hidden with no estimate. */

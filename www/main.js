@@ -12,7 +12,7 @@ import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from '
 import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
 import { drawFrame, drawTruth, drawEstimate, drawHypotheses, drawTopView, drawLayer, drawCalibrationLines } from './render.js';
-import { Legend, showBadge } from './legend.js';
+import { Legend, showBadge, showCount } from './legend.js';
 import { AutoCalibration } from './auto-calibration.js';
 import { toJsonLines, toCsv, download } from './export.js';
 import { Plots, plotsCaption } from './plots.js';
@@ -21,6 +21,7 @@ import { appendCapped } from './capped.js';
 import { ParamsPanel } from './params-panel.js';
 import { Pacer } from './pacer.js';
 import { drawWeights } from './weights.js';
+import { beliefPanels, drawBelief } from './belief.js';
 import { resampleText } from './resampling.js';
 
 /** Particles drawn per frame (spread over the cloud). */
@@ -129,6 +130,7 @@ const want = () => ({
   layers: controls.showCues.checked,
   top: controls.showTop.checked,
   calibration: showCalibration.checked || auto.looking(),
+  belief: controls.showPlots.checked,
 });
 
 /** Draws the frame and everything on it; `redraw`: the same frame again (no bookkeeping). */
@@ -198,13 +200,23 @@ function drawWeighing(result, estimate) {
   const figure = document.getElementById('weights-figure');
   figure.hidden = !weighing || !controls.showPlots.checked;
   const drawn = controls.showParticles.checked ? (result?.hypotheses?.length ?? 0) : 0;
-  legend.count(drawn, weighing?.count ?? 0);
+  showCount(document.getElementById('view-count'), drawn, weighing?.count ?? 0);
   if (!weighing) return;
   const step = result.done !== undefined && result.done !== null ? controls.stepNames[result.done] : null;
   let label = step ? `after “${step}”` : 'after the whole frame';
   if (!step && !estimate && state.inFrame) label = 'at the start of the frame';
   document.getElementById('weights-caption').textContent = drawWeights(document.getElementById('weights'), weighing, label);
   demo.lastWeighing = { ...weighing, weights: undefined, n: weighing.weights.length, label };
+  // The paper's own view of the belief, from the same particles.
+  const p = result?.particles;
+  const panels = p ? beliefPanels(state.trackerId, p.data, p.stride, estimate, result?.layers) : [];
+  document.getElementById('belief-figure').hidden = !panels.length || !controls.showPlots.checked;
+  if (!panels.length) return;
+  drawBelief(document.getElementById('belief'), panels);
+  document.getElementById('belief-caption').textContent = `${state.trackerId}’s belief ${label}: `
+    + `${panels.map((q) => (q.colours ? `${q.title} (${q.colours})` : q.title)).join('; then ')}.`;
+  demo.lastBelief = panels.map((q) => ({ title: q.title, unit: q.unit, items: q.items.length,
+    markers: q.markers.map((m) => m.label), probabilities: q.probabilities ?? null }));
 }
 
 /** The second tracker's view: the same frame with its boundaries and particles. */

@@ -118,10 +118,12 @@ function frameResampling(t, estimate, groups) {
 }
 
 /** What the page draws besides the estimate: the particles, cues and top view on request. */
-function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = false }) {
+function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = false, belief = false }) {
   return {
+    particles: belief ? { data: t.particles(), stride: t.particleStride } : null,
     hypotheses: hypotheses > 0 ? t.hypotheses(hypotheses) : null,
-    layers: layers ? t.layers() : null,
+    // adachi-mmpf's belief view shows its vote histogram, one of its layers.
+    layers: layers || (belief && t.id === 'adachi-mmpf') ? t.layers() : null,
     top: top ? topView(rgba, width, height) : null,
     nextStep: t.nextStep ?? null,
   };

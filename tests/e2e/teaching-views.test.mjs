@@ -126,8 +126,8 @@ test('lee-cpf: the step text reports a skipped resampling with its ESS and thres
   assert.equal(await page.evaluate(() => document.getElementById('why-resample').open), true);
   const why = await page.textContent('#why-resample');
   for (const w of ['Degeneracy', 'ESS', '1 / Σ w']) assert.ok(why.includes(w), `the text explains ${w}`);
-  // The legend counts the particles drawn of the total.
-  const count = await page.textContent('#legend [data-key="particles"]');
+  // The view says how many particles it draws of the total.
+  const count = await page.textContent('#view-count');
   const drawn = await page.evaluate(() => window.lanepfDemo.lastHypotheses.length);
   assert.match(count, new RegExp(` ${drawn} of 1000 drawn`), count);
   await page.screenshot({ path: 'test-results/teaching-lee.png', fullPage: true });
@@ -173,8 +173,75 @@ test('adachi-mmpf: resampled every frame, ticks on the ESS plot, no threshold, a
     return { light: near([68, 1, 84]), heavy: near([253, 231, 37]) };
   });
   assert.deepEqual(sample, { light: true, heavy: true });
-  assert.match(await page.textContent('#legend [data-key="particles"]'), /coloured by weight.* \d+ of 500 drawn/);
+  assert.match(await page.textContent('#legend [data-key="particles"]'), /coloured by weight/);
+  assert.match(await page.textContent('#view-count'), /^particles: \d+ of 500 drawn$/);
   await page.screenshot({ path: 'test-results/teaching-adachi.png', fullPage: true });
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+/** Pixels of each panel of the belief canvas that are not background or axis grey. */
+async function beliefInk(page, panels) {
+  const img = await readCanvas(page, 'belief');
+  const ph = img.height / panels;
+  return Array.from({ length: panels }, (_, k) => {
+    let n = 0;
+    // Inside the axes (x = 46, the bottom 28 px above the panel's end), away from them.
+    for (let y = Math.floor(k * ph) + 36; y < Math.floor((k + 1) * ph) - 30; y++) {
+      for (let x = 49; x < img.width - 12; x++) {
+        const i = 4 * (y * img.width + x);
+        const [r, g, b] = [img.data[i], img.data[i + 1], img.data[i + 2]];
+        if (r + g + b > 200) n++;
+      }
+    }
+    return n;
+  });
+}
+
+// Each tracker's belief view, as its paper draws it, with axes and units.
+const BELIEFS = {
+  'adachi-mmpf': [/^edge votes H_j over ρ/, /^lane position q by model r/],
+  'liu-ppf': [/^partition 1, linear part: ρ/, /^partition 2, parabolic part: d/],
+  'danescu-mono': [/^lateral offset X_CW by MBSAS cluster/],
+  'lee-cpf': [/^stage 1: lane offset y₀/, /^stage 2: curvature δ/],
+};
+for (const [tracker, titles] of Object.entries(BELIEFS)) {
+  test(`${tracker}: the belief view named in its paper`, async () => {
+    const { page, errors } = await open(env.browser, `${env.base}/?source=highway-straight&tracker=${tracker}`,
+      { viewport: { width: 1280, height: 1600 } });
+    await running(page);
+    await pauseAfter(page, 4);
+    const belief = await page.evaluate(() => window.lanepfDemo.lastBelief);
+    assert.equal(belief.length, titles.length, JSON.stringify(belief));
+    belief.forEach((b, k) => {
+      assert.match(b.title, titles[k]);
+      assert.ok(b.unit.length > 0 && b.items > 0, JSON.stringify(b));
+    });
+    assert.equal(await page.isVisible('#belief'), true);
+    const caption = await page.textContent('#belief-caption');
+    assert.ok(caption.startsWith(`${tracker}’s belief after the whole frame`), caption);
+    const ink = await beliefInk(page, titles.length);
+    for (const n of ink) assert.ok(n > 50, `every panel has bars: ${ink}`);
+    if (tracker === 'adachi-mmpf') {
+      const p = belief[1].probabilities;
+      assert.equal(p.length, 4);
+      assert.ok(Math.abs(p.reduce((a, v) => a + v, 0) - 1) < 1e-6, `P(r) sums to 1: ${p}`);
+    }
+    if (tracker === 'lee-cpf') {
+      assert.deepEqual(belief[0].markers, ['cascade output', 'Kalman output']);
+      // The Kalman output's line, in the plots' blue, across stage 1's panel.
+      const img = await readCanvas(page, 'belief');
+      let blue = 0;
+      for (let y = 40; y < img.height / 2 - 30; y++) {
+        for (let x = 46; x < img.width - 12; x++) {
+          const i = 4 * (y * img.width + x);
+          if (Math.abs(img.data[i] - 0x4f) < 20 && Math.abs(img.data[i + 1] - 0xc3) < 20 && Math.abs(img.data[i + 2] - 0xf7) < 20) blue++;
+        }
+      }
+      assert.ok(blue > 60, `the Kalman output's line is drawn: ${blue} pixels`);
+    }
+    await page.locator('#belief-figure').screenshot({ path: `test-results/belief-${tracker}.png` });
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+}
