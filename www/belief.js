@@ -3,8 +3,8 @@
 // about, one panel per partition or stage, with axes and units.
 //   adachi-mmpf: the edge-vote histogram H_j over ρ (m), then the lane position q (m) stacked by
 //                model r, with the model probabilities P(r);
-//   lee-cpf: stage 1's y0 (m) with the raw cascade output and the Kalman output marked, then
-//            stage 2's curvature δ (1/km);
+//   lee-cpf: stage 1's y0 (m), then stage 2's curvature δ (1/km), each with the cascade's raw
+//            output (orange) and the Kalman output (white) marked;
 //   liu-ppf: the linear partition's ρ (px) of each boundary, then the parabolic partition's d;
 //   danescu-*: the lateral offset X_CW (m), stacked by MBSAS cluster (grey: initialisation).
 import { groupColour } from './render.js';
@@ -44,22 +44,24 @@ export function beliefPanels(trackerId, particles, stride, estimate, layers = nu
     }];
   }
   if (trackerId === 'lee-cpf') {
-    const raw = st['lee.raw.y0'];
-    const kalman = estimate ? -estimate.lateral_offset_m : NaN;
+    // The cascade's raw output and the Kalman-smoothed state, as the tracker reports them.
     const panels = [{
-      title: 'stage 1: lane offset y₀ (Lee eqs. 21-33)', unit: 'm', colours: 'lines: the cascade’s raw output (orange) and the Kalman output (blue)',
+      title: 'stage 1: lane offset y₀ (Lee eqs. 21-33)', unit: 'm', colours: 'lines: the cascade’s raw output (orange) and the Kalman output (white)',
       items: r.filter((x) => x[0] !== 2).map((x) => ({ value: x[2], weight: x[7], group: 1 })),
       markers: [
-        { value: raw, colour: '#ff8a65', label: 'cascade output' },
-        { value: kalman, colour: '#4fc3f7', label: 'Kalman output' },
+        { value: st['lee.raw.y0'], colour: '#ff8a65', label: 'cascade output' },
+        { value: st['lee.y0'], colour: '#ffffff', label: 'Kalman output' },
       ],
     }];
     const two = r.filter((x) => x[0] === 2);
     if (two.length) {
       panels.push({
-        title: 'stage 2: curvature δ (far Canny edges)', unit: '1/km',
+        title: 'stage 2: curvature δ (far Canny edges)', unit: '1/km', colours: 'lines as above',
         items: two.map((x) => ({ value: 1000 * x[6], weight: x[7], group: 2 })),
-        markers: [{ value: 1000 * (estimate?.curvature_per_m ?? NaN), colour: '#4fc3f7', label: 'Kalman output' }],
+        markers: [
+          { value: 1000 * st['lee.raw.delta'], colour: '#ff8a65', label: 'cascade output' },
+          { value: 1000 * st['lee.delta'], colour: '#ffffff', label: 'Kalman output' },
+        ],
       });
     }
     return panels;
