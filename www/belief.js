@@ -6,7 +6,7 @@
 //   lee-cpf: stage 1's y0 (m), then stage 2's curvature δ (1/km), each with the cascade's raw
 //            output (orange) and the Kalman output (white) marked;
 //   liu-ppf: the linear partition's ρ (px) of each boundary, then the parabolic partition's d;
-//   danescu-*: the lateral offset X_CW (m), stacked by MBSAS cluster (grey: initialisation).
+//   danescu-*: the lateral offset X_CW (m), stacked by MBSAS cluster (dark grey: initialisation).
 import { groupColour } from './render.js';
 
 const DEFAULT_BINS = 40;
@@ -83,7 +83,7 @@ export function beliefPanels(trackerId, particles, stride, estimate, layers = nu
   }
   if (trackerId.startsWith('danescu')) {
     return [{
-      title: 'lateral offset X_CW by MBSAS cluster (Danescu eq. 15)', unit: 'm', colours: 'colour: the cluster (grey: initialisation particles)',
+      title: 'lateral offset X_CW by MBSAS cluster (Danescu eq. 15)', unit: 'm', colours: 'colour: the cluster (dark grey: initialisation particles)',
       items: r.map((x) => ({ value: x[5], weight: x[11], group: x[12] })),
       markers: [],
     }];
