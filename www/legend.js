@@ -27,8 +27,8 @@ const ENTRIES = [
   },
   {
     key: 'particles',
-    label: 'particles: thin, more opaque when heavier',
-    draw: (ctx, { byGroup }) => drawHypotheses(ctx, [0.2, 0.6, 1].map((weight, k) => ({
+    label: 'particles: thin, coloured by weight, light (blue) to heaviest (yellow)',
+    draw: (ctx, { byGroup }) => drawHypotheses(ctx, [0, 0.5, 1].map((weight, k) => ({
       weight, group: k, boundaries: [line(k === 1 ? 'ego-right' : 'ego-left', 3 + 5 * k)],
     })), null, byGroup),
   },
@@ -64,8 +64,22 @@ export class Legend {
       ctx.clearRect(0, 0, SAMPLE_W, SAMPLE_H);
       entry.draw(ctx, { byGroup });
       if (entry.key === 'truth') li.hidden = !hasTruth;
+      if (entry.key === 'particles') {
+        li.childNodes[1].textContent = byGroup
+          ? ' particles: thin, coloured by group (model, stage or cluster), heavier more opaque'
+          : ` ${entry.label}`;
+      }
     }
   }
+}
+
+/**
+ * The tag on a view saying how many particles are drawn of the tracker's total (hidden with
+ * none drawn or no tracker).
+ */
+export function showCount(tag, drawn, total) {
+  tag.hidden = !(drawn > 0 && total > 0);
+  tag.textContent = tag.hidden ? '' : `particles: ${drawn} of ${total} drawn`;
 }
 
 /** The badge on a view: whether the shown estimate is valid; hidden with no estimate. */

@@ -12,7 +12,7 @@ import { CLIP, loadClipCamera, scaleCamera, readCameraFile, loadPresets } from '
 import { Calibration } from './calibration.js';
 import { Controls } from './controls.js';
 import { drawFrame, drawTruth, drawEstimate, drawHypotheses, drawTopView, drawLayer, drawCalibrationLines } from './render.js';
-import { Legend, showBadge } from './legend.js';
+import { Legend, showBadge, showCount } from './legend.js';
 import { AutoCalibration } from './auto-calibration.js';
 import { toJsonLines, toCsv, download } from './export.js';
 import { Plots, plotsCaption } from './plots.js';
@@ -20,6 +20,9 @@ import { Departure } from './departure.js';
 import { appendCapped } from './capped.js';
 import { ParamsPanel } from './params-panel.js';
 import { Pacer } from './pacer.js';
+import { drawWeights } from './weights.js';
+import { beliefPanels, drawBelief } from './belief.js';
+import { resampleText } from './resampling.js';
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
@@ -40,6 +43,10 @@ const autoToggle = document.getElementById('auto-calibrate');
 const showCalibration = document.getElementById('show-calibration');
 const pacer = new Pacer();
 const paceText = document.getElementById('pace');
+const whyLink = document.getElementById('why-link');
+whyLink.addEventListener('click', () => {
+  document.getElementById('why-resample').open = true;
+});
 // Read by the end-to-end tests and handy in the console.
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
@@ -123,6 +130,7 @@ const want = () => ({
   layers: controls.showCues.checked,
   top: controls.showTop.checked,
   calibration: showCalibration.checked || auto.looking(),
+  belief: controls.showPlots.checked,
 });
 
 /** Draws the frame and everything on it; `redraw`: the same frame again (no bookkeeping). */
@@ -157,6 +165,7 @@ function draw(frame, result, redraw = false) {
     drawLayer(cues, layer, { hypotheses: result?.hypotheses, probabilities });
     document.getElementById('cues-caption').textContent = layer.name;
   }
+  drawWeighing(result, estimate);
   if (redraw) return;
   Object.assign(demo, {
     lastLayer: layer ?? null,
@@ -180,6 +189,34 @@ function draw(frame, result, redraw = false) {
   }
   controls.timing.textContent = text;
   controls.setProgress(state.source?.progress ?? null);
+}
+
+/**
+ * The weight histogram after the frame or the step just run, and how many particles the view
+ * draws of the tracker's total (in the legend).
+ */
+function drawWeighing(result, estimate) {
+  const weighing = result?.weighing ?? null;
+  const figure = document.getElementById('weights-figure');
+  figure.hidden = !weighing || !controls.showPlots.checked;
+  const drawn = controls.showParticles.checked ? (result?.hypotheses?.length ?? 0) : 0;
+  showCount(document.getElementById('view-count'), drawn, weighing?.count ?? 0);
+  if (!weighing) return;
+  const step = result.done !== undefined && result.done !== null ? controls.stepNames[result.done] : null;
+  let label = step ? `after “${step}”` : 'after the whole frame';
+  if (!step && !estimate && state.inFrame) label = 'at the start of the frame';
+  document.getElementById('weights-caption').textContent = drawWeights(document.getElementById('weights'), weighing, label);
+  demo.lastWeighing = { ...weighing, weights: undefined, n: weighing.weights.length, label };
+  // The paper's own view of the belief, from the same particles.
+  const p = result?.particles;
+  const panels = p ? beliefPanels(state.trackerId, p.data, p.stride, estimate, result?.layers) : [];
+  document.getElementById('belief-figure').hidden = !panels.length || !controls.showPlots.checked;
+  if (!panels.length) return;
+  drawBelief(document.getElementById('belief'), panels);
+  document.getElementById('belief-caption').textContent = `${state.trackerId}’s belief ${label}: `
+    + `${panels.map((q) => (q.colours ? `${q.title} (${q.colours})` : q.title)).join('; then ')}.`;
+  demo.lastBelief = panels.map((q) => ({ title: q.title, unit: q.unit, items: q.items.length,
+    markers: q.markers.map((m) => m.label), probabilities: q.probabilities ?? null }));
 }
 
 /** The second tracker's view: the same frame with its boundaries and particles. */
@@ -321,7 +358,11 @@ async function stepStage() {
   } else {
     controls.updateStageButton(result.nextStep);
   }
-  controls.say(`${state.trackerId}: ran “${controls.stepNames[result.done]}”`);
+  let text = `${state.trackerId}: ran “${controls.stepNames[result.done]}”`;
+  if (result.resampling) text += ` · ${resampleText(result.resampling)}`;
+  controls.say(text);
+  whyLink.hidden = !result.resampling;
+  demo.lastResampling = result.resampling ?? null;
 }
 
 async function finishStepping() {

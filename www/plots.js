@@ -4,7 +4,8 @@
 // values written beside.
 
 const RAD_TO_DEG = 180 / Math.PI;
-const ESS_KEYS = ['lee.ess2', 'danescu.ess', 'adachi.ess', 'liu.ess', 'lee.ess1'];
+// lee-cpf: stage 1's ESS, the one its resampling tests against N_thr.
+const ESS_KEYS = ['lee.ess1', 'danescu.ess', 'adachi.ess', 'liu.ess', 'lee.ess2'];
 
 /** The quantities plotted: name, unit, value of an estimate (or truth), and of a result. */
 export const SERIES = [
@@ -16,6 +17,10 @@ export const SERIES = [
   { name: 'ESS', unit: 'particles', of: (e) => e.state?.[ESS_KEYS.find((k) => k in (e.state ?? {}))], truth: false },
   { name: 'time', unit: 'ms/frame', of: (e, r) => r?.trackMs, truth: false },
 ];
+
+/** The ESS threshold line's colour and the resampled-frame ticks' colour. */
+export const ESS_THRESHOLD_COLOUR = '#ffd54f';
+export const RESAMPLED_COLOUR = '#ef5350';
 
 /** The second tracker's colour in the plots. */
 export const COMPARE_COLOUR = '#f48fb1';
@@ -32,7 +37,10 @@ export function plotsCaption(trackerId, hasTruth, length = 300, compareId = '') 
   if (hasTruth) parts.push('the ground truth (grey, dashed)');
   if (trackerId === 'lee-cpf') parts.push('its raw filter before the Kalman smoother (orange)');
   const list = parts.length > 1 ? `${parts.slice(0, -1).join(', ')} and ${parts.at(-1)}` : parts[0];
-  return `${list}, over the last ${length} frames`;
+  const ess = trackerId === 'lee-cpf'
+    ? 'ESS: stage 1’s before it resamples, its threshold N_thr (yellow, dashed), a red tick on each frame that resampled'
+    : 'ESS: a red tick on each frame that resampled (this tracker resamples every frame)';
+  return `${list}, over the last ${length} frames. ${ess}`;
 }
 
 export class Plots {
@@ -44,6 +52,9 @@ export class Plots {
   }
 
   clear() {
+    // The ESS strip's threshold (particles, null: none) and whether each frame resampled.
+    this.threshold = [];
+    this.resampled = [];
     this.points = SERIES.map(() => []);
     this.truth = SERIES.map(() => []);
     this.raw = SERIES.map(() => []);
@@ -56,6 +67,13 @@ export class Plots {
    * { estimate, trackMs }, in compare mode).
    */
   push(estimate, truth, result, compare = null) {
+    const r = result?.frameResampling ?? null;
+    this.threshold.push(Number.isFinite(r?.threshold) ? r.threshold : null);
+    this.resampled.push(!!r?.resampled);
+    if (this.threshold.length > this.length) {
+      this.threshold.shift();
+      this.resampled.shift();
+    }
     SERIES.forEach((s, k) => {
       const v = estimate ? s.of(estimate, result) : null;
       const t = truth && s.truth !== false ? s.of(truth) : null;
@@ -82,7 +100,9 @@ export class Plots {
     ctx.font = '12px system-ui, sans-serif';
     SERIES.forEach((s, k) => {
       const top = k * strip;
-      const values = [...this.points[k], ...this.truth[k], ...this.raw[k], ...this.other[k]].filter((v) => v !== null);
+      const ess = s.name === 'ESS';
+      const values = [...this.points[k], ...this.truth[k], ...this.raw[k], ...this.other[k],
+        ...(ess ? this.threshold : [])].filter((v) => v !== null);
       let lo = Math.min(...values);
       let hi = Math.max(...values);
       if (!values.length) [lo, hi] = [0, 1];
@@ -118,6 +138,31 @@ export class Plots {
       line(this.raw[k], '#ff8a65', []);
       line(this.other[k], COMPARE_COLOUR, []);
       line(this.points[k], '#4fc3f7', []);
+      if (ess) {
+        // The threshold N_thr (lee-cpf), dashed yellow, and a tick under every frame that
+        // resampled.
+        // The threshold now in force is drawn across the whole strip (2 px, so it shows
+        // from the first frame), its value written at the right.
+        const now = this.threshold.filter((v) => v !== null).at(-1);
+        if (now !== undefined) {
+          ctx.save();
+          ctx.strokeStyle = ESS_THRESHOLD_COLOUR;
+          ctx.lineWidth = 2;
+          ctx.setLineDash([6, 4]);
+          ctx.beginPath();
+          ctx.moveTo(left, Math.round(y(now)));
+          ctx.lineTo(canvas.width - 60, Math.round(y(now)));
+          ctx.stroke();
+          ctx.restore();
+          ctx.fillStyle = ESS_THRESHOLD_COLOUR;
+          ctx.fillText(`N_thr ${now.toFixed(0)}`, canvas.width - 56, Math.round(y(now)) + 4);
+        }
+        line(this.threshold, ESS_THRESHOLD_COLOUR, [6, 4]);
+        ctx.fillStyle = RESAMPLED_COLOUR;
+        this.resampled.forEach((done, i) => {
+          if (done) ctx.fillRect(Math.round(x(i)) - 1, top + strip - 7, 2, 6);
+        });
+      }
       const latest = (series) => {
         const last = series.filter((v) => v !== null).at(-1);
         return last === undefined ? '–' : last.toFixed(Math.abs(last) < 10 ? 3 : 1);

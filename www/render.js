@@ -121,9 +121,23 @@ export const GROUP_COLOURS = ['#e0e0e0', '#ff8a65', '#4dd0e1', '#aed581', '#f062
 export const groupColour = (g) => (g < 0 ? '#757575' : GROUP_COLOURS[g % GROUP_COLOURS.length]);
 
 /**
+ * Colour of a particle of weight `v` relative to the heaviest drawn (0..1): dark blue for the
+ * lightest, through teal and green, to yellow for the heaviest (a viridis-like ramp).
+ */
+export function weightColour(v) {
+  const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+  const x = Math.min(1, Math.max(0, Number.isFinite(v) ? v : 0)) * (stops.length - 1);
+  const k = Math.min(stops.length - 2, Math.floor(x));
+  const f = x - k;
+  const c = stops[k].map((a, i) => Math.round(a + f * (stops[k + 1][i] - a)));
+  return `rgb(${c[0]}, ${c[1]}, ${c[2]})`;
+}
+
+/**
  * Draws the particle cloud (Tracker.hypotheses()): each particle's boundaries as a thin line
- * whose opacity grows with its weight relative to the heaviest drawn: image polylines, or the
- * road polylines through `map` (road point -> canvas point) when it is given.
+ * coloured by its weight relative to the heaviest drawn (weightColour), or by its group with
+ * `byGroup`, and more opaque when heavier: image polylines, or the road polylines through `map`
+ * (road point -> canvas point) when it is given.
  */
 export function drawHypotheses(ctx, hypotheses, map = null, byGroup = false) {
   if (!hypotheses?.length) return;
@@ -131,11 +145,11 @@ export function drawHypotheses(ctx, hypotheses, map = null, byGroup = false) {
   ctx.save();
   ctx.lineWidth = 1;
   for (const h of hypotheses) {
-    ctx.globalAlpha = 0.06 + 0.5 * (h.weight / top);
+    ctx.globalAlpha = 0.25 + 0.6 * (h.weight / top);
     for (const b of h.boundaries) {
       const pts = map ? b.road_points.map(map) : b.points;
       if (pts.length < 2) continue;
-      ctx.strokeStyle = byGroup ? groupColour(h.group) : (ROLE_COLOURS[b.role] ?? '#ffffff');
+      ctx.strokeStyle = byGroup ? groupColour(h.group) : weightColour(h.weight / top);
       ctx.beginPath();
       ctx.moveTo(pts[0][0], pts[0][1]);
       for (const [x, y] of pts.slice(1)) ctx.lineTo(x, y);

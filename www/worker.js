@@ -7,6 +7,7 @@
 import init, {
   version, trackerIds, trackerDefaults, scenarios, Calibrator, Camera, Scene, TestRoad, Tracker,
 } from '../pkg/web/lanepf.js';
+import { ess, weightsByGroup, resampleStep, thresholdFraction, decide } from './resampling.js';
 
 const ready = init();
 let road = null;
@@ -20,6 +21,8 @@ let right = null;
 // Top view: road cells 0.1 m, 40 m ahead, +-8 m; LUT of camera pixel indices (-1: not seen).
 const TOP = { xMin: 2, xMax: 42, yHalf: 8, cell: 0.1 };
 let topLut = null;
+// The open tracker's ESS threshold as a fraction of N (lee-cpf's ess_threshold; null: none).
+let essFraction = null;
 
 function buildTopLut(cameraConfig) {
   const camera = new Camera(cameraConfig);
@@ -86,11 +89,41 @@ function feedTracker(t, { motion, frameRight, width, height }) {
   }
 }
 
+/** The particles' weights by group (lee-cpf's stage; 0 for the others). */
+const weightsOf = (t) => weightsByGroup(t.id, t.particles(), t.particleStride);
+
+/**
+ * The weights the page plots after a step: those of `group` (lee-cpf's stage the step worked
+ * on; the first group otherwise), the total particle count and their ESS.
+ */
+function weighing(groups, group = null) {
+  const weights = groups.get(group) ?? groups.values().next().value ?? new Float64Array(0);
+  let count = 0;
+  for (const w of groups.values()) count += w.length;
+  return { weights: Float32Array.from(weights), count, ess: ess(weights), group };
+}
+
+/**
+ * A whole frame's resampling, for the ESS plot: lee-cpf's stage-1 ESS (measured before its
+ * resampling, `lee.ess1`) against N_thr; the others resample every frame.
+ */
+function frameResampling(t, estimate, groups) {
+  const e1 = estimate?.state?.['lee.ess1'];
+  if (t.id === 'lee-cpf' && Number.isFinite(e1)) {
+    const n = (groups.get(1) ?? groups.get(0) ?? new Float64Array(0)).length;
+    return decide('ess', e1, n, essFraction);
+  }
+  const n = groups.get(0)?.length ?? 0;
+  return decide('always', ess(groups.get(0) ?? []), n, null);
+}
+
 /** What the page draws besides the estimate: the particles, cues and top view on request. */
-function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = false }) {
+function extras(t, rgba, width, height, { hypotheses = 0, layers = false, top = false, belief = false }) {
   return {
+    particles: belief ? { data: t.particles(), stride: t.particleStride } : null,
     hypotheses: hypotheses > 0 ? t.hypotheses(hypotheses) : null,
-    layers: layers ? t.layers() : null,
+    // adachi-mmpf's belief view shows its vote histogram, one of its layers.
+    layers: layers || (belief && t.id === 'adachi-mmpf') ? t.layers() : null,
     top: top ? topView(rgba, width, height) : null,
     nextStep: t.nextStep ?? null,
   };
@@ -154,6 +187,7 @@ const handlers = {
     topLut = buildTopLut(camera);
     if (!trackerId) return { trackerId: null, stepNames: [] };
     tracker = new Tracker(trackerId, withCamera(options, camera));
+    essFraction = thresholdFraction(trackerId, { ...trackerDefaults(trackerId), ...(options ?? {}) });
     return { trackerId: tracker.id, stepNames: tracker.stepNames(), isStereo: tracker.isStereo };
   },
   /**
@@ -208,8 +242,11 @@ const handlers = {
     const t0 = performance.now();
     const estimate = tracker.step(rgba, width, height);
     const trackMs = performance.now() - t0;
+    const groups = weightsOf(tracker);
     return reply({
       rgba, estimate, trackMs, ...extras(tracker, rgba, width, height, want ?? {}),
+      weighing: weighing(groups, tracker.id === 'lee-cpf' ? 1 : 0),
+      frameResampling: frameResampling(tracker, estimate, groups),
       compare: stepCompare(rgba, { motion, frameRight, width, height }, want),
       calibration,
     });
@@ -223,15 +260,32 @@ const handlers = {
     // The comparison tracker takes the whole frame at once.
     const compared = stepCompare(rgba, { motion, frameRight, width, height }, want);
     const calibration = calibrate(rgba, width, height, want);
-    return reply({ rgba, ...extras(t, rgba, width, height, want ?? {}), compare: compared, calibration });
+    const groups = weightsOf(t);
+    return reply({
+      rgba, ...extras(t, rgba, width, height, want ?? {}), compare: compared, calibration,
+      weighing: weighing(groups, t.id === 'lee-cpf' ? 1 : 0),
+    });
   },
   async advance({ rgba, width, height, want }) {
     const t = requireTracker();
     const done = t.nextStep;
+    const name = t.stepNames()[done];
+    // The step's group: lee-cpf's stage from the step's name.
+    const group = t.id === 'lee-cpf' ? (/^stage 2/.test(name) ? 2 : /^stage 1/.test(name) ? 1 : 0) : 0;
+    // A resampling step: the ESS of the weights it starts from decides (lee-cpf) or not.
+    const resamples = resampleStep(t.id, name);
+    const before = resamples ? weightsOf(t).get(resamples.group) : null;
     const t0 = performance.now();
     const estimate = t.advance();
     const trackMs = performance.now() - t0;
-    return reply({ rgba, estimate, trackMs, done, ...extras(t, rgba, width, height, want ?? {}) });
+    const groups = weightsOf(t);
+    const resampling = before ? decide(resamples.policy, ess(before), before.length, essFraction) : null;
+    return reply({
+      rgba, estimate, trackMs, done, ...extras(t, rgba, width, height, want ?? {}),
+      weighing: weighing(groups, groups.has(group) ? group : (groups.has(1) ? 1 : 0)),
+      resampling,
+      frameResampling: estimate ? frameResampling(t, estimate, groups) : null,
+    });
   },
   /** The top view of a frame (after a camera change), with the pixels back. */
   async topView({ rgba, width, height }) {
