@@ -14,7 +14,6 @@
 
 use super::FrameObservation;
 use crate::camera::Camera;
-use nalgebra::Vector3;
 
 /// One boundary on the road: y = `offset` + `slope` x (metres; y positive left).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,8 +65,12 @@ pub fn ego_on_road(camera: &Camera, observation: &FrameObservation) -> Option<Eg
     let rows = [vp[1] + 0.25 * (bottom - vp[1]), bottom];
     let on_road = |line: usize| -> Option<RoadLine> {
         let fit = observation.lines.get(line)?;
-        let [x1, y1] = undistorted_pixel_to_road(camera, fit.x_at(rows[0]), rows[0])?;
-        let [x2, y2] = undistorted_pixel_to_road(camera, fit.x_at(rows[1]), rows[1])?;
+        let [x1, y1] = camera
+            .undistorted_pixel_to_road(fit.x_at(rows[0]), rows[0])
+            .ok()?;
+        let [x2, y2] = camera
+            .undistorted_pixel_to_road(fit.x_at(rows[1]), rows[1])
+            .ok()?;
         let spans_distance = (x1 - x2).abs() > 1e-6;
         if !spans_distance {
             return None;
@@ -83,16 +86,4 @@ pub fn ego_on_road(camera: &Camera, observation: &FrameObservation) -> Option<Eg
         right: on_road(r)?,
     };
     (pair.width() > 0.0 && pair.centre().is_finite() && pair.heading().is_finite()).then_some(pair)
-}
-
-/// Road point (x, y) of an undistorted pixel (`None` at or above the horizon).
-fn undistorted_pixel_to_road(camera: &Camera, u: f64, v: f64) -> Option<[f64; 2]> {
-    let [fx, fy] = camera.focal();
-    let [cx, cy] = camera.principal_point();
-    let r = camera.rotation().transpose() * Vector3::new((u - cx) / fx, (v - cy) / fy, 1.0);
-    if r.z >= -1e-6 * (r.x * r.x + r.y * r.y).sqrt() {
-        return None;
-    }
-    let t = camera.height_m() / -r.z;
-    Some([t * r.x, t * r.y])
 }

@@ -250,7 +250,23 @@ impl Camera {
     /// [`Error::Geometry`] when the pixel's ray does not meet the road ahead (at or above the
     /// horizon) or the lens model cannot be inverted there.
     pub fn pixel_to_road(&self, u: f64, v: f64) -> Result<[f64; 2]> {
-        let r = self.pixel_ray(u, v)?;
+        self.ray_to_road(self.pixel_ray(u, v)?, u, v)
+    }
+
+    /// Road-plane point (x, y) seen at the undistorted pixel (u, v) (a pixel of the pinhole
+    /// image, lens distortion already removed, as the calibrator's lines are).
+    ///
+    /// # Errors
+    /// [`Error::Geometry`] at or above the horizon.
+    pub fn undistorted_pixel_to_road(&self, u: f64, v: f64) -> Result<[f64; 2]> {
+        let f = &self.file;
+        let n = Vector3::new((u - f.cx) / f.fx, (v - f.cy) / f.fy, 1.0);
+        let r = self.rotation.transpose() * n;
+        self.ray_to_road([r.x, r.y, r.z], u, v)
+    }
+
+    /// Where the ray `r` from the camera, seen at pixel (u, v), meets the road.
+    fn ray_to_road(&self, r: [f64; 3], u: f64, v: f64) -> Result<[f64; 2]> {
         // The ray C + t r meets z = 0 at t = h / -r_z; it must descend, and not so slowly
         // that the point is absurdly far (beyond 1e6 camera heights).
         if r[2] >= -1e-6 * (r[0] * r[0] + r[1] * r[1]).sqrt() {
