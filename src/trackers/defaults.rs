@@ -1,21 +1,19 @@
 //! Every option of a tracker with its default value: what a settings panel starts from, and
 //! the documentation of the options in one machine-readable object.
 
-use super::{adachi, danescu, lee, liu, Error, Result, TRACKER_IDS};
-use serde::Serialize;
+use super::{Error, Result};
 use serde_json::{Map, Value};
 
-fn object(particles: usize, config: impl Serialize) -> Result<Value> {
+fn object(particles: usize, config: Value) -> Result<Value> {
     let mut map = Map::new();
     map.insert("particles".into(), Value::from(particles));
-    match serde_json::to_value(config) {
-        Ok(Value::Object(options)) => map.extend(options),
-        Ok(other) => {
+    match config {
+        Value::Object(options) => map.extend(options),
+        other => {
             return Err(Error::Config(format!(
                 "tracker defaults are not an object: {other}"
             )))
         }
-        Err(e) => return Err(Error::Config(format!("tracker defaults: {e}"))),
     }
     Ok(Value::Object(map))
 }
@@ -24,33 +22,18 @@ fn object(particles: usize, config: impl Serialize) -> Result<Value> {
 /// seed are not tracker options). Passing them back unchanged builds the default tracker.
 ///
 /// # Errors
-/// [`Error::UnknownTracker`] for an id not in [`TRACKER_IDS`].
+/// [`Error::UnknownTracker`] for an id not in [`super::TRACKER_IDS`].
 pub fn default_options(id: &str) -> Result<Value> {
-    match id {
-        adachi::ID => object(
-            adachi::DEFAULT_PARTICLES,
-            adachi::config::AdachiConfig::default(),
-        ),
-        lee::ID => object(lee::DEFAULT_PARTICLES, lee::config::LeeConfig::default()),
-        liu::ID | liu::ID_NOKERNEL => {
-            object(liu::DEFAULT_PARTICLES, liu::config::LiuConfig::default())
-        }
-        danescu::ID_MONO | danescu::ID_STEREO => object(
-            danescu::DEFAULT_PARTICLES,
-            danescu::config::DanescuConfig::default(),
-        ),
-        _ => Err(Error::UnknownTracker {
-            id: id.to_string(),
-            available: TRACKER_IDS.join(", "),
-        }),
-    }
+    let entry = super::registry::entry(id)?;
+    let config = (entry.defaults)().map_err(|e| Error::Config(format!("{id} defaults: {e}")))?;
+    object(entry.particles, config)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::synth::{default_camera, scenario, Eye, Scene};
-    use crate::trackers::{create, TrackerConfig};
+    use crate::trackers::{create, TrackerConfig, TRACKER_IDS};
 
     #[test]
     fn the_defaults_build_the_default_tracker() {

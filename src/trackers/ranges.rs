@@ -7,7 +7,8 @@
 //! clusters, grid cells), so no accepted value can hang a step or exhaust memory. Limits that
 //! tie two options together (near before far, cells of a map) stay in each config's checks.
 
-use super::{adachi, danescu, lee, liu, Error, Result, TRACKER_IDS};
+use super::liu;
+use super::{Error, Result};
 use serde::Serialize;
 use serde_json::Value;
 
@@ -37,7 +38,7 @@ macro_rules! canny {
     };
 }
 
-const LEE: &[&[OptionRange]] = &[
+pub(super) const LEE: &[&[OptionRange]] = &[
     &[
         r("stage2_particles", 0.0, 200_000.0),
         r("near_m", 0.5, 100.0),
@@ -94,7 +95,7 @@ const LEE: &[&[OptionRange]] = &[
     ],
 ];
 
-const LIU: &[&[OptionRange]] = &[&[
+pub(super) const LIU: &[&[OptionRange]] = &[&[
     r("top_view.x_min_m", 0.5, 200.0),
     r("top_view.x_max_m", 1.0, 500.0),
     r("top_view.y_left_m", -100.0, 100.0),
@@ -121,7 +122,7 @@ const LIU: &[&[OptionRange]] = &[&[
     r("relock_share", 0.0, 0.5),
 ]];
 
-const ADACHI: &[&[OptionRange]] = &[&[
+pub(super) const ADACHI: &[&[OptionRange]] = &[&[
     r("near_m", 0.5, 100.0),
     r("far_m", 1.0, 200.0),
     r("rho_range_m", 1.0, 50.0),
@@ -142,7 +143,7 @@ const ADACHI: &[&[OptionRange]] = &[&[
     r("relock_share", 0.0, 0.5),
 ]];
 
-const DANESCU: &[&[OptionRange]] = &[
+pub(super) const DANESCU: &[&[OptionRange]] = &[
     &[
         r("init_fraction", 0.0, 0.99),
         r("near_m", 0.5, 100.0),
@@ -218,20 +219,9 @@ const DANESCU: &[&[OptionRange]] = &[
 /// [`super::MAX_PARTICLES`] for all).
 ///
 /// # Errors
-/// [`Error::UnknownTracker`] for an id not in [`TRACKER_IDS`].
+/// [`Error::UnknownTracker`] for an id not in [`super::TRACKER_IDS`].
 pub fn option_ranges(id: &str) -> Result<Vec<OptionRange>> {
-    let groups = match id {
-        adachi::ID => ADACHI,
-        lee::ID => LEE,
-        liu::ID | liu::ID_NOKERNEL => LIU,
-        danescu::ID_MONO | danescu::ID_STEREO => DANESCU,
-        _ => {
-            return Err(Error::UnknownTracker {
-                id: id.to_string(),
-                available: TRACKER_IDS.join(", "),
-            })
-        }
-    };
+    let groups = super::registry::entry(id)?.ranges;
     Ok(groups.iter().flat_map(|g| g.iter().copied()).collect())
 }
 
@@ -311,6 +301,7 @@ fn short(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::trackers::{adachi, danescu, lee, TRACKER_IDS};
 
     /// Every numeric leaf of a tracker's defaults, as a path.
     fn numeric_paths(value: &Value, prefix: &str, out: &mut Vec<String>) {

@@ -71,7 +71,7 @@ impl Thrown {
 /// A core error keeps its message; its kind follows the variant: a bad configuration, parameter
 /// or id is [`Kind::Config`], a wrong state [`Kind::State`], anything about data
 /// [`Kind::Input`]. Call sites that know better (a parameter of a call, not of a constructor)
-/// use [`input`].
+/// use `input`.
 impl From<crate::Error> for Thrown {
     fn from(e: crate::Error) -> Self {
         use crate::Error as E;

@@ -1,0 +1,89 @@
+//! What every tracker is built from ([`TrackerConfig`]) and the reader of a tracker's own
+//! options.
+
+use crate::camera::{Camera, CameraFile};
+use crate::error::{Error, Result};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// Largest accepted particle count.
+pub const MAX_PARTICLES: usize = 200_000;
+
+/// What every tracker is built from: the camera, the particle budget, the seed, and
+/// tracker-specific options (checked by the tracker itself).
+#[derive(Debug, Clone, Deserialize)]
+pub struct TrackerConfig {
+    /// The camera (the `camera.json` format).
+    pub camera: CameraFile,
+    /// Number of particles N; `None`: the tracker's own default.
+    #[serde(default)]
+    pub particles: Option<usize>,
+    /// RNG seed: the same seed gives the same run natively and in the browser.
+    #[serde(default = "default_seed")]
+    pub seed: u64,
+    /// Tracker-specific options by name.
+    #[serde(flatten)]
+    pub options: BTreeMap<String, serde_json::Value>,
+}
+
+fn default_seed() -> u64 {
+    1
+}
+
+impl TrackerConfig {
+    /// Parses a JSON configuration.
+    ///
+    /// # Errors
+    /// [`Error::Config`] when the JSON is malformed or a field has the wrong type.
+    pub fn from_json_str(text: &str) -> Result<Self> {
+        serde_json::from_str(text).map_err(|e| Error::Config(format!("tracker config: {e}")))
+    }
+
+    /// Checks the configuration and returns the validated camera.
+    ///
+    /// # Errors
+    /// Camera errors as [`Camera::from_file`] gives them; [`Error::Parameter`] for a particle
+    /// count of 0 or above [`MAX_PARTICLES`].
+    pub fn validate(&self) -> Result<Camera> {
+        if let Some(n) = self.particles {
+            if n == 0 || n > MAX_PARTICLES {
+                return Err(Error::parameter(
+                    "particles",
+                    n,
+                    &format!("must be between 1 and {MAX_PARTICLES}"),
+                ));
+            }
+        }
+        Camera::from_file(&self.camera)
+    }
+
+    /// The particle count: the configured one, or the tracker's `default`.
+    pub fn particles_or(&self, default: usize) -> usize {
+        self.particles.unwrap_or(default)
+    }
+}
+
+/// Reads a tracker's own options (all optional, unknown ones refused) from the free-form part
+/// of the [`TrackerConfig`].
+///
+/// # Errors
+/// [`Error::Config`] naming the tracker and the option's key path for an unknown option or a
+/// wrong type.
+pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
+    id: &str,
+    options: &BTreeMap<String, serde_json::Value>,
+) -> Result<T> {
+    let map: serde_json::Map<String, serde_json::Value> = options
+        .iter()
+        .map(|(k, v)| (k.clone(), v.clone()))
+        .collect();
+    serde_path_to_error::deserialize(serde_json::Value::Object(map)).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        if path == "." {
+            Error::Config(format!("{id} options: {inner}"))
+        } else {
+            Error::Config(format!("{id} options: {path}: {inner}"))
+        }
+    })
+}

@@ -1,0 +1,140 @@
+//! The one table of trackers: each id with how to build it, its default options and the
+//! ranges of its options. [`create`], [`super::default_options`] and [`super::option_ranges`]
+//! look an id up here, so a new tracker is one entry.
+
+use super::ranges::{ADACHI, DANESCU, LEE, LIU};
+use super::{adachi, danescu, lee, liu, OptionRange, Tracker, TrackerConfig};
+use crate::error::{Error, Result};
+
+/// One tracker of the registry.
+pub(crate) struct Entry {
+    /// The id (see ../shared/DESIGN.md).
+    pub id: &'static str,
+    /// Builds the tracker from a checked configuration.
+    pub build: fn(&TrackerConfig) -> Result<Box<dyn Tracker>>,
+    /// The default particle count.
+    pub particles: usize,
+    /// The tracker's options with their defaults, as JSON.
+    pub defaults: fn() -> serde_json::Result<serde_json::Value>,
+    /// The ranges of its numeric options, in groups.
+    pub ranges: &'static [&'static [OptionRange]],
+}
+
+/// Every tracker, in the order the menus list them.
+pub(crate) const REGISTRY: [Entry; 6] = [
+    Entry {
+        id: adachi::ID,
+        build: |c| Ok(Box::new(adachi::AdachiTracker::new(c)?)),
+        particles: adachi::DEFAULT_PARTICLES,
+        defaults: || serde_json::to_value(adachi::config::AdachiConfig::default()),
+        ranges: ADACHI,
+    },
+    Entry {
+        id: danescu::ID_MONO,
+        build: |c| Ok(Box::new(danescu::DanescuTracker::new(c, danescu::ID_MONO)?)),
+        particles: danescu::DEFAULT_PARTICLES,
+        defaults: || serde_json::to_value(danescu::config::DanescuConfig::default()),
+        ranges: DANESCU,
+    },
+    Entry {
+        id: danescu::ID_STEREO,
+        build: |c| {
+            Ok(Box::new(danescu::DanescuTracker::new(
+                c,
+                danescu::ID_STEREO,
+            )?))
+        },
+        particles: danescu::DEFAULT_PARTICLES,
+        defaults: || serde_json::to_value(danescu::config::DanescuConfig::default()),
+        ranges: DANESCU,
+    },
+    Entry {
+        id: lee::ID,
+        build: |c| Ok(Box::new(lee::LeeTracker::new(c)?)),
+        particles: lee::DEFAULT_PARTICLES,
+        defaults: || serde_json::to_value(lee::config::LeeConfig::default()),
+        ranges: LEE,
+    },
+    Entry {
+        id: liu::ID,
+        build: |c| Ok(Box::new(liu::LiuTracker::new(c, true)?)),
+        particles: liu::DEFAULT_PARTICLES,
+        defaults: || serde_json::to_value(liu::config::LiuConfig::default()),
+        ranges: LIU,
+    },
+    Entry {
+        id: liu::ID_NOKERNEL,
+        build: |c| Ok(Box::new(liu::LiuTracker::new(c, false)?)),
+        particles: liu::DEFAULT_PARTICLES,
+        defaults: || serde_json::to_value(liu::config::LiuConfig::default()),
+        ranges: LIU,
+    },
+];
+
+const fn ids<const N: usize>(entries: &[Entry; N]) -> [&'static str; N] {
+    let mut out = [""; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = entries[i].id;
+        i += 1;
+    }
+    out
+}
+
+const IDS: [&str; REGISTRY.len()] = ids(&REGISTRY);
+
+/// The ids of the trackers, in the registry's order.
+pub const TRACKER_IDS: &[&str] = &IDS;
+
+/// The registry's entry for `id`.
+///
+/// # Errors
+/// [`Error::UnknownTracker`] listing the ids there are.
+pub(crate) fn entry(id: &str) -> Result<&'static Entry> {
+    REGISTRY
+        .iter()
+        .find(|e| e.id == id)
+        .ok_or_else(|| Error::UnknownTracker {
+            id: id.to_string(),
+            available: TRACKER_IDS.join(", "),
+        })
+}
+
+/// Builds the tracker `id` from `config`.
+///
+/// # Errors
+/// [`Error::UnknownTracker`] for an id not in [`TRACKER_IDS`]; configuration errors as
+/// [`TrackerConfig::validate`] gives them, and the tracker's own option errors.
+pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
+    let entry = entry(id)?;
+    config.validate()?;
+    (entry.build)(config)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synth::default_camera;
+
+    /// Every entry builds the tracker it names, once: ids are unique and each constructor is
+    /// wired to its own id (a tracker reports its id in every estimate's consumers).
+    #[test]
+    fn every_entry_builds_the_tracker_it_names() {
+        let camera = default_camera(320, 240).unwrap();
+        let config = TrackerConfig::from_json_str(&format!(
+            r#"{{"camera": {}, "particles": 50}}"#,
+            serde_json::to_string(&camera.to_file()).unwrap()
+        ))
+        .unwrap();
+        for (i, e) in REGISTRY.iter().enumerate() {
+            assert!(
+                REGISTRY[..i].iter().all(|other| other.id != e.id),
+                "{} twice",
+                e.id
+            );
+            assert_eq!(create(e.id, &config).unwrap().id(), e.id);
+            assert!(e.particles > 0 && !e.ranges.is_empty(), "{}", e.id);
+        }
+        assert_eq!(TRACKER_IDS.len(), REGISTRY.len());
+    }
+}
