@@ -15,6 +15,11 @@
 //!
 //! Start reading at [`filter`] (the generic particle filter) and [`camera`] (the geometry).
 //! JavaScript users see only the `wasm` module's classes.
+//!
+//! Cargo features, both on by default: `wasm` (the JavaScript binding, `lanepf::wasm`: wasm-bindgen,
+//! js-sys, web-sys, console_error_panic_hook) and `cli` (the `lanepf` program: clap). With
+//! `default-features = false` the crate is the trackers, the simulator and the evaluation
+//! alone.
 
 #![deny(missing_docs)]
 // A panic in wasm kills the module (and in the CLI, a batch run): library code returns errors
@@ -35,6 +40,7 @@ pub mod math;
 pub mod synth;
 pub mod trackers;
 pub mod vision;
+#[cfg(feature = "wasm")]
 pub mod wasm;
 
 pub use error::{Error, Result};

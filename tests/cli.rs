@@ -1,5 +1,7 @@
 //! The command-line tool, run as a user would: files in, files and exit codes out.
 
+#![cfg(feature = "cli")]
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

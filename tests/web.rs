@@ -3,7 +3,7 @@
 //! wasm32-unknown-unknown --test web`. It exercises the JS-facing classes as JavaScript sees
 //! them (thrown errors and their messages, objects still usable afterwards) and checks that the
 //! seeded core gives bit-identical results in the browser.
-#![cfg(target_arch = "wasm32")]
+#![cfg(all(target_arch = "wasm32", feature = "wasm"))]
 
 use lanepf::wasm::{
     scenarios, tracker_ids, version, JsCalibrator, JsCamera, JsScene, JsTestRoad, JsTracker,

@@ -9,6 +9,7 @@
 mod args;
 mod calibrator;
 mod camera;
+mod deprecation;
 mod error;
 mod estimate;
 mod object;

@@ -1,6 +1,7 @@
 //! The `Tracker` factory for JavaScript: `new Tracker(id, config)`.
 
 use super::args;
+use super::deprecation;
 use super::error::{self, input, Kind, Thrown};
 use super::estimate::{self, Keep};
 use super::object;
@@ -205,6 +206,11 @@ impl JsTracker {
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "EgoMotion")] motion: JsValue,
     ) -> Result<(), Thrown> {
+        deprecation::warn_once(
+            &deprecation::SET_EGO_MOTION,
+            "lanepf: Tracker.setEgoMotion is deprecated; pass the motion with the frame: \
+             tracker.step(frame, { motion })",
+        );
         let motion: trackers::EgoMotion = object::read(&motion, "ego motion", Kind::Input)?;
         self.inner.set_ego_motion(motion).map_err(input)
     }
@@ -226,6 +232,11 @@ impl JsTracker {
         #[wasm_bindgen(unchecked_param_type = "number")] width: JsValue,
         #[wasm_bindgen(unchecked_param_type = "number")] height: JsValue,
     ) -> Result<(), Thrown> {
+        deprecation::warn_once(
+            &deprecation::SET_RIGHT,
+            "lanepf: Tracker.setRight is deprecated; pass the right frame with the left one: \
+             tracker.step(left, { right })",
+        );
         if !self.inner.is_stereo() {
             // The tracker's own refusal, before the frame is even looked at.
             return self.inner.set_right(&[], 0, 0).map_err(input);
