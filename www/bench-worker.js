@@ -1,6 +1,7 @@
 // The benchmark's worker: renders the frames of a scenario with the package's Scene, then steps
 // each tracker over them as the demo does (the right frame for a stereo tracker, the car's
-// motion from the ground truth for all) and times setRight + step with performance.now().
+// motion from the ground truth for all, both in step's options) and times each step with
+// performance.now().
 // Message in: the page's params; out: { type: 'progress' | 'version' | 'done' | 'error', ... }.
 import init, { version, trackerIds, Scene, Tracker } from '../pkg/web/lanepf.js';
 
@@ -33,10 +34,11 @@ async function bench({ frames, width, height, scenario, seed, warmup, trackers }
     }
     const ms = [];
     for (let f = 0; f < frames; f++) {
-      tracker.setEgoMotion(motion[f]);
+      const frame = { data: left[f], width, height };
+      const options = { motion: motion[f] };
+      if (tracker.isStereo) options.right = { data: right[f], width, height };
       const t = performance.now();
-      if (tracker.isStereo) tracker.setRight(right[f], width, height);
-      tracker.step(left[f], width, height);
+      tracker.step(frame, options);
       const dt = performance.now() - t;
       if (f >= warmup) ms.push(dt);
     }
