@@ -230,7 +230,7 @@ test('the plots\' caption names the tracker shown', async () => {
   assert.match(await caption(), /^lee-cpf’s estimate \(blue\), the ground truth .* Kalman smoother \(orange\)/);
   await page.selectOption('#tracker', 'adachi-mmpf');
   await page.waitForFunction(() => /^adachi-mmpf/.test(document.getElementById('plots-caption').textContent));
-  assert.match(await caption(), /^adachi-mmpf’s estimate \(blue\) and the ground truth \(grey, dashed\), over the last 300 frames\. ESS: a red tick on each frame that resampled \(this tracker resamples every frame\)$/);
+  assert.match(await caption(), /^adachi-mmpf’s estimate \(blue\) and the ground truth \(grey, dashed\), over the last 300 frames\. ESS: the filter’s, the threshold N_thr the tracker reports testing it against \(yellow, dashed; none when it resamples whatever the ESS\) and a red tick on each frame it reports resampling; stepping, the frame in progress is ringed and redrawn after every stage$/);
   assert.doesNotMatch(await caption(), /lee-cpf|Kalman/);
   await page.selectOption('#tracker', 'liu-ppf');
   await page.waitForFunction(() => /^liu-ppf’s/.test(document.getElementById('plots-caption').textContent));
