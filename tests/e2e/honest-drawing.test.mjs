@@ -7,16 +7,13 @@
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
-import { start, open } from './browser.mjs';
+import { start, open, running, idle } from './browser.mjs';
 import { readCanvas, countColour } from './pixels.mjs';
 
 const env = await start();
 test.after(() => env.close());
 mkdirSync('test-results', { recursive: true });
 
-const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
-  null, { timeout: 30000 });
-const idle = (page) => page.waitForFunction(() => window.lanepfDemo.pending === 0);
 const rgb = (hex) => [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
 /** render.js's colours and styles, as the page's module has them. */
 const styles = (page) => page.evaluate(async () => {

@@ -13,16 +13,13 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
 import { createHash } from 'node:crypto';
-import { start, open } from './browser.mjs';
+import { start, open, running, idle } from './browser.mjs';
 import { readCanvas } from './pixels.mjs';
 
 const env = await start();
 test.after(() => env.close());
 mkdirSync('test-results', { recursive: true });
 
-const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
-  null, { timeout: 30000 });
-const idle = (page) => page.waitForFunction(() => window.lanepfDemo.pending === 0);
 const status = (page) => page.textContent('#status');
 
 /** Runs one stage (the step-stage button) and waits for it to be drawn. */
