@@ -4,7 +4,7 @@
 // never interleave with a frame in flight. Videos, images and the webcam are auto-calibrated
 // (auto-calibration.js): the worker feeds their frames to the wasm Calibrator, and its camera
 // replaces the assumed one once it is confident, unless the user chose a camera.
-import { WorkerClient } from './worker-client.js';
+import { connectWorker, withCamera } from './worker-client.js';
 import { SceneSource, TestRoadSource } from './source.js';
 import { ImageSource, WebcamSource } from './media-source.js';
 import { VideoFile } from './video-select.js';
@@ -20,9 +20,8 @@ import { Departure } from './departure.js';
 import { appendCapped } from './capped.js';
 import { ParamsPanel } from './params-panel.js';
 import { Pacer } from './pacer.js';
-import { drawWeights } from './weights.js';
-import { beliefPanels, drawBelief } from './belief.js';
-import { resampleText } from './resampling.js';
+import { showWeighing } from './weighing-view.js';
+import { resampleText, frameResampling } from './resampling.js';
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
@@ -32,7 +31,8 @@ const ctx = document.getElementById('view').getContext('2d');
 const topCtx = document.getElementById('top').getContext('2d');
 const cues = document.getElementById('cues').getContext('2d');
 const ctx2 = document.getElementById('view2').getContext('2d');
-const client = new WorkerClient();
+// The worker (a TrackerWorker of lanepf/worker, connected to the demo's worker.js), from main().
+let client = null;
 const plots = new Plots(document.getElementById('plots'));
 const legend = new Legend(document.getElementById('legend'));
 const departure = new Departure();
@@ -63,6 +63,10 @@ const state = {
   camera: null,
   importedCamera: null,
   inFrame: null, // the frame being stepped through in per-step mode
+  // Of the frame being stepped through: the resampling decisions the tracker reported so far
+  // and the time its stages took so far.
+  inFrameResamplings: [],
+  inFrameMs: 0,
   lastFrame: null, // the frame on the canvas and what the worker said about it
   lastResult: null,
 };
@@ -192,31 +196,27 @@ function draw(frame, result, redraw = false) {
 }
 
 /**
- * The weight histogram after the frame or the step just run, and how many particles the view
- * draws of the tracker's total (in the legend).
+ * The weight histograms and belief views after the frame or the step just run (the second
+ * tracker's too, in compare mode), and how many particles the view draws of the tracker's
+ * total (in the legend).
  */
 function drawWeighing(result, estimate) {
   const weighing = result?.weighing ?? null;
-  const figure = document.getElementById('weights-figure');
-  figure.hidden = !weighing || !controls.showPlots.checked;
   const drawn = controls.showParticles.checked ? (result?.hypotheses?.length ?? 0) : 0;
   showCount(document.getElementById('view-count'), drawn, weighing?.count ?? 0);
-  if (!weighing) return;
-  const step = result.done !== undefined && result.done !== null ? controls.stepNames[result.done] : null;
+  const step = result?.done !== undefined && result?.done !== null ? controls.stepNames[result.done] : null;
   let label = step ? `after “${step}”` : 'after the whole frame';
   if (!step && !estimate && state.inFrame) label = 'at the start of the frame';
-  document.getElementById('weights-caption').textContent = drawWeights(document.getElementById('weights'), weighing, label);
-  demo.lastWeighing = { ...weighing, weights: undefined, n: weighing.weights.length, label };
-  // The paper's own view of the belief, from the same particles.
-  const p = result?.particles;
-  const panels = p ? beliefPanels(state.trackerId, p.data, p.stride, estimate, result?.layers) : [];
-  document.getElementById('belief-figure').hidden = !panels.length || !controls.showPlots.checked;
-  if (!panels.length) return;
-  drawBelief(document.getElementById('belief'), panels);
-  document.getElementById('belief-caption').textContent = `${state.trackerId}’s belief ${label}: `
-    + `${panels.map((q) => (q.colours ? `${q.title} (${q.colours})` : q.title)).join('; then ')}.`;
-  demo.lastBelief = panels.map((q) => ({ title: q.title, unit: q.unit, items: q.items.length,
-    markers: q.markers.map((m) => m.label), probabilities: q.probabilities ?? null }));
+  const shown = controls.showPlots.checked;
+  const own = showWeighing({ weights: 'weights', belief: 'belief' }, state.trackerId, result, estimate, label, shown);
+  if (own.weighing) demo.lastWeighing = own.weighing;
+  if (own.belief) demo.lastBelief = own.belief;
+  // The second tracker takes whole frames, also while the first is stepped through.
+  const compared = result?.compare ?? null;
+  const other = showWeighing({ weights: 'compare-weights', belief: 'compare-belief', named: true },
+    compared?.trackerId, compared, compared?.estimate ?? null, 'after the whole frame', shown);
+  demo.lastCompareWeighing = other.weighing;
+  demo.lastCompareBelief = other.belief;
 }
 
 /** The second tracker's view: the same frame with its boundaries and particles. */
@@ -239,9 +239,10 @@ function drawCompare(frame, compared, truth, byGroup) {
   document.getElementById('compare-caption').textContent = text;
 }
 
-function record(frame, result) {
+/** A frame's end: its estimate into the plots (with the resampling `decisions` it reported), the log and the status. */
+function record(frame, result, decisions) {
   if (!result?.estimate) return;
-  plots.push(result.estimate, frame.truth, result, result.compare ?? null);
+  plots.push(result.estimate, frame.truth, result, result.compare ?? null, frameResampling(decisions));
   document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
   const t = frame.motion?.t_s ?? frame.t ?? null;
   const status = departure.update(result.estimate, t, frame.motion?.speed_mps ?? null);
@@ -254,19 +255,22 @@ function record(frame, result) {
   controls.setExportable(true);
 }
 
-/** Sends a frame's pixels to the worker; the pixels come back with the answer (or the error). */
-async function toWorker(type, frame, extra = {}) {
-  const payload = { rgba: frame.rgba, width: frame.width, height: frame.height, want: want(), ...extra };
+/**
+ * Sends a frame's pixels to the demo's op `op` in the worker (transferred); the pixels come back
+ * with the answer, or on the Error (`err.frame`).
+ */
+async function toWorker(op, frame, extra = {}) {
+  const args = { frame: { data: frame.rgba, width: frame.width, height: frame.height }, want: want(), ...extra };
   // A stereo frame's right image goes along once (it is not needed back).
   const transfer = [frame.rgba.buffer];
   if (extra.right) transfer.push(extra.right.buffer);
   try {
-    const result = await client.request(type, payload, transfer);
-    frame.rgba = result.rgba;
+    const result = await client.request(op, args, transfer);
+    frame.rgba = result.frame.data;
     return result;
   } catch (err) {
-    if (err.rgba) {
-      frame.rgba = err.rgba;
+    if (err.frame?.data) {
+      frame.rgba = err.frame.data;
       draw(frame, null);
     }
     throw err;
@@ -304,9 +308,9 @@ async function stepFrame() {
   const frame = await nextFrame();
   if (!frame) return;
   const t1 = performance.now();
-  const result = await toWorker('track', frame, { motion: frame.motion, right: frame.right });
+  const result = await toWorker('trackFrame', frame, { motion: frame.motion, right: frame.right });
   const t2 = performance.now();
-  record(frame, result);
+  record(frame, result, result.resamplings);
   draw(frame, result);
   // Where a frame's time goes (ms): reading it, the worker's round trip, drawing it here.
   demo.frameMs = { source: t1 - t0, worker: t2 - t1, page: performance.now() - t2 };
@@ -341,28 +345,56 @@ async function stepStage() {
   if (!frame) {
     frame = await nextFrame();
     if (!frame) return;
-    const result = await toWorker('beginFrame', frame, { motion: frame.motion, right: frame.right });
+    const result = await toWorker('beginStepping', frame, { motion: frame.motion, right: frame.right });
     state.inFrame = frame;
+    state.inFrameResamplings = [];
+    state.inFrameMs = result.trackMs;
+    state.inFrameCompare = result.compare ?? null;
     draw(frame, result);
+    showStageInPlots('start of the frame: image cues', result);
     // Not in the middle of a stepped frame: the camera changes on the next whole frame.
     await autoCalibrate(result.calibration, false);
     controls.updateStageButton(result.nextStep);
     return;
   }
-  const result = await toWorker('advance', frame);
+  const result = await toWorker('stepStage', frame);
+  // The second tracker took the whole frame at its start: its views stay while this one steps.
+  result.compare = state.inFrameCompare;
+  const step = controls.stepNames[result.done];
+  state.inFrameResamplings.push(...result.resamplings);
+  state.inFrameMs += result.trackMs;
   draw(frame, result);
   if (result.estimate) {
-    record(frame, result);
+    record(frame, { ...result, trackMs: state.inFrameMs }, state.inFrameResamplings);
+    demo.plotsStage = null;
     state.inFrame = null;
     controls.updateStageButton(null);
   } else {
+    showStageInPlots(step, result);
     controls.updateStageButton(result.nextStep);
   }
-  let text = `${state.trackerId}: ran “${controls.stepNames[result.done]}”`;
-  if (result.resampling) text += ` · ${resampleText(result.resampling)}`;
+  // What the tracker reported of its resampling in this step, with its numbers.
+  const said = resampleText(result.resamplings);
+  let text = `${state.trackerId}: ran “${step}”`;
+  if (said) text += ` · ${said}`;
+  else if (/resampl/i.test(step)) text += ' · the tracker reported no resampling in this step';
   controls.say(text);
-  whyLink.hidden = !result.resampling;
-  demo.lastResampling = result.resampling ?? null;
+  whyLink.hidden = !said;
+  demo.lastResampling = result.resamplings.at(-1) ?? null;
+  demo.lastResamplings = result.resamplings;
+}
+
+/**
+ * The plots follow the stages of a frame stepped through: the frame in progress is their newest
+ * point (the ESS of the weights now, the time so far, the resampling reported so far).
+ */
+function showStageInPlots(label, result) {
+  plots.stage({
+    label, ess: result.weighing?.ess ?? null, trackMs: state.inFrameMs,
+    ...frameResampling(state.inFrameResamplings),
+  });
+  document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+  demo.plotsStage = plots.live;
 }
 
 async function finishStepping() {
@@ -379,12 +411,15 @@ async function openTracker({ keepLog = false } = {}) {
   const defaults = trackerId ? await client.request('defaults', { trackerId }) : null;
   panel.show(trackerId, defaults);
   const options = { ...panel.changedOptions(), seed: panel.seedValue() };
-  const info = await client.request('openTracker', { trackerId, camera: state.camera, options });
+  // The top view follows the camera, the tracker or none.
+  await client.request('openTopView', { camera: state.camera });
+  if (trackerId) await client.open(trackerId, withCamera(options, state.camera));
+  else await client.close();
   // The comparison tracker: its own defaults, the same camera and seed.
   await client.request('openCompare', {
-    trackerId: trackerId ? state.compareId : '', camera: state.camera, options: { seed: options.seed },
+    trackerId: trackerId ? state.compareId : '', config: withCamera({ seed: options.seed }, state.camera),
   });
-  controls.setStepNames(info.stepNames);
+  controls.setStepNames(trackerId ? client.stepNames : []);
   showNames();
   document.getElementById('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length,
     trackerId ? state.compareId : '');
@@ -531,6 +566,7 @@ function redrawLast() {
 }
 
 async function main() {
+  client = await connectWorker();
   const { version, trackers, scenarios } = await client.request('hello');
   calibration = new Calibration(document, document.getElementById('view'), await loadPresets());
   demo.calibration = calibration;
@@ -599,7 +635,7 @@ async function main() {
   controls.onStepStage = () => run(stepStage);
   controls.onRestart = () => run(async () => {
     state.source.restart();
-    await client.request('reset');
+    await client.request('resetTrackers');
     pacer.reset();
     state.inFrame = null;
     demo.results = [];

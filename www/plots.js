@@ -1,7 +1,9 @@
 // Live plots of the estimate over the last frames: one strip per quantity, the estimate as a
 // line, the second tracker's (compare mode) in pink, the ground truth (when the source has one)
 // dashed, lee-cpf's raw particle-filter output before its Kalman smoother in orange, the latest
-// values written beside.
+// values written beside. While a frame is stepped through stage by stage, its ESS and time so
+// far are the newest point (ringed), redrawn after every stage. The ESS strip's threshold line
+// and resampling ticks are what the tracker reported (`Tracker.resamplings()`).
 
 const RAD_TO_DEG = 180 / Math.PI;
 // lee-cpf: stage 1's ESS, the one its resampling tests against N_thr.
@@ -22,6 +24,9 @@ export const SERIES = [
 export const ESS_THRESHOLD_COLOUR = '#ffd54f';
 export const RESAMPLED_COLOUR = '#ef5350';
 
+/** The ring round the point of the frame being stepped through, and its label. */
+export const LIVE_COLOUR = '#ffffff';
+
 /** The second tracker's colour in the plots. */
 export const COMPARE_COLOUR = '#f48fb1';
 
@@ -37,9 +42,10 @@ export function plotsCaption(trackerId, hasTruth, length = 300, compareId = '') 
   if (hasTruth) parts.push('the ground truth (grey, dashed)');
   if (trackerId === 'lee-cpf') parts.push('its raw filter before the Kalman smoother (orange)');
   const list = parts.length > 1 ? `${parts.slice(0, -1).join(', ')} and ${parts.at(-1)}` : parts[0];
-  const ess = trackerId === 'lee-cpf'
-    ? 'ESS: stage 1’s before it resamples, its threshold N_thr (yellow, dashed), a red tick on each frame that resampled'
-    : 'ESS: a red tick on each frame that resampled (this tracker resamples every frame)';
+  const which = trackerId === 'lee-cpf' ? 'stage 1’s before it resamples' : 'the filter’s';
+  const ess = `ESS: ${which}, the threshold N_thr the tracker reports testing it against (yellow, dashed; `
+    + 'none when it resamples whatever the ESS) and a red tick on each frame it reports resampling; '
+    + 'stepping, the frame in progress is ringed and redrawn after every stage';
   return `${list}, over the last ${length} frames. ${ess}`;
 }
 
@@ -52,6 +58,8 @@ export class Plots {
   }
 
   clear() {
+    // The frame being stepped through, stage by stage (null: none): see `stage`.
+    this.live = null;
     // The ESS strip's threshold (particles, null: none) and whether each frame resampled.
     this.threshold = [];
     this.resampled = [];
@@ -63,11 +71,14 @@ export class Plots {
   }
 
   /**
-   * Adds a frame's estimate (and truth, when known; and `compare`, the second tracker's
-   * { estimate, trackMs }, in compare mode).
+   * Adds a frame's estimate (and truth, when known; `compare`, the second tracker's
+   * { estimate, trackMs }, in compare mode; `resampling`, what the tracker reported of the
+   * frame's resampling: { resampled, threshold }, resampling.js's `frameResampling`). Ends the
+   * frame in progress, if one was being stepped through.
    */
-  push(estimate, truth, result, compare = null) {
-    const r = result?.frameResampling ?? null;
+  push(estimate, truth, result, compare = null, resampling = null) {
+    this.live = null;
+    const r = resampling;
     this.threshold.push(Number.isFinite(r?.threshold) ? r.threshold : null);
     this.resampled.push(!!r?.resampled);
     if (this.threshold.length > this.length) {
@@ -90,8 +101,29 @@ export class Plots {
     this.draw();
   }
 
+  /**
+   * The frame in progress after a stage, drawn as the newest point until the frame ends
+   * (`push`): `{ label, ess, trackMs, resampled, threshold }`: the step just run, the ESS of
+   * the weights now, the frame's time so far, whether the tracker reported a resampling in the
+   * frame so far and the threshold it tested. The other quantities are known at the frame's end.
+   */
+  stage(live) {
+    this.live = live;
+    this.draw();
+  }
+
+  /** Series `k` with the frame in progress (if any) as its newest point, at most `length`. */
+  withLive(series, value) {
+    if (!this.live) return series;
+    return [...series, value].slice(-this.length);
+  }
+
   draw() {
     const { ctx, canvas } = this;
+    const live = this.live;
+    const liveValue = (s) => (!live ? null : s.name === 'ESS' ? live.ess : s.name === 'time' ? live.trackMs : null);
+    const threshold = this.withLive(this.threshold, Number.isFinite(live?.threshold) ? live.threshold : null);
+    const resampled = this.withLive(this.resampled, !!live?.resampled);
     const strip = canvas.height / SERIES.length;
     const left = 150;
     const w = canvas.width - left - 8;
@@ -101,8 +133,11 @@ export class Plots {
     SERIES.forEach((s, k) => {
       const top = k * strip;
       const ess = s.name === 'ESS';
-      const values = [...this.points[k], ...this.truth[k], ...this.raw[k], ...this.other[k],
-        ...(ess ? this.threshold : [])].filter((v) => v !== null);
+      const v = liveValue(s);
+      const points = this.withLive(this.points[k], Number.isFinite(v) ? v : null);
+      const [truth, raw, other] = [this.truth[k], this.raw[k], this.other[k]].map((series) => this.withLive(series, null));
+      const values = [...points, ...truth, ...raw, ...other,
+        ...(ess ? threshold : [])].filter((x) => x !== null);
       let lo = Math.min(...values);
       let hi = Math.max(...values);
       if (!values.length) [lo, hi] = [0, 1];
@@ -134,16 +169,23 @@ export class Plots {
         ctx.stroke();
         ctx.setLineDash([]);
       };
-      line(this.truth[k], '#8a949e', [4, 3]);
-      line(this.raw[k], '#ff8a65', []);
-      line(this.other[k], COMPARE_COLOUR, []);
-      line(this.points[k], '#4fc3f7', []);
+      line(truth, '#8a949e', [4, 3]);
+      line(raw, '#ff8a65', []);
+      line(other, COMPARE_COLOUR, []);
+      line(points, '#4fc3f7', []);
+      // The frame in progress: its point ringed, so that each stage's change shows.
+      if (live && points.at(-1) !== null) {
+        ctx.strokeStyle = LIVE_COLOUR;
+        ctx.beginPath();
+        ctx.arc(x(points.length - 1), y(points.at(-1)), 4, 0, 2 * Math.PI);
+        ctx.stroke();
+      }
       if (ess) {
         // The threshold N_thr (lee-cpf), dashed yellow, and a tick under every frame that
         // resampled.
         // The threshold now in force is drawn across the whole strip (2 px, so it shows
         // from the first frame), its value written at the right.
-        const now = this.threshold.filter((v) => v !== null).at(-1);
+        const now = threshold.filter((t) => t !== null).at(-1);
         if (now !== undefined) {
           ctx.save();
           ctx.strokeStyle = ESS_THRESHOLD_COLOUR;
@@ -157,9 +199,9 @@ export class Plots {
           ctx.fillStyle = ESS_THRESHOLD_COLOUR;
           ctx.fillText(`N_thr ${now.toFixed(0)}`, canvas.width - 56, Math.round(y(now)) + 4);
         }
-        line(this.threshold, ESS_THRESHOLD_COLOUR, [6, 4]);
+        line(threshold, ESS_THRESHOLD_COLOUR, [6, 4]);
         ctx.fillStyle = RESAMPLED_COLOUR;
-        this.resampled.forEach((done, i) => {
+        resampled.forEach((done, i) => {
           if (done) ctx.fillRect(Math.round(x(i)) - 1, top + strip - 7, 2, 6);
         });
       }
@@ -170,7 +212,7 @@ export class Plots {
       ctx.fillStyle = '#e6e9ec';
       ctx.fillText(`${s.name} (${s.unit})`, 6, top + 16);
       ctx.fillStyle = '#4fc3f7';
-      ctx.fillText(latest(this.points[k]), 6, top + 32);
+      ctx.fillText(latest(points), 6, top + 32);
       if (this.other[k].some((v) => v !== null)) {
         ctx.fillStyle = COMPARE_COLOUR;
         ctx.fillText(latest(this.other[k]), 72, top + 32);
@@ -178,5 +220,11 @@ export class Plots {
       ctx.fillStyle = '#8a949e';
       ctx.fillText(`${hi.toPrecision(3)} … ${lo.toPrecision(3)}`, 6, top + 48);
     });
+    if (live) {
+      // Which stage the newest point is after, at the top right.
+      ctx.fillStyle = LIVE_COLOUR;
+      const text = `frame in progress: after “${live.label}”`;
+      ctx.fillText(text, canvas.width - 8 - ctx.measureText(text).width, 14);
+    }
   }
 }

@@ -1,41 +1,23 @@
-// Talks to the tracking worker (worker.js) with request/response promises.
-// Every request carries an id; the worker answers { id, ok, result } or
-// { id, ok: false, error, name } (the message and the error's kind).
+// The page's side of the demo's worker (worker.js): the package's own client, `TrackerWorker`
+// of lanepf/worker, connected to the demo's worker rather than the package's. The tracker is
+// opened and closed with `open` / `close`; the demo's ops (scenes, the comparison tracker,
+// the calibrator, a frame through everything) are `request(op, args, transfer)`. A rejected
+// request's Error keeps lanepf's kind in `name` and, when the request carried a frame, hands
+// its pixels back on `err.frame`.
+import { TrackerWorker } from '../pkg/worker/index.js';
 
-export class WorkerClient {
-  constructor(url = new URL('./worker.js', import.meta.url)) {
-    this.worker = new Worker(url, { type: 'module' });
-    this.pending = new Map();
-    this.nextId = 1;
-    this.worker.onmessage = (e) => {
-      const { id, ok, result, error, name, rgba } = e.data;
-      const p = this.pending.get(id);
-      if (!p) return;
-      this.pending.delete(id);
-      // A failed request keeps the error's kind in `err.name` and hands transferred pixels back
-      // on the Error (`err.rgba`).
-      ok ? p.resolve(result) : p.reject(Object.assign(new Error(error), { rgba }, name ? { name } : {}));
-    };
-    this.worker.onerror = (e) => {
-      const err = new Error(`worker failed: ${e.message ?? 'unknown error'}`);
-      for (const p of this.pending.values()) p.reject(err);
-      this.pending.clear();
-    };
-  }
+/** Starts the demo's worker and the wasm module in it (no tracker yet). */
+export function connectWorker() {
+  const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  return TrackerWorker.connect({ worker });
+}
 
-  /** Sends `{ type, ...payload }`; resolves with the worker's result. */
-  request(type, payload = {}, transfer = []) {
-    if ('id' in payload || 'type' in payload) {
-      return Promise.reject(new Error(`request '${type}': payload keys 'id' and 'type' are reserved`));
-    }
-    const id = this.nextId++;
-    return new Promise((resolve, reject) => {
-      this.pending.set(id, { resolve, reject });
-      this.worker.postMessage({ id, type, ...payload }, transfer);
-    });
+/** A tracker config from the panel's options and the page's camera; a `camera` among the
+ *  options would be silently replaced, so it is refused. */
+export function withCamera(options, camera) {
+  if (options && 'camera' in options) {
+    throw Object.assign(new Error('tracker options: `camera` comes from the camera panel, not the options'),
+      { name: 'LanepfConfigError' });
   }
-
-  terminate() {
-    this.worker.terminate();
-  }
+  return { ...(options ?? {}), camera };
 }

@@ -1,6 +1,6 @@
 // `lanepf/worker`: a Tracker in a module Web Worker, behind promises.
 import type {
-  EgoMotion, Hypothesis, LaneEstimate, Layer, TrackerConfig, TrackerId,
+  EgoMotion, Hypothesis, LaneEstimate, Layer, ResampleDecision, TrackerConfig, TrackerId,
 } from '../web/lanepf.js';
 import type { FrameSource } from '../frames/index.js';
 
@@ -38,6 +38,8 @@ export interface TrackWant {
   particles?: boolean;
   /** The tracker's cues after the frame. */
   layers?: boolean;
+  /** The frame's resampling decisions, as the filters made them. */
+  resamplings?: boolean;
   /** The frame's pixels back (transferred), e.g. to draw it. */
   frame?: boolean;
 }
@@ -50,6 +52,7 @@ export interface TrackResult {
   hypotheses?: Hypothesis[];
   particles?: Float32Array;
   layers?: Layer[];
+  resamplings?: ResampleDecision[];
   frame?: { data: Uint8ClampedArray<ArrayBuffer> | Uint8Array<ArrayBuffer>; width: number; height: number };
 }
 
@@ -85,6 +88,8 @@ export class TrackerWorker {
   particles(): Promise<Float32Array>;
   hypotheses(max: number): Promise<Hypothesis[]>;
   layers(): Promise<Layer[]>;
+  /** The resampling decisions of the last `step` / `advance`, as the filters made them. */
+  resamplings(): Promise<ResampleDecision[]>;
   /** Replaces the tracker in the same worker (same wasm instance); rejects as `create` does. */
   open(id: TrackerId, config: TrackerConfig): Promise<this>;
   /** Frees the tracker, keeping the worker. */

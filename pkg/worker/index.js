@@ -159,9 +159,10 @@ export class TrackerWorker {
   }
 
   /**
-   * As `step`, with more back: `{ estimate, ms, hypotheses?, particles?, layers?, frame? }`:
-   * `ms` the step's time in the worker, and what `want` asks for (`hypotheses: n`,
-   * `particles: true`, `layers: true`, `frame: true` for the frame's pixels back, transferred).
+   * As `step`, with more back: `{ estimate, ms, hypotheses?, particles?, layers?,
+   * resamplings?, frame? }`: `ms` the step's time in the worker, and what `want` asks for
+   * (`hypotheses: n`, `particles: true`, `layers: true`, `resamplings: true`, `frame: true`
+   * for the frame's pixels back, transferred).
    */
   async track(frame, options = {}) {
     const { args, transfer } = this.frameArgs(frame, options);
@@ -208,6 +209,9 @@ export class TrackerWorker {
 
   /** Pictures of the tracker's cues after the last frame. */
   layers() { return this.request('layers'); }
+
+  /** The resampling decisions of the last `step` / `advance`, as the filters made them. */
+  resamplings() { return this.request('resamplings'); }
 
   /** Stops the worker (its wasm memory goes with it); pending calls reject. */
   terminate() {

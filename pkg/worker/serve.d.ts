@@ -22,6 +22,6 @@ export type Op = (args: any, ctx: ServeContext) => OpResult | void | Promise<OpR
 /**
  * Answers TrackerWorker's requests in this worker: the tracker's ops and `extra` (names must
  * not be the tracker's own: version, open, step, track, beginFrame, advance, nextStep, reset, particles,
- * hypotheses, layers, close).
+ * hypotheses, layers, resamplings, close).
  */
 export function serve(extra?: Record<string, Op>): void;

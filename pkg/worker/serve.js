@@ -30,6 +30,7 @@ function extras(t, want) {
   if (want?.hypotheses > 0) out.hypotheses = t.hypotheses(want.hypotheses);
   if (want?.particles) out.particles = t.particles();
   if (want?.layers) out.layers = t.layers();
+  if (want?.resamplings) out.resamplings = t.resamplings();
   return out;
 }
 
@@ -86,6 +87,9 @@ const ops = {
   },
   layers() {
     return { result: need().layers() };
+  },
+  resamplings() {
+    return { result: need().resamplings() };
   },
   close() {
     tracker?.free();

@@ -4,7 +4,8 @@
 //! [`MotionModel`] (drift + diffusion), [`MeasurementModel`] (log-likelihood of a state given
 //! the frame's cues) and [`InitialDistribution`]. One frame: resample (by a [`Resampler`] and
 //! a [`ResamplePolicy`]), inject initialisation particles, predict, weigh in the log domain
-//! (log-sum-exp normalisation, ESS). Variants: [`PartitionedModel`] for partitioned sampling
+//! (log-sum-exp normalisation, ESS); every resampling decision can be
+//! [`recorded`] as the filter made it ([`ResampleDecision`]). Variants: [`PartitionedModel`] for partitioned sampling
 //! (Liu), several filters in cascade (Lee), [`Regime`] particles with a [`MarkovChain`]
 //! (Adachi), and the estimators [`weighted_mean`], [`map_index`] and [`Mbsas`] (Danescu eq. 15).
 //! The [`Rng`] is seeded and owned by the filter, so runs repeat bit for bit on every target
@@ -17,6 +18,7 @@ mod multimodel;
 mod particle_filter;
 mod partitioned;
 mod resample;
+mod resampling_log;
 mod rng;
 mod weights;
 
@@ -27,5 +29,6 @@ pub use multimodel::{model_probabilities, MarkovChain, ModelMotion, Regime, Swit
 pub use particle_filter::{FilterConfig, Injection, ParticleFilter, MAX_PARTICLES};
 pub use partitioned::PartitionedModel;
 pub use resample::{ResamplePolicy, Resampler};
+pub use resampling_log::{recorded, ResampleDecision, ResampleRule};
 pub use rng::Rng;
 pub use weights::{effective_sample_size, log_sum_exp, normalise, Normalised};

@@ -17,6 +17,7 @@
 
 use super::model::{InitialDistribution, MeasurementModel, MotionModel};
 use super::resample::{ResamplePolicy, Resampler};
+use super::resampling_log::{self, ResampleDecision, ResampleRule};
 use super::rng::Rng;
 use super::weights::{effective_sample_size, normalise};
 use crate::error::{require_finite, Error, Result};
@@ -267,6 +268,13 @@ impl<S: Clone> ParticleFilter<S> {
     /// weights are equal and no particle counts as injected.
     pub fn resample_between_stages(&mut self) {
         let n = self.len();
+        resampling_log::note(ResampleDecision {
+            rule: ResampleRule::BetweenStages,
+            ess: self.ess,
+            particles: n,
+            threshold: None,
+            resampled: true,
+        });
         self.config
             .resampler
             .resample(&self.weights, n, &mut self.rng, &mut self.ancestors);
@@ -287,7 +295,21 @@ impl<S: Clone> ParticleFilter<S> {
     pub fn resample(&mut self) -> bool {
         let n = self.len();
         let k = self.injected_count;
-        if k == 0 && !self.config.policy.should_resample(self.ess, n) {
+        let resampled = k > 0 || self.config.policy.should_resample(self.ess, n);
+        let (rule, threshold) = match (k, self.config.policy) {
+            (1.., _) => (ResampleRule::Injection, None),
+            (0, ResamplePolicy::Always) => (ResampleRule::Always, None),
+            (0, ResamplePolicy::EssBelow(f)) => (ResampleRule::EssBelow, Some(f * n as f64)),
+            (0, ResamplePolicy::Never) => (ResampleRule::Never, None),
+        };
+        resampling_log::note(ResampleDecision {
+            rule,
+            ess: self.ess,
+            particles: n,
+            threshold,
+            resampled,
+        });
+        if !resampled {
             return false;
         }
         self.config

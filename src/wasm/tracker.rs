@@ -7,6 +7,7 @@ use super::estimate::{self, Keep};
 use super::object;
 use super::step_input;
 use crate::camera::CameraFile;
+use crate::filter::{self, ResampleDecision};
 use crate::trackers::{self, TrackerConfig};
 use wasm_bindgen::prelude::*;
 
@@ -20,6 +21,8 @@ pub struct JsTracker {
     right: Vec<u8>,
     /// The camera's frame size, [width, height].
     size: [usize; 2],
+    /// The resampling decisions of the last `step` or `advance`, as the filters made them.
+    resamplings: Vec<ResampleDecision>,
 }
 
 /// Reads a tracker config: the camera first (so that its errors name `camera.<key>`), then the
@@ -81,6 +84,7 @@ impl JsTracker {
             size,
             frame: Vec::new(),
             right: Vec::new(),
+            resamplings: Vec::new(),
         })
     }
 
@@ -114,7 +118,10 @@ impl JsTracker {
         #[wasm_bindgen(unchecked_optional_param_type = "undefined")] height: Option<JsValue>,
     ) -> Result<JsValue, Thrown> {
         let [w, h] = self.take_step_input(&frame, options.as_ref(), height.as_ref())?;
-        let estimate = self.inner.step(&self.frame, w, h).map_err(input)?;
+        self.resamplings.clear();
+        let (estimate, decisions) = filter::recorded(|| self.inner.step(&self.frame, w, h));
+        let estimate = estimate.map_err(input)?;
+        self.resamplings = decisions;
         estimate::to_js(&estimate, Keep::Neither)
     }
 
@@ -247,7 +254,22 @@ impl JsTracker {
 
     /// Forgets the past.
     pub fn reset(&mut self) {
+        self.resamplings.clear();
         self.inner.reset();
+    }
+
+    /// The resampling decisions of the last `step()` or `advance()`, in the order the filters
+    /// made them (empty after `beginFrame`, `reset`, a call that threw, or a step that did not
+    /// resample or test): `[{ rule, ess, particles, threshold, resampled }]`. `rule` is
+    /// `'ess-below'` (resample when `ess < threshold`: lee-cpf's N_thr), `'always'`,
+    /// `'injection'` (every frame, the set rebuilt with fresh particles: liu-ppf,
+    /// danescu-*), `'between-stages'` (liu-ppf's partitions) or `'never'`; `ess` is the
+    /// effective sample size the filter tested, `threshold` (particles) is null unless the rule
+    /// is `'ess-below'`. Each filter of a tracker reports its own (lee-cpf's two stages one
+    /// after the other; on a first frame the start-up rounds too).
+    #[wasm_bindgen(unchecked_return_type = "ResampleDecision[]")]
+    pub fn resamplings(&self) -> Result<JsValue, Thrown> {
+        super::to_js_value(&self.resamplings)
     }
 
     /// The steps of one frame in per-step (teaching) mode, in order; empty for a tracker
@@ -273,6 +295,7 @@ impl JsTracker {
         #[wasm_bindgen(unchecked_optional_param_type = "undefined")] height: Option<JsValue>,
     ) -> Result<(), Thrown> {
         let [w, h] = self.take_step_input(&frame, options.as_ref(), height.as_ref())?;
+        self.resamplings.clear();
         self.inner.begin_frame(&self.frame, w, h).map_err(input)
     }
 
@@ -280,7 +303,11 @@ impl JsTracker {
     /// `particles()` in between to watch the cloud move). Throws when no frame is in progress.
     #[wasm_bindgen(unchecked_return_type = "LaneEstimate | null")]
     pub fn advance(&mut self) -> Result<JsValue, Thrown> {
-        match self.inner.advance().map_err(input)? {
+        self.resamplings.clear();
+        let (estimate, decisions) = filter::recorded(|| self.inner.advance());
+        let estimate = estimate.map_err(input)?;
+        self.resamplings = decisions;
+        match estimate {
             Some(estimate) => estimate::to_js(&estimate, Keep::Neither),
             None => Ok(JsValue::NULL),
         }

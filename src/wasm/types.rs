@@ -617,6 +617,27 @@ export interface Hypothesis {
   boundaries: Boundary[];
 }
 
+/**
+ * One resampling decision of a tracker's filter, as the filter made it
+ * (`Tracker.resamplings()`): e.g. lee-cpf's stage 1 with `{ rule: 'ess-below', ess: 394.2,
+ * particles: 500, threshold: 250, resampled: false }`.
+ */
+export interface ResampleDecision {
+  /** `'ess-below'`: resampled when `ess < threshold` (Lee, Algorithm 1); `'always'`: every
+   *  time; `'injection'`: every frame, keeping N - k particles for k fresh ones (liu-ppf,
+   *  danescu-*); `'between-stages'`: between the partitions of partitioned sampling (liu-ppf);
+   *  `'never'`. */
+  rule: 'ess-below' | 'always' | 'injection' | 'between-stages' | 'never';
+  /** The effective sample size of the weights the filter decided on (particles). */
+  ess: number;
+  /** The filter's particle count N. */
+  particles: number;
+  /** The ESS below which it resamples (particles); null unless `rule` is `'ess-below'`. */
+  threshold: number | null;
+  /** Whether it resampled. */
+  resampled: boolean;
+}
+
 /** Options of `new Calibrator(options)`. Unknown fields are refused. */
 export interface CalibratorOptions {
   /** Frame width, pixels (at least 32). */

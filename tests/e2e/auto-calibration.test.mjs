@@ -11,7 +11,7 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { start, open } from './browser.mjs';
+import { start, open, running } from './browser.mjs';
 
 // 640x480 with the focal length of a 60-degree field of view (the calibrator's default guess),
 // 1.4 m up, 3 degrees down, 1 degree left.
@@ -59,7 +59,7 @@ const errorsOf = (estimate) => ({
 
 test('an uploaded video without a camera is auto-calibrated, tracked with the estimate, and a camera chosen by hand wins', async () => {
   const { page, errors } = await open(env.browser, `${env.base}/?source=highway-straight&tracker=lee-cpf`);
-  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  await running(page);
   // A simulator scene has its own camera: no auto-calibration.
   assert.equal(await page.isVisible('#auto-calibration'), false);
   await page.setInputFiles('#file', video);

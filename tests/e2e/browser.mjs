@@ -35,3 +35,10 @@ export async function open(browser, url, contextOptions = {}) {
   await page.goto(url);
   return { page, errors };
 }
+
+/** Waits until the demo page has started (`document.body.dataset.state` is `running`). */
+export const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
+  null, { timeout: 30000 });
+
+/** Waits until the demo page has no action queued or in flight (`lanepfDemo.pending` is 0). */
+export const idle = (page) => page.waitForFunction(() => window.lanepfDemo.pending === 0, null, { timeout: 30000 });

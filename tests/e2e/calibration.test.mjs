@@ -2,14 +2,14 @@
 // onto a straight road's lane markings, in every browser: cross-browser.test.mjs.)
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { start, open } from './browser.mjs';
+import { start, open, running } from './browser.mjs';
 
 const env = await start();
 test.after(() => env.close());
 
 test('bad camera fields give a message, are not remembered, and a good camera brings the tracker back', async () => {
   const { page, errors } = await open(env.browser, `${env.base}/?source=highway-straight&tracker=lee-cpf`);
-  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  await running(page);
   await page.click('#calibration summary');
   await page.fill('#camera-fields input[name="fx"]', '');
   await page.click('#camera-apply');

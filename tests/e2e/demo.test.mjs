@@ -6,7 +6,7 @@
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync } from 'node:fs';
-import { start, open } from './browser.mjs';
+import { start, open, running } from './browser.mjs';
 import { readCanvas, peak, xAt } from './pixels.mjs';
 
 const env = await start();
@@ -15,7 +15,7 @@ mkdirSync('test-results', { recursive: true });
 
 test('demo switches to a simulator scenario and draws it under its ground truth', async () => {
   const { page, errors } = await open(env.browser, `${env.base}/?tracker=`);
-  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  await running(page);
   const names = await page.$$eval('#source option', (os) => os.map((o) => o.value));
   assert.ok(names.includes('highway-curve') && names.includes('urban') && names.length >= 13, names.join());
 
@@ -46,7 +46,7 @@ test('demo switches to a simulator scenario and draws it under its ground truth'
 
 test('demo runs the adachi-mmpf tracker in the worker and draws its lanes on the truth', async () => {
   const { page, errors } = await open(env.browser, `${env.base}/`);
-  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  await running(page);
   await page.click('#play');
   await page.selectOption('#source', 'highway-straight');
   await page.waitForFunction(() => /highway-straight/.test(document.getElementById('status').textContent));
@@ -74,7 +74,7 @@ test('demo runs the adachi-mmpf tracker in the worker and draws its lanes on the
 
 test('demo runs liu-ppf and shows its measurement pixels as the tracker cue view', async () => {
   const { page, errors } = await open(env.browser, `${env.base}/`);
-  await page.waitForFunction(() => document.body.dataset.state === 'running', null, { timeout: 30000 });
+  await running(page);
   await page.click('#play');
   await page.selectOption('#source', 'highway-straight');
   await page.waitForFunction(() => /highway-straight/.test(document.getElementById('status').textContent));

@@ -7,16 +7,13 @@
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
-import { start, open } from './browser.mjs';
+import { start, open, running, idle } from './browser.mjs';
 import { readCanvas, countColour } from './pixels.mjs';
 
 const env = await start();
 test.after(() => env.close());
 mkdirSync('test-results', { recursive: true });
 
-const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
-  null, { timeout: 30000 });
-const idle = (page) => page.waitForFunction(() => window.lanepfDemo.pending === 0);
 const rgb = (hex) => [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
 /** render.js's colours and styles, as the page's module has them. */
 const styles = (page) => page.evaluate(async () => {
@@ -230,7 +227,7 @@ test('the plots\' caption names the tracker shown', async () => {
   assert.match(await caption(), /^lee-cpf’s estimate \(blue\), the ground truth .* Kalman smoother \(orange\)/);
   await page.selectOption('#tracker', 'adachi-mmpf');
   await page.waitForFunction(() => /^adachi-mmpf/.test(document.getElementById('plots-caption').textContent));
-  assert.match(await caption(), /^adachi-mmpf’s estimate \(blue\) and the ground truth \(grey, dashed\), over the last 300 frames\. ESS: a red tick on each frame that resampled \(this tracker resamples every frame\)$/);
+  assert.match(await caption(), /^adachi-mmpf’s estimate \(blue\) and the ground truth \(grey, dashed\), over the last 300 frames\. ESS: the filter’s, the threshold N_thr the tracker reports testing it against \(yellow, dashed; none when it resamples whatever the ESS\) and a red tick on each frame it reports resampling; stepping, the frame in progress is ringed and redrawn after every stage$/);
   assert.doesNotMatch(await caption(), /lee-cpf|Kalman/);
   await page.selectOption('#tracker', 'liu-ppf');
   await page.waitForFunction(() => /^liu-ppf’s/.test(document.getElementById('plots-caption').textContent));

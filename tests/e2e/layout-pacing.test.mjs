@@ -6,7 +6,7 @@
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
-import { start, open } from './browser.mjs';
+import { start, open, running, idle } from './browser.mjs';
 import { readCanvas, countNear } from './pixels.mjs';
 
 const env = await start();
@@ -16,9 +16,6 @@ mkdirSync('test-results', { recursive: true });
 const PHONE = { width: 390, height: 844 };
 const LAPTOP = { width: 1280, height: 800 };
 
-const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
-  null, { timeout: 30000 });
-const idle = (page) => page.waitForFunction(() => window.lanepfDemo.pending === 0);
 /** The bounding box of `selector` in page coordinates (scrolled to the top), or null if hidden. */
 const box = (page, selector) => page.evaluate((s) => {
   const el = document.querySelector(s);

@@ -7,7 +7,7 @@ import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, statSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
-import { start, open } from './browser.mjs';
+import { start, open, running } from './browser.mjs';
 import { readCanvas, lum } from './pixels.mjs';
 
 const CLIP = fileURLToPath(new URL('../../www/clips/udacity-project-640x360.webm', import.meta.url));
@@ -15,8 +15,6 @@ const env = await start(['--use-fake-device-for-media-stream', '--use-fake-ui-fo
 test.after(() => env.close());
 mkdirSync('test-results', { recursive: true });
 
-const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
-  null, { timeout: 30000 });
 const framesAtLeast = (page, n, timeout = 30000) => page.waitForFunction(
   (n) => window.lanepfDemo.frames >= n, n, { timeout },
 );

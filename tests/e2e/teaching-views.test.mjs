@@ -1,24 +1,25 @@
 // End-to-end in Chromium: the road trackers' teaching views (issue 22, part 1). Stepping
-// lee-cpf stage by stage, the status line says its resampling was skipped, with the ESS it
-// measured (the same as the estimate's own `lee.ess1`) and its threshold N_thr = N/2, and links
-// to the text on degeneracy and ESS; adachi-mmpf says it resampled. The weight histogram is
-// redrawn after every stage (one bar after a resampling, spread after a weighing, measured on
-// its canvas); the ESS plot draws lee-cpf's threshold line (adachi-mmpf has none) and a tick on
-// every frame that resampled (measured on the canvas); the legend says how many particles are
-// drawn of the total, and its particle sample carries the weight colours.
+// lee-cpf stage by stage, the status line says what the tracker reported of its resampling
+// (`Tracker.resamplings()`): skipped, with the ESS it tested (the same as the estimate's own
+// `lee.ess1`) and its threshold N_thr = N/2, and links to the text on degeneracy and ESS;
+// adachi-mmpf says it resampled. The weight histogram is redrawn after every stage (one bar
+// after a resampling, spread after a weighing, measured on its canvas), and so are the plots
+// (the frame in progress is their newest point: the canvas changes after every stage, the ESS
+// strip after a weighing); the ESS plot draws lee-cpf's threshold line (adachi-mmpf has none)
+// and a tick on every frame that resampled (measured on the canvas); the legend says how many
+// particles are drawn of the total, and its particle sample carries the weight colours. In
+// compare mode the second tracker has its own weight histogram and belief view, drawn.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync } from 'node:fs';
-import { start, open } from './browser.mjs';
+import { createHash } from 'node:crypto';
+import { start, open, running, idle } from './browser.mjs';
 import { readCanvas } from './pixels.mjs';
 
 const env = await start();
 test.after(() => env.close());
 mkdirSync('test-results', { recursive: true });
 
-const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
-  null, { timeout: 30000 });
-const idle = (page) => page.waitForFunction(() => window.lanepfDemo.pending === 0);
 const status = (page) => page.textContent('#status');
 
 /** Runs one stage (the step-stage button) and waits for it to be drawn. */
@@ -47,6 +48,20 @@ async function barColumns(page) {
     }
   }
   return columns.size;
+}
+
+/** A hash of canvas `id`'s pixels. */
+const canvasHash = async (page, id) => createHash('sha1').update(JSON.stringify(await readCanvas(page, id))).digest('hex');
+
+/** The pixels of the plots canvas's ESS strip (5th of 6), right of the labels, as a string. */
+async function essStrip(page) {
+  const img = await readCanvas(page, 'plots');
+  const strip = img.height / 6;
+  const rows = [];
+  for (let y = Math.floor(4 * strip); y < Math.floor(5 * strip); y++) {
+    rows.push(img.data.slice(4 * (y * img.width + 150), 4 * (y + 1) * img.width).join(','));
+  }
+  return rows.join(';');
 }
 
 /** Pixels of colour `hex` (within 30 per channel) in the plots canvas's ESS strip (5th of 6). */
@@ -80,15 +95,31 @@ test('lee-cpf: the step text reports a skipped resampling with its ESS and thres
   assert.ok(line > 100, `the threshold line is drawn in the ESS strip: ${line} pixels`);
   assert.match(await page.textContent('#plots-caption'), /threshold N_thr/);
 
-  // Step one frame stage by stage; read the text after each resampling stage.
+  // Step one frame stage by stage; read the text after each resampling stage, and the plots
+  // after each stage.
   const texts = [];
   const columns = [];
+  let plotsBefore = await canvasHash(page, 'plots');
+  let essBefore = createHash('sha1').update(await essStrip(page)).digest('hex');
   for (let k = 0; k < 9; k++) {
     await stage(page);
     const s = await page.evaluate(() => ({
       resampling: window.lanepfDemo.lastResampling, weighing: window.lanepfDemo.lastWeighing,
+      live: window.lanepfDemo.plotsStage, next: document.getElementById('next-stage').textContent,
     }));
     columns.push({ label: s.weighing?.label, ess: s.weighing?.ess, bars: await barColumns(page) });
+    // The plots are redrawn after every stage, the frame in progress as their newest point.
+    const plotsNow = await canvasHash(page, 'plots');
+    assert.notEqual(plotsNow, plotsBefore, `the plots changed after stage ${k}: ${s.weighing?.label}`);
+    plotsBefore = plotsNow;
+    const essNow = createHash('sha1').update(await essStrip(page)).digest('hex');
+    if (k > 0 && s.live) {
+      assert.equal(`after “${s.live.label}”`, s.weighing.label, 'the plots show the stage just run');
+      assert.equal(s.live.ess, s.weighing.ess, 'the newest ESS point is the weights’ ESS now');
+      // A weighing changes the weights: the ESS strip itself changes.
+      if (/weigh/.test(s.live.label)) assert.notEqual(essNow, essBefore, `the ESS strip changed after ${s.live.label}`);
+    }
+    essBefore = essNow;
     if (k > 0 && s.resampling) {
       texts.push({ text: await status(page), ...s.resampling });
       // The step text links to the text on resampling.
@@ -104,7 +135,8 @@ test('lee-cpf: the step text reports a skipped resampling with its ESS and thres
   assert.equal(texts.length, 2, 'two resampling stages in a cascade frame');
   const own = await page.evaluate(() => window.lanepfDemo.lastEstimate.state);
   texts.forEach((t, k) => {
-    assert.equal(t.threshold, t.n / 2, 'N_thr = N/2 by default');
+    assert.equal(t.rule, 'ess-below', 'lee-cpf tests its ESS');
+    assert.equal(t.threshold, t.particles / 2, 'N_thr = N/2 by default');
     const m = t.text.match(/ran “stage (\d): estimate, resample if N_eff < N_thr” · (?:(skipped): ESS ([\d.]+) > ([\d.]+)|(resampled): ESS ([\d.]+) < threshold ([\d.]+))$/);
     assert.ok(m, `the step text: ${t.text}`);
     assert.equal(Number(m[1]), k + 1);
@@ -147,7 +179,9 @@ test('adachi-mmpf: resampled every frame, ticks on the ESS plot, no threshold, a
   // Stage 1: resample. Its weights are then all 1/N: one bar; after weighing, many.
   await stage(page); // start of the frame
   await stage(page); // resample
-  assert.match(await status(page), /ran “resample” · resampled: every frame \(ESS \d+ of 500; this tracker does not test it\)$/);
+  assert.match(await status(page), /ran “resample” · resampled: every time, whatever the ESS \(ESS \d+ of 500\)$/);
+  const reported = await page.evaluate(() => window.lanepfDemo.lastResamplings);
+  assert.deepEqual(reported.map((d) => [d.rule, d.threshold, d.resampled, d.particles]), [['always', null, true, 500]]);
   const afterResample = await page.evaluate(() => window.lanepfDemo.lastWeighing);
   assert.ok(Math.abs(afterResample.ess - 500) < 1, `equal weights after resampling: ESS ${afterResample.ess}`);
   const one = await barColumns(page);
@@ -180,9 +214,9 @@ test('adachi-mmpf: resampled every frame, ticks on the ESS plot, no threshold, a
   await page.close();
 });
 
-/** Pixels of each panel of the belief canvas that are not background or axis grey. */
-async function beliefInk(page, panels) {
-  const img = await readCanvas(page, 'belief');
+/** Pixels of each panel of a belief canvas that are not background or axis grey. */
+async function beliefInk(page, panels, id = 'belief') {
+  const img = await readCanvas(page, id);
   const ph = img.height / panels;
   return Array.from({ length: panels }, (_, k) => {
     let n = 0;
@@ -246,3 +280,54 @@ for (const [tracker, titles] of Object.entries(BELIEFS)) {
     await page.close();
   });
 }
+
+/** Pixels of canvas `id` inside its axes (x from 46, y from 24 to 26 px above the bottom)
+ *  that are not background or axis grey. */
+async function ink(page, id, top = 24, bottom = 26) {
+  const img = await readCanvas(page, id);
+  let n = 0;
+  for (let y = top; y < img.height - bottom; y++) {
+    for (let x = 46; x < img.width - 10; x++) {
+      const i = 4 * (y * img.width + x);
+      const [r, g, b] = [img.data[i], img.data[i + 1], img.data[i + 2]];
+      if (Math.max(r, g, b) - Math.min(r, g, b) > 40) n++;
+    }
+  }
+  return n;
+}
+
+test('compare mode: the second tracker has its own weight histogram and belief view, drawn', async () => {
+  const { page, errors } = await open(env.browser,
+    `${env.base}/?source=highway-straight&tracker=lee-cpf&compare=adachi-mmpf`, { viewport: { width: 1280, height: 1600 } });
+  await running(page);
+  await pauseAfter(page, 4);
+  for (const id of ['compare-weights', 'compare-belief']) {
+    assert.equal(await page.isVisible(`#${id}`), true, `#${id} is shown`);
+  }
+  const { weighing, belief } = await page.evaluate(() => ({
+    weighing: window.lanepfDemo.lastCompareWeighing, belief: window.lanepfDemo.lastCompareBelief,
+  }));
+  assert.equal(weighing.n, 500, 'adachi-mmpf’s 500 particles');
+  assert.ok(weighing.ess > 0 && weighing.ess <= 500, `ESS ${weighing.ess}`);
+  assert.match(await page.textContent('#compare-weights-caption'), /^adachi-mmpf: Weights of 500 particles after the whole frame: ESS/);
+  // adachi-mmpf's panels, not lee-cpf's (which the first belief view shows).
+  assert.deepEqual(belief.map((b) => b.title.replace(/ \(.*$/, '')), ['edge votes H_j over ρ', 'lane position q by model r']);
+  assert.ok(belief[1].probabilities.length === 4, JSON.stringify(belief[1]));
+  const ownBelief = await page.evaluate(() => window.lanepfDemo.lastBelief.map((b) => b.title));
+  assert.match(ownBelief[0], /^stage 1: lane offset y₀/);
+  assert.match(await page.textContent('#compare-belief-caption'), /^adachi-mmpf’s belief after the whole frame: /);
+  // Both are drawn: coloured bars inside the axes of the histogram and of each belief panel.
+  const bars = await ink(page, 'compare-weights');
+  assert.ok(bars > 50, `the second histogram has bars: ${bars} pixels`);
+  const panels = await beliefInk(page, 2, 'compare-belief');
+  for (const n of panels) assert.ok(n > 50, `every panel of the second belief view has bars: ${panels}`);
+  // Stepping the first tracker, the second takes the whole frame: its figures stay drawn.
+  await stage(page);
+  await stage(page);
+  assert.equal(await page.isVisible('#compare-belief'), true);
+  assert.ok((await ink(page, 'compare-weights')) > 50);
+  await page.screenshot({ path: 'test-results/teaching-compare.png', fullPage: true });
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+

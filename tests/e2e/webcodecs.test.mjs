@@ -6,7 +6,7 @@
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { start, open } from './browser.mjs';
+import { start, open, running, idle } from './browser.mjs';
 import { makeVideos, countFrames, FRAMES, RAMP_STEP } from '../node/video-fixtures.mjs';
 
 const env = await start();
@@ -19,9 +19,6 @@ test.after(async () => {
 });
 
 const status = (page) => page.textContent('#status');
-const running = (page) => page.waitForFunction(() => document.body.dataset.state === 'running',
-  null, { timeout: 30000 });
-const idle = (page) => page.waitForFunction(() => window.lanepfDemo.pending === 0, null, { timeout: 30000 });
 
 /**
  * Reads a whole video with WebCodecsVideoSource in the page, then five frames after a restart.

@@ -164,6 +164,8 @@ function assertWorker(r, where) {
     assert.ok(s.hypotheses > 0 && s.hypotheses <= 5, `${where}: ${name}: ${s.hypotheses} hypotheses`);
     assert.equal(s.particles, 1000, `${where}: ${name}: the particle cloud came back (500 a stage)`);
     assert.ok(s.particlesSame, `${where}: ${name}: the cloud equals the main thread's`);
+    assert.equal(s.resamplings, 2, `${where}: ${name}: lee-cpf's two stages each decided`);
+    assert.ok(s.resamplingsSame, `${where}: ${name}: the resampling decisions equal the main thread's`);
     assert.ok(s.ms > 0, `${where}: ${name}: ms ${s.ms}`);
   }
   const vf = r.sources.videoFrame;

@@ -1,0 +1,49 @@
+// The top view the demo draws beside the camera view: a lookup table from road cells to camera
+// pixels, built once per camera, then a plain copy of pixels per frame (in the worker).
+import { Camera } from '../pkg/web/lanepf.js';
+
+/** Road cells 0.1 m, 2 to 42 m ahead, ±8 m. */
+export const TOP = { xMin: 2, xMax: 42, yHalf: 8, cell: 0.1 };
+
+/** The lookup table of a camera (`CameraConfig`): camera pixel index per road cell, -1 unseen. */
+export function topViewTable(cameraConfig) {
+  const camera = new Camera(cameraConfig);
+  const rows = Math.round((TOP.xMax - TOP.xMin) / TOP.cell);
+  const cols = Math.round((2 * TOP.yHalf) / TOP.cell);
+  const lut = new Int32Array(rows * cols).fill(-1);
+  const { width, height } = camera;
+  for (let r = 0; r < rows; r++) {
+    const x = TOP.xMax - (r + 0.5) * TOP.cell;
+    for (let c = 0; c < cols; c++) {
+      const y = TOP.yHalf - (c + 0.5) * TOP.cell;
+      let uv = null;
+      try {
+        uv = camera.projectRoad(x, y);
+      } catch {
+        uv = null;
+      }
+      if (!uv || uv.length < 2) continue;
+      const u = Math.round(uv[0]);
+      const v = Math.round(uv[1]);
+      if (u >= 0 && u < width && v >= 0 && v < height) lut[r * cols + c] = v * width + u;
+    }
+  }
+  camera.free();
+  return { lut, rows, cols, width, height };
+}
+
+/** The top view of an RGBA frame through `table` (null when the frame's size is not its camera's). */
+export function topView(table, rgba, width, height) {
+  if (!table || table.width !== width || table.height !== height) return null;
+  const { lut, rows, cols } = table;
+  const out = new Uint8ClampedArray(rows * cols * 4);
+  for (let i = 0; i < lut.length; i++) {
+    const p = lut[i];
+    if (p < 0) continue;
+    out[4 * i] = rgba[4 * p];
+    out[4 * i + 1] = rgba[4 * p + 1];
+    out[4 * i + 2] = rgba[4 * p + 2];
+    out[4 * i + 3] = 255;
+  }
+  return { rgba: out, rows, cols, ...TOP };
+}
