@@ -29,14 +29,20 @@ function requireTracker(ctx) {
   return ctx.tracker;
 }
 
-function feedTracker(t, { motion, frameRight, width, height }) {
-  // A stereo tracker gets the frame's right image (stereo media) or the scene's right camera;
-  // without one its step throws an Error saying that danescu-stereo needs a right image.
-  if (t.isStereo && frameRight) t.setRight(frameRight, width, height);
-  else if (t.isStereo && right) t.setRight(right.rgba, right.width, right.height);
+/**
+ * The options of `t.step(frame, options)` / `t.beginFrame(frame, options)`: a stereo tracker
+ * gets the frame's right image (stereo media) or the scene's right camera (without one its step
+ * throws an Error saying that danescu-stereo needs a right image), every tracker the car's
+ * motion when the source has it.
+ */
+function stepOptions(t, { motion, frameRight, width, height }) {
+  const options = {};
+  if (t.isStereo && frameRight) options.right = { data: frameRight, width, height };
+  else if (t.isStereo && right) options.right = { data: right.rgba, width: right.width, height: right.height };
   if (motion && [motion.t_s, motion.speed_mps, motion.yaw_rate].every(Number.isFinite)) {
-    t.setEgoMotion(motion);
+    options.motion = motion;
   }
+  return options;
 }
 
 /** The particles' weights by group (lee-cpf's stage; 0 for the others). */
@@ -58,9 +64,9 @@ function views(t, { hypotheses = 0, layers = false, belief = false }) {
  */
 function stepCompare(rgba, feed, want) {
   if (!compare) return null;
-  feedTracker(compare, feed);
+  const options = stepOptions(compare, feed);
   const t0 = performance.now();
-  const estimate = compare.step(rgba, feed.width, feed.height);
+  const estimate = compare.step({ data: rgba, width: feed.width, height: feed.height }, options);
   const trackMs = performance.now() - t0;
   const groups = weightsOf(compare);
   const { hypotheses, particles, layers } = views(compare, { ...want, layers: false });
@@ -169,9 +175,9 @@ serve({
     const calibration = calibrate(rgba, width, height, want);
     const t = ctx.tracker;
     if (!t) return reply(frame, { estimate: null, trackMs: 0, top: topOf(frame, want), calibration });
-    feedTracker(t, { motion, frameRight, width, height });
+    const options = stepOptions(t, { motion, frameRight, width, height });
     const t0 = performance.now();
-    const estimate = t.step(rgba, width, height);
+    const estimate = t.step({ data: rgba, width, height }, options);
     const trackMs = performance.now() - t0;
     return reply(frame, {
       estimate, trackMs, ...views(t, want ?? {}), top: topOf(frame, want), nextStep: t.nextStep ?? null,
@@ -186,9 +192,9 @@ serve({
     const t = requireTracker(ctx);
     const { data: rgba, width, height } = frame;
     if (t.stepNames().length === 0) throw new Error(`${t.id} has no per-step mode`);
-    feedTracker(t, { motion, frameRight, width, height });
+    const options = stepOptions(t, { motion, frameRight, width, height });
     const t0 = performance.now();
-    t.beginFrame(rgba, width, height);
+    t.beginFrame({ data: rgba, width, height }, options);
     const trackMs = performance.now() - t0;
     // The comparison tracker takes the whole frame at once.
     const compared = stepCompare(rgba, { motion, frameRight, width, height }, want);

@@ -26,12 +26,22 @@ export async function start(extraArgs = []) {
   };
 }
 
-/** Opens `url` in a new page that records page errors and console errors. */
+/**
+ * Opens `url` in a new page that records page errors, console errors and the package's
+ * deprecation warnings (the demo must not use a deprecated call, workers included).
+ */
 export async function open(browser, url, contextOptions = {}) {
   const page = await browser.newPage(contextOptions);
   const errors = [];
   page.on('pageerror', (e) => errors.push(`pageerror: ${e.message}`));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+  const deprecated = (m) => {
+    if (m.type() === 'warning' && /lanepf: .*deprecated/.test(m.text())) errors.push(`deprecated: ${m.text()}`);
+  };
+  page.on('console', (m) => {
+    if (m.type() === 'error') errors.push(`console: ${m.text()}`);
+    deprecated(m);
+  });
+  page.on('worker', (w) => w.on('console', deprecated));
   await page.goto(url);
   return { page, errors };
 }
