@@ -4,6 +4,7 @@ use super::hough::{bend, Hough, HoughParams, LineFit};
 use super::marking_image::{marking_intensity, working_scale};
 use super::pose::{lateral_at_unit_height, pose_from_vanishing_point, vanishing_point, Pinhole};
 use super::ridges::{find_ridges, keep_continuous, RidgePixel};
+use super::road_colour::keep_on_grey_road;
 use super::vp_votes::VpVotes;
 use crate::camera::{Camera, CameraFile, Distortion};
 use crate::error::{require_within, Error, Result};
@@ -161,7 +162,9 @@ pub struct Calibrator {
     /// Working pixel -> undistorted pixel / scale, when the lens distorts.
     undistort: Option<Vec<[f32; 2]>>,
     work: Image<u8>,
-    sums: Vec<u32>,
+    /// Saturation of the working image (see [`super::road_colour`]).
+    saturation: Image<u8>,
+    sums: Vec<[u32; 2]>,
     ridge_scratch: Vec<i32>,
     ridges: Vec<RidgePixel>,
     points: Vec<[f32; 2]>,
@@ -234,6 +237,7 @@ impl Calibrator {
             scale,
             undistort: None,
             work: Image::new(width / scale, height / scale)?,
+            saturation: Image::new(width / scale, height / scale)?,
             sums: Vec::new(),
             ridge_scratch: Vec::new(),
             ridges: Vec::new(),
@@ -365,6 +369,7 @@ impl Calibrator {
             self.scale,
             &mut self.sums,
             &mut self.work,
+            &mut self.saturation,
         )?;
         self.frames_seen += 1;
         self.observe();
@@ -398,6 +403,12 @@ impl Calibrator {
             MIN_RIDGE_CONTRAST,
             &mut self.ridge_scratch,
             &mut self.ridges,
+        );
+        keep_on_grey_road(
+            &mut self.ridges,
+            &self.work,
+            &self.saturation,
+            MIN_RIDGE_CONTRAST,
         );
         keep_continuous(&mut self.ridges, 2);
         self.points.clear();

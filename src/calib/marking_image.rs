@@ -7,8 +7,15 @@
 //! m = max(Y, clamp(2 ((R + G) / 2 - B), 0, 255))
 //! ```
 //!
-//! (grey road and white paint have R = G = B, so the second term is zero on them). The image
-//! is then box-averaged over s x s blocks, with s the smallest integer that brings the width
+//! (grey road and white paint have R = G = B, so the second term is zero on them). Beside it,
+//! in the same pass, each pixel's saturation
+//!
+//! ```text
+//! sat = 255 (max(R, G, B) - min(R, G, B)) / max(max(R, G, B), 40)
+//! ```
+//!
+//! (the floor keeps dark noise from looking colourful), which tells grey road from foliage,
+//! sky and car paint (see [`super::road_colour`]). Both images are then box-averaged over s x s blocks, with s the smallest integer that brings the width
 //! to at most [`MAX_WORK_WIDTH`]: the calibrator needs line directions, not fine detail, and
 //! this keeps its cost independent of the video's resolution.
 
@@ -31,8 +38,17 @@ fn intensity(px: &[u8]) -> u32 {
     (luma(px[0], px[1], px[2]) as u32).max(yellow)
 }
 
-/// Writes the s x s block means of the marking intensity of `rgba` into `out`, resized to
-/// (width / s) x (height / s) (the last partial block of a row or column is dropped).
+/// Saturation of one RGBA pixel (see the module docs).
+#[inline]
+fn saturation(px: &[u8]) -> u32 {
+    let max = px[0].max(px[1]).max(px[2]) as u32;
+    let min = px[0].min(px[1]).min(px[2]) as u32;
+    255 * (max - min) / max.max(40)
+}
+
+/// Writes the s x s block means of the marking intensity of `rgba` into `out` and those of its
+/// saturation into `sat`, both resized to (width / s) x (height / s) (the last partial block of
+/// a row or column is dropped).
 ///
 /// # Errors
 /// As [`check_rgba`]; [`crate::Error::Dimensions`] when the frame is smaller than one block.
@@ -41,28 +57,36 @@ pub fn marking_intensity(
     width: usize,
     height: usize,
     s: usize,
-    sums: &mut Vec<u32>,
+    sums: &mut Vec<[u32; 2]>,
     out: &mut Image<u8>,
+    sat: &mut Image<u8>,
 ) -> Result<()> {
     check_rgba(rgba, width, height)?;
     let (w, h) = (width / s, height / s);
-    if out.width() != w || out.height() != h {
-        out.resize(w, h)?;
+    for image in [&mut *out, &mut *sat] {
+        if image.width() != w || image.height() != h {
+            image.resize(w, h)?;
+        }
     }
     sums.clear();
-    sums.resize(w, 0);
+    sums.resize(w, [0, 0]);
     let area = (s * s) as u32;
     for y in 0..h {
-        sums.iter_mut().for_each(|v| *v = 0);
+        sums.iter_mut().for_each(|v| *v = [0, 0]);
         for row in 0..s {
             let start = ((y * s + row) * width) * 4;
             let line = &rgba[start..start + w * s * 4];
             for (x, block) in line.chunks_exact(s * 4).enumerate() {
-                sums[x] += block.chunks_exact(4).map(intensity).sum::<u32>();
+                for px in block.chunks_exact(4) {
+                    sums[x][0] += intensity(px);
+                    sums[x][1] += saturation(px);
+                }
             }
         }
-        for (o, &v) in out.row_mut(y).iter_mut().zip(sums.iter()) {
-            *o = ((v + area / 2) / area) as u8;
+        for (k, image) in [&mut *out, &mut *sat].into_iter().enumerate() {
+            for (o, v) in image.row_mut(y).iter_mut().zip(sums.iter()) {
+                *o = ((v[k] + area / 2) / area) as u8;
+            }
         }
     }
     Ok(())
@@ -88,11 +112,15 @@ mod tests {
             rgba.extend_from_slice(&yellow);
             rgba.extend_from_slice(&yellow);
         }
-        let mut out = Image::new(1, 1).unwrap();
-        marking_intensity(&rgba, 4, 2, 2, &mut Vec::new(), &mut out).unwrap();
+        let (mut out, mut sat) = (Image::new(1, 1).unwrap(), Image::new(1, 1).unwrap());
+        marking_intensity(&rgba, 4, 2, 2, &mut Vec::new(), &mut out, &mut sat).unwrap();
         assert_eq!((out.width(), out.height()), (2, 1));
+        assert_eq!((sat.width(), sat.height()), (2, 1));
         assert_eq!(out.get(0, 0), 170);
         assert_eq!(out.get(1, 0), 255, "yellow stands out on concrete");
-        assert!(marking_intensity(&rgba, 4, 3, 2, &mut Vec::new(), &mut out).is_err());
+        assert_eq!(sat.get(0, 0), 0, "concrete is grey");
+        // 255 (220 - 50) / 220 = 197.
+        assert_eq!(sat.get(1, 0), 197);
+        assert!(marking_intensity(&rgba, 4, 3, 2, &mut Vec::new(), &mut out, &mut sat).is_err());
     }
 }

@@ -6,11 +6,12 @@
 //! Calibration for Temporally Consistent IPM Using Lane Boundary Observations with a Lane Width
 //! Prior" (arXiv 2008.03722). Per frame:
 //!
-//! 1. the marking intensity (white in luma, yellow where blue is low) is box-averaged to at
-//!    most 480 columns ([`marking_image`]);
+//! 1. the marking intensity (white in luma, yellow where blue is low) and the saturation are
+//!    box-averaged to at most 480 columns ([`marking_image`]);
 //! 2. marking pixels are the centres of narrow bright ridges along rows ([`ridges`]), taken
-//!    from just below the horizon (once it is known) to near the bottom, and undistorted when
-//!    the lens is known;
+//!    from just below the horizon (once it is known) to near the bottom, kept where grey road
+//!    darker than the paint lies beside them ([`road_colour`]: not foliage, car paint or sky),
+//!    and undistorted when the lens is known;
 //! 3. straight lines through them come from a Hough transform with least-squares refinement,
 //!    each with its bend ([`hough`]);
 //! 4. the ego boundaries are the strong lines nearest the middle at the bottom, the left one
@@ -48,6 +49,7 @@ pub mod hough;
 pub mod marking_image;
 pub mod pose;
 pub mod ridges;
+pub mod road_colour;
 pub mod vp_votes;
 
 pub use calibrator::{CalibrationEstimate, Calibrator, CalibratorConfig, FrameObservation};
