@@ -187,7 +187,9 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
 }
 
 /// A scenario family member (the road, events and camera its seed draws) renders the same
-/// bits as natively: the native unit test asserts the same fingerprint.
+/// bits as natively, through the core and through `new Scene(name, { seed, drawn: true })`:
+/// the native unit test asserts the same fingerprint. Without `drawn` the same name and seed
+/// is the reference road, another picture.
 #[wasm_bindgen_test]
 fn a_family_member_renders_the_native_fingerprint() {
     let (name, seed, frame) = lanepf::synth::FINGERPRINT_MEMBER;
@@ -200,6 +202,22 @@ fn a_family_member_renders_the_native_fingerprint() {
     assert_eq!(
         lanepf::synth::frame_fingerprint(&rgba),
         lanepf::synth::FAMILY_FINGERPRINT
+    );
+    let options = |drawn: bool| {
+        obj(&format!(
+            r#"{{"width": 160, "height": 120, "seed": {seed}, "drawn": {drawn}}}"#
+        ))
+    };
+    let mut js = JsScene::new(name.into(), options(true)).unwrap();
+    assert_eq!(js.render(n(frame)).unwrap().to_vec(), rgba);
+    let mut reference = JsScene::new(name.into(), options(false)).unwrap();
+    assert_ne!(reference.render(n(frame)).unwrap().to_vec(), rgba);
+    // `random` names a family only when drawn.
+    assert!(JsScene::new("random".into(), options(true)).is_ok());
+    let e = message(JsScene::new("random".into(), options(false)));
+    assert!(
+        e.contains("has no reference road") && e.contains("drawn: true"),
+        "{e}"
     );
 }
 

@@ -162,6 +162,12 @@ pub fn draw_scenario(name: &str, seed: u64) -> Result<FamilyMember> {
 /// [`Error::Config`] for an unknown name ([`RANDOM_SCENARIO`] has no reference).
 pub fn reference_member(name: &str, seed: u64) -> Result<FamilyMember> {
     let name = known(name)?;
+    if name == RANDOM_SCENARIO {
+        return Err(Error::Config(format!(
+            "`{RANDOM_SCENARIO}` has no reference road: it picks a family from the seed, so \
+             draw it (`lanepf synth` without --reference; `drawn: true` in a Scene's options)"
+        )));
+    }
     Ok(FamilyMember {
         scenario: name,
         config: scenario(name)?,

@@ -5,7 +5,7 @@ use super::error::{self, input, Kind, Thrown};
 use super::estimate::{self, Keep};
 use super::object;
 use crate::camera::{Camera, CameraFile};
-use crate::synth::{default_camera, scenario, Eye, Scene, SCENARIOS};
+use crate::synth::{default_camera, draw_scenario, reference_member, Eye, Scene, SCENARIOS};
 use crate::Error;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
@@ -39,6 +39,8 @@ struct Options {
     height: usize,
     #[serde(default)]
     camera: Option<CameraFile>,
+    #[serde(default)]
+    drawn: bool,
 }
 
 fn default_seed() -> u64 {
@@ -58,21 +60,25 @@ const MAX_SEED: u64 = (1 << 53) - 1;
 
 #[wasm_bindgen(js_class = Scene)]
 impl JsScene {
-    /// `new Scene(name, { seed?, width?, height?, camera? })`: the scenario `name` (see
-    /// `scenarios()`), rendered through `camera` (the `camera.json` format) or the default
-    /// camera of `width` x `height` (640x480). Throws for an unknown name or bad options.
+    /// `new Scene(name, { seed?, width?, height?, camera?, drawn? })`: the scenario `name` (see
+    /// `scenarios()`), rendered through `camera` (the `camera.json` format) or else a camera of
+    /// `width` x `height` (640x480). By default the family's fixed reference road through the
+    /// default camera (the roads the demo shows); with `drawn: true` the member the seed draws
+    /// from the family, its road, events and camera (as `lanepf synth --seed`, bit for bit;
+    /// `random` picks the family too). Throws for an unknown name or bad options.
     #[wasm_bindgen(constructor)]
     pub fn new(
         #[wasm_bindgen(unchecked_param_type = "ScenarioName")] name: JsValue,
         #[wasm_bindgen(unchecked_optional_param_type = "SceneOptions")] options: JsValue,
     ) -> Result<JsScene, Thrown> {
-        let config = scenario(&args::name(&name, "scenario name")?).map_err(error::config)?;
+        let name = args::name(&name, "scenario name")?;
         let options: Options = object::read_optional(&options, "scene options", Kind::Config)?
             .unwrap_or(Options {
                 seed: default_seed(),
                 width: default_width(),
                 height: default_height(),
                 camera: None,
+                drawn: false,
             });
         if options.seed > MAX_SEED {
             return Err(error::config(Error::parameter(
@@ -81,11 +87,21 @@ impl JsScene {
                 "must be at most 2^53 - 1",
             )));
         }
+        let member = if options.drawn {
+            draw_scenario(&name, options.seed)
+        } else {
+            reference_member(&name, options.seed)
+        }
+        .map_err(error::config)?;
         let camera = match &options.camera {
             Some(file) => Camera::from_file(file).map_err(error::config)?,
+            None if options.drawn => member
+                .mount
+                .camera(options.width, options.height)
+                .map_err(error::config)?,
             None => default_camera(options.width, options.height).map_err(error::config)?,
         };
-        let scene = Scene::new(config, camera, options.seed).map_err(error::config)?;
+        let scene = Scene::new(member.config, camera, options.seed).map_err(error::config)?;
         let frame = vec![0; scene.width() * scene.height() * 4];
         Ok(JsScene { scene, frame })
     }

@@ -32,10 +32,14 @@ export interface LanepfError extends Error {
 export type TrackerId =
   | 'adachi-mmpf' | 'danescu-mono' | 'danescu-stereo' | 'lee-cpf' | 'liu-ppf' | 'liu-ppf-nokernel';
 
-/** The scenario names `new Scene(name, ...)` accepts (see `scenarios()`). */
+/**
+ * The scenario names `new Scene(name, ...)` accepts (see `scenarios()`); `random` only with
+ * `drawn: true` (it picks a family from the seed).
+ */
 export type ScenarioName =
   | 'highway-straight' | 'highway-curve' | 's-curve' | 'lane-change' | 'occlusion' | 'shadows'
-  | 'worn-markings' | 'night' | 'width-change' | 'pitch-bumps' | 'multi-lane' | 'urban';
+  | 'worn-markings' | 'night' | 'width-change' | 'pitch-bumps' | 'multi-lane' | 'urban'
+  | 'random';
 
 /** A camera in the `camera.json` format. Unknown fields are refused. */
 export interface CameraConfig {
@@ -81,8 +85,13 @@ export interface SceneOptions {
   width?: number;
   /** Height of the default camera, pixels (default 480; ignored with `camera`). */
   height?: number;
-  /** Render through this camera instead of the default one. */
+  /** Render through this camera instead of the default (or the drawn) one. */
   camera?: CameraConfig;
+  /**
+   * Draw the family member of `seed`: its road, events and camera, as `lanepf synth --seed`
+   * does (default false: the family's fixed reference road through the default camera).
+   */
+  drawn?: boolean;
 }
 
 /** One entry of `scenarios()`. */
