@@ -103,12 +103,12 @@ pub(crate) fn entry(id: &str) -> Result<&'static Entry> {
 /// Builds the tracker `id` from `config`.
 ///
 /// # Errors
-/// [`Error::UnknownTracker`] for an id not in [`TRACKER_IDS`]; configuration errors as
-/// [`TrackerConfig::validate`] gives them, and the tracker's own option errors.
+/// Configuration errors as [`TrackerConfig::validate`] gives them (checked first, so they are
+/// reported whatever the id); [`Error::UnknownTracker`] for an id not in [`TRACKER_IDS`]; the
+/// tracker's own option errors.
 pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
-    let entry = entry(id)?;
     config.validate()?;
-    (entry.build)(config)
+    (entry(id)?.build)(config)
 }
 
 #[cfg(test)]
