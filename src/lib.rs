@@ -47,3 +47,9 @@ pub use error::{Error, Result};
 
 /// The crate version, as in Cargo.toml.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// The golden values the native unit tests and the wasm tests both assert (not part of the API).
+#[cfg(test)]
+mod goldens {
+    include!("../tests/common/goldens.rs");
+}

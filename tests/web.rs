@@ -13,6 +13,11 @@ use wasm_bindgen_test::*;
 
 wasm_bindgen_test_configure!(run_in_browser);
 
+/// The golden values the native unit tests assert too.
+mod goldens {
+    include!("common/goldens.rs");
+}
+
 /// Parses a JS object literal written as JSON.
 fn obj(json: &str) -> JsValue {
     js_sys::JSON::parse(json).expect("test JSON")
@@ -179,7 +184,7 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
     // Bit-identical to the native build: the native unit test asserts the same fingerprint.
     assert_eq!(
         lanepf::synth::frame_fingerprint(&left),
-        lanepf::synth::SCENE_FINGERPRINT
+        goldens::SCENE_FINGERPRINT
     );
     let truth = scene.truth(n(30)).unwrap();
     let boundaries = js_sys::Reflect::get(&truth, &"boundaries".into()).unwrap();
@@ -192,7 +197,7 @@ fn scenes_render_every_scenario_with_truth_and_match_native_pixels() {
 /// is the reference road, another picture.
 #[wasm_bindgen_test]
 fn a_family_member_renders_the_native_fingerprint() {
-    let (name, seed, frame) = lanepf::synth::FINGERPRINT_MEMBER;
+    let (name, seed, frame) = goldens::FINGERPRINT_MEMBER;
     let member = lanepf::synth::draw_scenario(name, seed).unwrap();
     let mut scene = member.scene(160, 120).unwrap();
     let mut rgba = vec![0; 160 * 120 * 4];
@@ -201,7 +206,7 @@ fn a_family_member_renders_the_native_fingerprint() {
         .unwrap();
     assert_eq!(
         lanepf::synth::frame_fingerprint(&rgba),
-        lanepf::synth::FAMILY_FINGERPRINT
+        goldens::FAMILY_FINGERPRINT
     );
     let options = |drawn: bool| {
         obj(&format!(
@@ -252,7 +257,7 @@ fn particle_filter_is_bit_identical_to_the_native_build() {
     // The native unit test asserts the same golden value.
     assert_eq!(
         lanepf::filter::determinism_fingerprint(),
-        lanepf::filter::DETERMINISM_FINGERPRINT
+        goldens::DETERMINISM_FINGERPRINT
     );
 }
 

@@ -1,5 +1,6 @@
 //! A fixed small filter run whose FNV-1a hash checks that the same seed gives bit-identical
-//! results on every target (the wasm test suite asserts [`DETERMINISM_FINGERPRINT`] too).
+//! results on every target (the native and the wasm tests assert the same golden value,
+//! `tests/common/goldens.rs`).
 
 use super::{
     FilterConfig, InitialDistribution, Injection, MeasurementModel, MotionModel, ParticleFilter,
@@ -27,9 +28,6 @@ impl InitialDistribution<f64> for Walk {
         rng.gaussian(0.0, 2.0) + crate::math::sin(rng.uniform())
     }
 }
-
-/// The golden value of [`determinism_fingerprint`].
-pub const DETERMINISM_FINGERPRINT: u64 = 0x10e2_b0a3_4886_2cdf;
 
 /// Runs 256 particles for 20 frames (seed 42, systematic resampling, 8 injected particles per
 /// frame, then 5 frames of residual resampling at ESS < 0.5) and hashes every state and weight.
@@ -73,6 +71,7 @@ pub fn determinism_fingerprint() -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::goldens::DETERMINISM_FINGERPRINT;
 
     #[test]
     fn fingerprint_matches_the_golden_value() {

@@ -23,7 +23,7 @@ mod rng;
 mod weights;
 
 pub use estimate::{map_index, weighted_mean, Mbsas};
-pub use fingerprint::{determinism_fingerprint, DETERMINISM_FINGERPRINT};
+pub use fingerprint::determinism_fingerprint;
 pub use model::{InitialDistribution, MeasurementModel, MotionModel};
 pub use multimodel::{model_probabilities, MarkovChain, ModelMotion, Regime, SwitchingMotion};
 pub use particle_filter::{FilterConfig, Injection, ParticleFilter, MAX_PARTICLES};

@@ -95,12 +95,6 @@ impl FamilyMember {
     }
 }
 
-/// The member, seed and frame whose 160x120 rendering [`FAMILY_FINGERPRINT`] pins (the wasm
-/// tests render it too).
-pub const FINGERPRINT_MEMBER: (&str, u64, u32) = ("lane-change", 7, 60);
-/// [`super::frame_fingerprint`] of [`FINGERPRINT_MEMBER`].
-pub const FAMILY_FINGERPRINT: u64 = 0x74e3_7b1e_e47d_450b;
-
 /// Every name [`draw_scenario`] accepts: the families, then [`RANDOM_SCENARIO`].
 pub fn family_names() -> Vec<&'static str> {
     SCENARIOS

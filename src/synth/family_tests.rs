@@ -193,6 +193,7 @@ fn reference_members_are_the_fixed_roads_and_names_are_checked() {
 
 #[test]
 fn a_member_renders_the_golden_fingerprint() {
+    use crate::goldens::{FAMILY_FINGERPRINT, FINGERPRINT_MEMBER};
     let m = draw_scenario(FINGERPRINT_MEMBER.0, FINGERPRINT_MEMBER.1).unwrap();
     let mut scene = m.scene(160, 120).unwrap();
     let mut rgba = vec![0; 160 * 120 * 4];

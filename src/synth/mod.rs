@@ -22,10 +22,7 @@ mod truth;
 
 pub use appearance::hash_unit;
 pub use ego::{EgoConfig, LaneChange, Pose};
-pub use family::{
-    draw_scenario, family_names, reference_member, FamilyMember, FAMILY_FINGERPRINT,
-    FINGERPRINT_MEMBER, RANDOM_SCENARIO,
-};
+pub use family::{draw_scenario, family_names, reference_member, FamilyMember, RANDOM_SCENARIO};
 pub use markings::{BoundaryStyle, Coverage, MarkingConfig, MarkingStyle, Paint, Pattern, Wear};
 pub use mount::{CameraMount, MOUNT_RANGES};
 pub use render::MAX_RANGE_M;
@@ -34,7 +31,6 @@ pub use scenarios::{scenario, SCENARIOS};
 pub use scene::{Appearance, RoadPaint, SceneConfig, Shadow, Vehicle, VerticalProfile};
 pub use simulator::{
     default_camera, drawn_camera, frame_fingerprint, Eye, Scene, DEFAULT_BASELINE_M,
-    SCENE_FINGERPRINT,
 };
 pub use test_road::{TestRoad, TestRoadConfig};
 pub use truth::TRUTH_RANGE_M;

@@ -300,15 +300,13 @@ impl Scene {
 }
 
 /// FNV-1a hash of a rendered frame, for checking that the same seed gives the same pixels on
-/// every target (the wasm test suite asserts the same value as the native test).
+/// every target (the native and the wasm tests assert the same golden values,
+/// `tests/common/goldens.rs`).
 pub fn frame_fingerprint(rgba: &[u8]) -> u64 {
     rgba.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
         (h ^ b as u64).wrapping_mul(0x0100_0000_01b3)
     })
 }
-
-/// [`frame_fingerprint`] of frame 30 of `s-curve`, seed 3, default camera at 160x120.
-pub const SCENE_FINGERPRINT: u64 = 0x34cb_1b29_8606_baa3;
 
 #[cfg(test)]
 mod tests {
@@ -335,7 +333,7 @@ mod tests {
         scene.render(30, Eye::Left, &mut rgba, None).unwrap();
         assert_eq!(
             frame_fingerprint(&rgba),
-            SCENE_FINGERPRINT,
+            crate::goldens::SCENE_FINGERPRINT,
             "{:#x}",
             frame_fingerprint(&rgba)
         );
