@@ -10,6 +10,7 @@ pub mod adachi;
 pub mod danescu;
 mod defaults;
 mod hypothesis;
+pub mod lane_change;
 pub mod lee;
 pub mod liu;
 #[cfg(test)]

@@ -20,10 +20,11 @@
 //! cues with a flat-road prior: pitch, roll, Y_0 and C_V are held at the calibration (no
 //! diffusion, no density cue), and all edges count as road edges.
 //!
-//! Lane changes (our addition; the paper does not say): when the estimate's lane centre is
-//! more than half a lane away (|X_CW| > W_0 / 2), the car is in the next lane; every particle
-//! moves by one lane (X_CW +- (W_0 + the crossed marking's width), the crossed marking becoming
-//! the new near one) and the change is reported, as `lee-cpf` does.
+//! Lane changes (our addition; the paper does not say) follow the rule every tracker shares
+//! ([`super::lane_change`]): when the estimate's lane centre is further from the car than a
+//! marking's centre (|X_CW| > (W_0 + that marking's width) / 2) by the rule's margin, the car
+//! is in the next lane; every particle moves by one lane (X_CW +- (W_0 + the crossed marking's
+//! width), the crossed marking becoming the new near one) and the change is reported.
 //!
 //! Output: the boundaries `ego-left` and `ego-right` are the markings' centre lines (the
 //! road edge where a marking's width is 0), as for every tracker, so that evaluation compares
@@ -46,6 +47,7 @@ pub mod elevation;
 pub mod model;
 pub mod stereo;
 
+use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
 use super::{
     now, spread_indices, EgoMotion, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig,
@@ -442,15 +444,9 @@ impl DanescuTracker {
         e.valid = e.cluster_share >= self.config.valid_cluster_share
             && d.support.iter().all(|&s| s >= self.config.valid_support)
             && self.measurement.is_valid(&e.lane);
-        // Lane change: re-centre the cloud on the lane the car is now in.
-        let half = e.lane.w0 / 2.0;
-        let change = if e.lane.xcw < -half {
-            -1 // the lane centre is left of the car by more than half a lane: moved right
-        } else if e.lane.xcw > half {
-            1
-        } else {
-            0
-        };
+        // Lane change (the shared rule, `super::lane_change`): the car has crossed the
+        // centre of a marking; re-centre the cloud on the lane the car is now in.
+        let change = ego_lane(&e.lane).change(lane_change::MARGIN_M);
         if change != 0 {
             for l in self.filter.states_mut().iter_mut().chain([&mut e.lane]) {
                 recentre(l, change);
@@ -559,6 +555,16 @@ impl DanescuTracker {
             .zip(self.filter.weights())
             .enumerate()
             .map(move |(i, (s, &w))| (s, w, labels.get(i).copied().unwrap_or(usize::MAX)))
+    }
+}
+
+/// `lane` for the shared lane-change rule: X_CW is to the right, the road frame's y to the
+/// left, and each boundary's centre is half its marking's width beyond the inner edge.
+fn ego_lane(lane: &Lane3d) -> EgoLane {
+    EgoLane {
+        centre_left_m: -lane.xcw,
+        to_left_m: (lane.w0 + lane.wl_mark) / 2.0,
+        to_right_m: (lane.w0 + lane.wr_mark) / 2.0,
     }
 }
 
