@@ -28,7 +28,13 @@
 //!
 //! Output: the boundaries `ego-left` and `ego-right` are the markings' centre lines (the
 //! road edge where a marking's width is 0), as for every tracker, so that evaluation compares
-//! like with like; `delimiters` adds the inner and outer edge of each marking (eqs. 2-3) as
+//! like with like, and `lane_width_m` is the distance between them, W_0 + (W_L + W_R) / 2;
+//! `danescu.w0` is the width the paper defines (Sec. II: between the inner edges) with or
+//! without the marking widths. With `marking_widths: false` (the paper's previous approach)
+//! the model has no marking widths: its delimiters are the inner edges, so `lane_width_m` is
+//! W_0 (a marking's width short of the centres: the approach cannot see it, which is the
+//! paper's point in Fig. 10), and `danescu.wl_mark` / `danescu.wr_mark` are left out of the
+//! state instead of reported as 0 (which the paper reserves for a lane without markings); `delimiters` adds the inner and outer edge of each marking (eqs. 2-3) as
 //! image and road polylines with the same roles and a `side`. All are drawn from 1 m to
 //! `far_m` on the estimate's own vertical profile.
 //!
@@ -519,6 +525,13 @@ impl DanescuTracker {
             ("danescu.marking_pixels", self.cues.counts().0 as f64),
         ] {
             state.insert(k.to_string(), v);
+        }
+        if !self.config.marking_widths {
+            // The previous approach has no marking widths: W_L = W_R = 0 is the model's
+            // assumption, not an estimate, and 0 means "no marking" in the paper (Sec. II).
+            // They are left out rather than reported as measured.
+            state.remove("danescu.wl_mark");
+            state.remove("danescu.wr_mark");
         }
         if let Some(stereo) = self.stereo.as_ref() {
             state.insert(

@@ -787,3 +787,56 @@ fn the_output_has_each_markings_inner_and_outer_edge_a_marking_width_apart() {
         assert!((width - lane.width(x)).abs() < 1e-3, "{width} at {x} m");
     }
 }
+
+/// The width each mode reports: with the marking-width model, `danescu.w0` is the paper's
+/// width (between the inner edges), `lane_width_m` between the marking centres, and the
+/// marking widths are in the state; without it (the paper's previous approach), `danescu.w0`
+/// is still the paper's width and `lane_width_m` = W_0 (its delimiters are the inner
+/// edges), and the marking widths, which that model does not estimate, are absent instead
+/// of 0 (the paper's "no marking").
+#[test]
+fn each_mode_reports_the_papers_width_and_only_the_marking_widths_it_estimates() {
+    let (w, h) = (320, 240);
+    let scene = Scene::new(
+        scenario("highway-straight").unwrap(),
+        default_camera(w, h).unwrap(),
+        1,
+    )
+    .unwrap();
+    let lane = true_lane(&scene.truth(0));
+    assert!(lane.wl_mark > 0.1 && lane.wr_mark > 0.1, "{lane:?}");
+    let estimate = DanescuEstimate {
+        lane,
+        valid: true,
+        cluster_share: 1.0,
+        clusters: 1,
+        change: 0,
+        ess: 1.0,
+        support: [1.0; 2],
+    };
+    let with = DanescuTracker::new(&config(w, h, ""), ID_MONO).unwrap();
+    let out = with.to_lane_estimate(&estimate);
+    assert_eq!(out.state["danescu.w0"], lane.w0);
+    assert_eq!(out.state["danescu.wl_mark"], lane.wl_mark);
+    let centres = lane.w0 + (lane.wl_mark + lane.wr_mark) / 2.0;
+    assert!((out.lane_width_m - centres).abs() < 1e-12);
+    let without =
+        DanescuTracker::new(&config(w, h, r#", "marking_widths": false"#), ID_MONO).unwrap();
+    let flat = Lane3d {
+        wl_mark: 0.0,
+        wr_mark: 0.0,
+        ..lane
+    };
+    let out = without.to_lane_estimate(&DanescuEstimate {
+        lane: flat,
+        ..estimate
+    });
+    assert_eq!(out.state["danescu.w0"], lane.w0);
+    assert!((out.lane_width_m - lane.w0).abs() < 1e-12);
+    assert!(
+        !out.state.contains_key("danescu.wl_mark"),
+        "{:?}",
+        out.state
+    );
+    assert!(!out.state.contains_key("danescu.wr_mark"));
+}
