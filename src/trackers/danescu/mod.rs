@@ -133,7 +133,7 @@ impl MeasurementModel<Lane3d> for Weigh<'_> {
             self.camera,
             lane,
             self.cues,
-            self.stereo.map(StereoCues::density),
+            self.stereo.and_then(StereoCues::usable_density),
         )
     }
 }
@@ -444,7 +444,7 @@ impl DanescuTracker {
             &self.camera,
             &e.lane,
             &self.cues,
-            self.stereo.as_ref().map(StereoCues::density),
+            self.stereo.as_ref().and_then(StereoCues::usable_density),
         );
         e.support = d.support;
         e.valid = e.cluster_share >= self.config.valid_cluster_share

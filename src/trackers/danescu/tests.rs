@@ -840,3 +840,73 @@ fn each_mode_reports_the_papers_width_and_only_the_marking_widths_it_estimates()
     );
     assert!(!out.state.contains_key("danescu.wr_mark"));
 }
+
+/// Frames from the end of the first blackout of `member` until danescu-stereo (with the
+/// `extra` options) is valid with an offset error under 0.3 m, the `eval-suite` recovery
+/// rule; `None` when not within 30 frames.
+fn stereo_recovery(member: &crate::synth::FamilyMember, extra: &str) -> Option<usize> {
+    let (w, h) = (320, 240);
+    let mut scene = member.scene(w, h).unwrap();
+    let camera = serde_json::to_string(&scene.camera().to_file()).unwrap();
+    let config =
+        TrackerConfig::from_json_str(&format!(r#"{{"camera": {camera}, "seed": 1 {extra}}}"#))
+            .unwrap();
+    let mut tracker = DanescuTracker::new(&config, ID_STEREO).unwrap();
+    let (mut left, mut right) = (vec![0; w * h * 4], vec![0; w * h * 4]);
+    let mut end = None;
+    let mut dark = false;
+    for f in 0..member.config.frames {
+        let pose = scene.render(f, Eye::Left, &mut left, None).unwrap();
+        scene.render(f, Eye::Right, &mut right, None).unwrap();
+        tracker
+            .set_ego_motion(EgoMotion {
+                t_s: pose.t,
+                speed_mps: pose.speed,
+                yaw_rate: pose.yaw_rate,
+            })
+            .unwrap();
+        tracker.set_right(&right, w, h).unwrap();
+        let e = tracker.track(&left, w, h).unwrap();
+        let truth = scene.truth(f);
+        let blackout = truth.state["blackout"] > 0.5;
+        // The 3-D data of a blacked-out frame (matches of sensor noise) does not count.
+        if blackout && extra.is_empty() {
+            assert!(!tracker.stereo.as_ref().unwrap().usable(), "frame {f}");
+        }
+        if dark && !blackout {
+            end = Some(f);
+        }
+        dark = blackout;
+        if let Some(end) = end {
+            let out = tracker.to_lane_estimate(&e);
+            if out.valid && (out.lateral_offset_m - truth.lateral_offset_m).abs() < 0.3 {
+                return Some((f - end) as usize);
+            }
+            if f - end >= 30 {
+                return None;
+            }
+        }
+    }
+    None
+}
+
+/// After a blackout the stereo tracker re-locks within a few frames: the 3-D data of the
+/// blacked-out frames (a few hundred matches of sensor noise) no longer weighs the particles
+/// (`min_road_share`), so the cloud does not drift through the blackout. Drawn `occlusion`
+/// members, scene seeds 2-11, 320x240, tracker seed 1. Measured 2026-11-25 (frames from the
+/// blackout's end to a valid estimate within 0.3 m): 1, 1, 2, 4, 10, 1, 6, 1, 5, 1, mean
+/// 3.2; without the gate (`min_road_share: 0`, the behaviour before) 14, 0, 6, 4, 3, 1, 0,
+/// 3, 9, 25, mean 6.5. Not every seed gains (seeds 6 and 8 lose), the mean and the worst do.
+#[test]
+fn stereo_relocks_within_a_few_frames_after_a_blackout() {
+    let frames: Vec<usize> = (2..=11)
+        .map(|seed| {
+            let member = crate::synth::draw_scenario("occlusion", seed).unwrap();
+            let r = stereo_recovery(&member, "");
+            assert!(r.is_some_and(|r| r <= 12), "seed {seed}: {r:?}");
+            r.unwrap_or(usize::MAX)
+        })
+        .collect();
+    let mean = frames.iter().sum::<usize>() as f64 / frames.len() as f64;
+    assert!(mean <= 4.0, "{frames:?}");
+}
