@@ -1,5 +1,5 @@
 //! Diagnostic: one tracker on one drawn family member (320x240, tracker seed 1, as
-//! `lanepf eval-suite` runs it), a line per frame: the truth's lane change, ego lane, offset,
+//! `lanepf eval-suite` runs it), a line per frame: the truth's lane change, blackout, ego lane, offset,
 //! width and curvature against the estimate's validity, offset, width and curvature, then the
 //! estimate's state keys given; on stderr, the truth's and the output's lane-change events.
 //!
@@ -15,8 +15,9 @@ fn main() {
     let keys: Vec<&String> = a[4..].iter().collect();
     for (i, (t, e)) in run.truth.iter().zip(&run.outputs[0].1).enumerate() {
         let mut line = format!(
-            "{i:4} tlc={} tlane={} toff={:6.2} tw={:5.2} tc={:8.5} | v={} off={:6.2} w={:5.2} c={:8.5}",
+            "{i:4} tlc={} bo={} tlane={} toff={:6.2} tw={:5.2} tc={:8.5} | v={} off={:6.2} w={:5.2} c={:8.5}",
             t.state.get("lane_change").copied().unwrap_or(0.0),
+            t.state.get("blackout").copied().unwrap_or(0.0),
             t.state.get("ego_lane").copied().unwrap_or(f64::NAN),
             t.lateral_offset_m, t.lane_width_m, t.curvature_per_m,
             u8::from(e.valid), e.lateral_offset_m, e.lane_width_m, e.curvature_per_m
