@@ -59,6 +59,11 @@ impl EgoLane {
         }
     }
 
+    /// The distance between the two boundary centres, metres.
+    pub fn width_m(&self) -> f64 {
+        self.to_left_m + self.to_right_m
+    }
+
     /// The lane change this estimate shows with hysteresis `margin_m` (see the module docs):
     /// +1 into the lane on the left, -1 into the lane on the right, 0 none (also for a
     /// non-finite estimate).
@@ -70,6 +75,22 @@ impl EgoLane {
         } else {
             0
         }
+    }
+}
+
+/// The lane change an output shows from one frame to the next when its lane centre jumps by
+/// more than half a lane `width_m` without the rule having fired (a tracker whose estimate can
+/// switch to another hypothesis, as an MBSAS cluster does): +1 when the centre jumped to the
+/// left (the car is in the lane on its left now), -1 to the right, 0 otherwise. This is the
+/// event `eval::lane_changes` reads from any output.
+pub fn jump(previous_centre_left_m: f64, centre_left_m: f64, width_m: f64) -> i8 {
+    let d = centre_left_m - previous_centre_left_m;
+    if d > width_m / 2.0 {
+        1
+    } else if d < -width_m / 2.0 {
+        -1
+    } else {
+        0
     }
 }
 
@@ -94,6 +115,15 @@ mod tests {
             to_right_m: 1.7,
         };
         assert_eq!(wide.change(0.0), 0);
+    }
+
+    #[test]
+    fn a_jump_of_more_than_half_a_lane_is_a_change() {
+        assert_eq!(jump(0.1, 0.2, 3.6), 0);
+        assert_eq!(jump(0.1, 2.0, 3.6), 1); // the centre moved left: the car's lane is left
+        assert_eq!(jump(0.1, -1.9, 3.6), -1);
+        assert_eq!(jump(f64::NAN, 1.0, 3.6), 0);
+        assert_eq!(EgoLane::symmetric(0.0, 3.6).width_m(), 3.6);
     }
 
     /// After a change and its shift by (the crossed boundary's distance + the new lane's half

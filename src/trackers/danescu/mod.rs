@@ -24,7 +24,9 @@
 //! ([`super::lane_change`]): when the estimate's lane centre is further from the car than a
 //! marking's centre (|X_CW| > (W_0 + that marking's width) / 2) by the rule's margin, the car
 //! is in the next lane; every particle moves by one lane (X_CW +- (W_0 + the crossed marking's
-//! width), the crossed marking becoming the new near one) and the change is reported.
+//! width), the crossed marking becoming the new near one) and the change is reported. When
+//! the estimate moves to the neighbouring lane without crossing (the most populous MBSAS
+//! cluster is that lane), `danescu.change` reports the jump too ([`super::lane_change::jump`]).
 //!
 //! Output: the boundaries `ego-left` and `ego-right` are the markings' centre lines (the
 //! road edge where a marking's width is 0), as for every tracker, so that evaluation compares
@@ -161,6 +163,8 @@ pub struct DanescuTracker {
     motion: Option<EgoMotion>,
     last_time: Option<f64>,
     first: bool,
+    /// The previous frame's estimate (for [`lane_change::jump`]).
+    last_lane: Option<Lane3d>,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
     frame: Option<Frame>,
@@ -245,6 +249,7 @@ impl DanescuTracker {
             motion: None,
             last_time: None,
             first: true,
+            last_lane: None,
             detector,
             frame: None,
             times: StageTimes::default(),
@@ -458,7 +463,14 @@ impl DanescuTracker {
                 recentre(l, change);
             }
             e.change = change;
+        } else if let Some(last) = self.last_lane {
+            // The chosen cluster may itself be the neighbouring lane (eq. 15 takes the most
+            // populous one): the estimate then moves a lane with no boundary crossed. Report
+            // it as the change the output shows, so that the flag and the offset agree.
+            let width = (ego_lane(&last).width_m() + ego_lane(&e.lane).width_m()) / 2.0;
+            e.change = lane_change::jump(-last.xcw, -e.lane.xcw, width);
         }
+        self.last_lane = Some(e.lane);
         e
     }
 
@@ -611,6 +623,7 @@ impl Tracker for DanescuTracker {
         self.labels_current = false;
         self.right_ready = false;
         self.first = true;
+        self.last_lane = None;
         self.frame = None;
         self.motion = None;
         self.last_time = None;
