@@ -131,7 +131,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                         .iter_mut()
                         .zip(["danescu.wl_mark", "danescu.wr_mark"])
                     {
-                        *m += (t.state[k] - e.state[k]).abs();
+                        // Absent without the marking-width model: counted as NaN (n/a).
+                        let v = e.state.get(k).copied().unwrap_or(f64::NAN);
+                        *m += (t.state[k] - v).abs();
                     }
                     s.valid += f64::from(u8::from(e.valid));
                     s.ess.push(e.state["danescu.ess"]);

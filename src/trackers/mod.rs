@@ -3,8 +3,9 @@
 //!
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
 //! `config.rs` the [`TrackerConfig`], `defaults.rs` / `ranges.rs` every option's default and
-//! range, `ego_motion.rs`, `layer.rs`, `stage_times.rs` the types the trait speaks, and one
-//! folder per paper.
+//! range, `ego_motion.rs`, `layer.rs`, `stage_times.rs` the types the trait speaks,
+//! `lane_change.rs` the lane-change rule trackers share, `relock.rs` the detector proposal, and
+//! one folder per paper.
 //!
 //! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
 //! `danescu-stereo`, `danescu-mono`. An id is listed in [`TRACKER_IDS`] only once its tracker
@@ -17,6 +18,7 @@ pub mod danescu;
 mod defaults;
 mod ego_motion;
 mod hypothesis;
+pub mod lane_change;
 mod layer;
 pub mod lee;
 pub mod liu;

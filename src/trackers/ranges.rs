@@ -206,6 +206,7 @@ pub(super) const DANESCU: &[&[OptionRange]] = &[
         r("pitch_bin_rad", 1e-5, 0.1),
         r("pitch_range_rad", 1e-4, 0.5),
         r("road_tolerance_m", 0.01, 2.0),
+        r("min_road_share", 0.0, 1.0),
         r("cluster_threshold_m", 0.01, 10.0),
         r("max_clusters", 1.0, 100.0),
         r("valid_distance_px", 0.1, 100.0),

@@ -463,6 +463,9 @@ export interface DanescuOptions {
   pitch_range_rad?: number;
   /** Road points lie within this height of the road line, metres (0.1). */
   road_tolerance_m?: number;
+  /** The 3-D data (density cue, curbs) counts only in a frame whose road points are at least
+   *  this share of the road region's pixels (0.02; 0: every frame). Ours, not the paper's. */
+  min_road_share?: number;
   /** MBSAS distance threshold on X_CW, metres (0.4). */
   cluster_threshold_m?: number;
   /** MBSAS: at most this many clusters (5). */

@@ -9,7 +9,8 @@
 //! that particles on both sides of the +-w/2 seam average correctly. Lane changes follow eq. 9
 //! applied to the estimate: the estimated q is followed without wrapping (each frame takes the
 //! copy q + k w nearest the previous one), and when it leaves [-w/2, w/2) of the current lane
-//! by more than a 0.1 m hysteresis margin, the lane index moves and an event is reported: q
+//! by more than a 0.1 m hysteresis margin (the rule every tracker shares,
+//! [`super::lane_change`], with a margin of its own), the lane index moves and an event is reported: q
 //! past +w/2 is a change to the left (`change` +1), past -w/2 a change to the right (-1), the
 //! sign convention of `lee.change` and `danescu.change`. (Per-particle wraps are
 //! spread over several frames, so counting them gives no clean event.)
@@ -38,6 +39,7 @@ pub mod motion;
 pub mod road_shape;
 pub mod votes;
 
+use super::lane_change::EgoLane;
 use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
@@ -104,7 +106,8 @@ struct Frame {
     times: StageTimes,
 }
 
-/// Hysteresis of the lane-change rule, metres.
+/// Hysteresis of the shared lane-change rule ([`super::lane_change`]) for this tracker, metres:
+/// q comes from per-particle wraps (eq. 9) and is noisy at the seam.
 const CHANGE_MARGIN_M: f64 = 0.1;
 
 /// The estimate of one frame in the paper's terms.
@@ -385,16 +388,11 @@ impl AdachiTracker {
             Some(prev) => q + ((prev - q) / w).round() * w,
         };
         self.q_track = Some(track);
+        // The shared lane-change rule (`super::lane_change`) on the lane the index says;
+        // q is to the right, the rule's lane centre to the left.
         let local = track - self.lane_index as f64 * w;
-        let change = if local >= w / 2.0 + CHANGE_MARGIN_M {
-            self.lane_index += 1;
-            1
-        } else if local < -w / 2.0 - CHANGE_MARGIN_M {
-            self.lane_index -= 1;
-            -1
-        } else {
-            0
-        };
+        let change = EgoLane::symmetric(-local, w).change(CHANGE_MARGIN_M);
+        self.lane_index += i64::from(change);
         let support = [
             self.likelihood
                 .support(&self.votes, q + OFFSETS[0] * w / 2.0),

@@ -91,6 +91,17 @@ pub struct DanescuConfig {
     pub pitch_range_rad: f64,
     /// Road points lie within this height of the detected road line, metres.
     pub road_tolerance_m: f64,
+    /// The 3-D data counts (the density cue of eqs. 13-14 and the curbs) only in a frame
+    /// whose road points are at least this share of the road region's pixels (ours; the
+    /// paper does not say what a frame without usable stereo data does). Measured at 320x240
+    /// on drawn roads: 20-30 % by day, 4.7-8 % at night, 0.5-1.2 % in a blacked-out frame
+    /// (matches of sensor noise). With those noise points weighing the particles while the
+    /// image cues were empty, the cloud drifted in width and offset through a blackout and
+    /// re-locked 9 frames after it on average, 24 at worst (`occlusion`, seeds 1000-1002).
+    /// 0.02 by default, between the blackout and the night; 0 uses the 3-D data of every
+    /// frame, as before (a share of 0.05 cut the night's density cue too: width MAE 5 -> 28
+    /// cm).
+    pub min_road_share: f64,
     /// MBSAS: distance threshold on X_CW, metres.
     pub cluster_threshold_m: f64,
     /// MBSAS: at most this many clusters S.
@@ -158,6 +169,7 @@ impl Default for DanescuConfig {
             pitch_bin_rad: 0.0005,
             pitch_range_rad: 0.05,
             road_tolerance_m: 0.1,
+            min_road_share: 0.02,
             cluster_threshold_m: 0.4,
             max_clusters: 5,
             valid_distance_px: 2.0,

@@ -20,14 +20,23 @@
 //! cues with a flat-road prior: pitch, roll, Y_0 and C_V are held at the calibration (no
 //! diffusion, no density cue), and all edges count as road edges.
 //!
-//! Lane changes (our addition; the paper does not say): when the estimate's lane centre is
-//! more than half a lane away (|X_CW| > W_0 / 2), the car is in the next lane; every particle
-//! moves by one lane (X_CW +- (W_0 + the crossed marking's width), the crossed marking becoming
-//! the new near one) and the change is reported, as `lee-cpf` does.
+//! Lane changes (our addition; the paper does not say) follow the rule every tracker shares
+//! ([`super::lane_change`]): when the estimate's lane centre is further from the car than a
+//! marking's centre (|X_CW| > (W_0 + that marking's width) / 2) by the rule's margin, the car
+//! is in the next lane; every particle moves by one lane (X_CW +- (W_0 + the crossed marking's
+//! width), the crossed marking becoming the new near one) and the change is reported. When
+//! the estimate moves to the neighbouring lane without crossing (the most populous MBSAS
+//! cluster is that lane), `danescu.change` reports the jump too ([`super::lane_change::jump`]).
 //!
 //! Output: the boundaries `ego-left` and `ego-right` are the markings' centre lines (the
 //! road edge where a marking's width is 0), as for every tracker, so that evaluation compares
-//! like with like; `delimiters` adds the inner and outer edge of each marking (eqs. 2-3) as
+//! like with like, and `lane_width_m` is the distance between them, W_0 + (W_L + W_R) / 2;
+//! `danescu.w0` is the width the paper defines (Sec. II: between the inner edges) with or
+//! without the marking widths. With `marking_widths: false` (the paper's previous approach)
+//! the model has no marking widths: its delimiters are the inner edges, so `lane_width_m` is
+//! W_0 (a marking's width short of the centres: the approach cannot see it, which is the
+//! paper's point in Fig. 10), and `danescu.wl_mark` / `danescu.wr_mark` are left out of the
+//! state instead of reported as 0 (which the paper reserves for a lane without markings); `delimiters` adds the inner and outer edge of each marking (eqs. 2-3) as
 //! image and road polylines with the same roles and a `side`. All are drawn from 1 m to
 //! `far_m` on the estimate's own vertical profile.
 //!
@@ -46,6 +55,7 @@ pub mod elevation;
 pub mod model;
 pub mod stereo;
 
+use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
 use super::{
     now, spread_indices, EgoMotion, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig,
@@ -125,7 +135,7 @@ impl MeasurementModel<Lane3d> for Weigh<'_> {
             self.camera,
             lane,
             self.cues,
-            self.stereo.map(StereoCues::density),
+            self.stereo.and_then(StereoCues::usable_density),
         )
     }
 }
@@ -153,6 +163,8 @@ pub struct DanescuTracker {
     motion: Option<EgoMotion>,
     last_time: Option<f64>,
     first: bool,
+    /// The previous frame's estimate (for [`lane_change::jump`]).
+    last_lane: Option<Lane3d>,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
     frame: Option<Frame>,
@@ -237,6 +249,7 @@ impl DanescuTracker {
             motion: None,
             last_time: None,
             first: true,
+            last_lane: None,
             detector,
             frame: None,
             times: StageTimes::default(),
@@ -436,27 +449,28 @@ impl DanescuTracker {
             &self.camera,
             &e.lane,
             &self.cues,
-            self.stereo.as_ref().map(StereoCues::density),
+            self.stereo.as_ref().and_then(StereoCues::usable_density),
         );
         e.support = d.support;
         e.valid = e.cluster_share >= self.config.valid_cluster_share
             && d.support.iter().all(|&s| s >= self.config.valid_support)
             && self.measurement.is_valid(&e.lane);
-        // Lane change: re-centre the cloud on the lane the car is now in.
-        let half = e.lane.w0 / 2.0;
-        let change = if e.lane.xcw < -half {
-            -1 // the lane centre is left of the car by more than half a lane: moved right
-        } else if e.lane.xcw > half {
-            1
-        } else {
-            0
-        };
+        // Lane change (the shared rule, `super::lane_change`): the car has crossed the
+        // centre of a marking; re-centre the cloud on the lane the car is now in.
+        let change = ego_lane(&e.lane).change(lane_change::MARGIN_M);
         if change != 0 {
             for l in self.filter.states_mut().iter_mut().chain([&mut e.lane]) {
                 recentre(l, change);
             }
             e.change = change;
+        } else if let Some(last) = self.last_lane {
+            // The chosen cluster may itself be the neighbouring lane (eq. 15 takes the most
+            // populous one): the estimate then moves a lane with no boundary crossed. Report
+            // it as the change the output shows, so that the flag and the offset agree.
+            let width = (ego_lane(&last).width_m() + ego_lane(&e.lane).width_m()) / 2.0;
+            e.change = lane_change::jump(-last.xcw, -e.lane.xcw, width);
         }
+        self.last_lane = Some(e.lane);
         e
     }
 
@@ -524,6 +538,13 @@ impl DanescuTracker {
         ] {
             state.insert(k.to_string(), v);
         }
+        if !self.config.marking_widths {
+            // The previous approach has no marking widths: W_L = W_R = 0 is the model's
+            // assumption, not an estimate, and 0 means "no marking" in the paper (Sec. II).
+            // They are left out rather than reported as measured.
+            state.remove("danescu.wl_mark");
+            state.remove("danescu.wr_mark");
+        }
         if let Some(stereo) = self.stereo.as_ref() {
             state.insert(
                 "danescu.pitch_detected".into(),
@@ -562,6 +583,16 @@ impl DanescuTracker {
     }
 }
 
+/// `lane` for the shared lane-change rule: X_CW is to the right, the road frame's y to the
+/// left, and each boundary's centre is half its marking's width beyond the inner edge.
+fn ego_lane(lane: &Lane3d) -> EgoLane {
+    EgoLane {
+        centre_left_m: -lane.xcw,
+        to_left_m: (lane.w0 + lane.wl_mark) / 2.0,
+        to_right_m: (lane.w0 + lane.wr_mark) / 2.0,
+    }
+}
+
 /// Moves a lane hypothesis to the neighbouring lane: `change` -1 when the car moved into the
 /// lane on the right, +1 into the lane on the left.
 fn recentre(l: &mut Lane3d, change: i8) {
@@ -592,6 +623,7 @@ impl Tracker for DanescuTracker {
         self.labels_current = false;
         self.right_ready = false;
         self.first = true;
+        self.last_lane = None;
         self.frame = None;
         self.motion = None;
         self.last_time = None;

@@ -22,6 +22,11 @@
 //! 7. **Curbs** (Sec. VI-A b): every point's height above the road line z = m x goes into the
 //!    elevation map ([`super::elevation`]); the curbs' feet found there are projected at road
 //!    height into the marking-edge image, which becomes DT^S.
+//!
+//! A frame whose road points are fewer than `min_road_share` of the road region's pixels
+//! (a blackout, a lens covered: the matcher's few matches are noise) has no usable 3-D data
+//! ([`StereoCues::usable_density`] is `None`, no curbs are marked): the particles are then
+//! weighed by the image cues alone, as `danescu-mono`'s are (ours, see the option).
 
 use super::config::DanescuConfig;
 use super::cues::ImageCues;
@@ -63,8 +68,11 @@ pub struct StereoCues {
     near: f64,
     far: f64,
     tolerance: f64,
+    min_road_share: f64,
     pitch_change: f64,
     road_points: usize,
+    /// Whether the last frame's 3-D data counts (see `min_road_share`).
+    usable: bool,
 }
 
 impl StereoCues {
@@ -117,8 +125,10 @@ impl StereoCues {
             near,
             far: config.range_3d_m,
             tolerance: config.road_tolerance_m,
+            min_road_share: config.min_road_share,
             pitch_change: 0.0,
             road_points: 0,
+            usable: false,
             rig,
         })
     }
@@ -126,6 +136,16 @@ impl StereoCues {
     /// The density image and DT^D of the last frame.
     pub fn density(&self) -> &Density {
         &self.density
+    }
+
+    /// The density image of the last frame when its 3-D data counts (see `min_road_share`).
+    pub fn usable_density(&self) -> Option<&Density> {
+        self.usable.then_some(&self.density)
+    }
+
+    /// Whether the last frame's 3-D data counts (see `min_road_share`).
+    pub fn usable(&self) -> bool {
+        self.usable
     }
 
     /// The elevation map of the last frame and the curbs found in it (`None` with curbs
@@ -226,8 +246,13 @@ impl StereoCues {
             }
         }
         self.density.finish()?;
+        let region = (w * (h - top)) as f64;
+        self.usable = self.road_points as f64 >= self.min_road_share * region;
         if let Some(map) = self.elevation.as_mut() {
             map.clear();
+            if !self.usable {
+                return Ok(matching);
+            }
             for p in &self.points {
                 map.add(p.x, p.y, p.z - slope * p.x);
             }

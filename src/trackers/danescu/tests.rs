@@ -787,3 +787,126 @@ fn the_output_has_each_markings_inner_and_outer_edge_a_marking_width_apart() {
         assert!((width - lane.width(x)).abs() < 1e-3, "{width} at {x} m");
     }
 }
+
+/// The width each mode reports: with the marking-width model, `danescu.w0` is the paper's
+/// width (between the inner edges), `lane_width_m` between the marking centres, and the
+/// marking widths are in the state; without it (the paper's previous approach), `danescu.w0`
+/// is still the paper's width and `lane_width_m` = W_0 (its delimiters are the inner
+/// edges), and the marking widths, which that model does not estimate, are absent instead
+/// of 0 (the paper's "no marking").
+#[test]
+fn each_mode_reports_the_papers_width_and_only_the_marking_widths_it_estimates() {
+    let (w, h) = (320, 240);
+    let scene = Scene::new(
+        scenario("highway-straight").unwrap(),
+        default_camera(w, h).unwrap(),
+        1,
+    )
+    .unwrap();
+    let lane = true_lane(&scene.truth(0));
+    assert!(lane.wl_mark > 0.1 && lane.wr_mark > 0.1, "{lane:?}");
+    let estimate = DanescuEstimate {
+        lane,
+        valid: true,
+        cluster_share: 1.0,
+        clusters: 1,
+        change: 0,
+        ess: 1.0,
+        support: [1.0; 2],
+    };
+    let with = DanescuTracker::new(&config(w, h, ""), ID_MONO).unwrap();
+    let out = with.to_lane_estimate(&estimate);
+    assert_eq!(out.state["danescu.w0"], lane.w0);
+    assert_eq!(out.state["danescu.wl_mark"], lane.wl_mark);
+    let centres = lane.w0 + (lane.wl_mark + lane.wr_mark) / 2.0;
+    assert!((out.lane_width_m - centres).abs() < 1e-12);
+    let without =
+        DanescuTracker::new(&config(w, h, r#", "marking_widths": false"#), ID_MONO).unwrap();
+    let flat = Lane3d {
+        wl_mark: 0.0,
+        wr_mark: 0.0,
+        ..lane
+    };
+    let out = without.to_lane_estimate(&DanescuEstimate {
+        lane: flat,
+        ..estimate
+    });
+    assert_eq!(out.state["danescu.w0"], lane.w0);
+    assert!((out.lane_width_m - lane.w0).abs() < 1e-12);
+    assert!(
+        !out.state.contains_key("danescu.wl_mark"),
+        "{:?}",
+        out.state
+    );
+    assert!(!out.state.contains_key("danescu.wr_mark"));
+}
+
+/// Frames from the end of the first blackout of `member` until danescu-stereo (with the
+/// `extra` options) is valid with an offset error under 0.3 m, the `eval-suite` recovery
+/// rule; `None` when not within 30 frames.
+fn stereo_recovery(member: &crate::synth::FamilyMember, extra: &str) -> Option<usize> {
+    let (w, h) = (320, 240);
+    let mut scene = member.scene(w, h).unwrap();
+    let camera = serde_json::to_string(&scene.camera().to_file()).unwrap();
+    let config =
+        TrackerConfig::from_json_str(&format!(r#"{{"camera": {camera}, "seed": 1 {extra}}}"#))
+            .unwrap();
+    let mut tracker = DanescuTracker::new(&config, ID_STEREO).unwrap();
+    let (mut left, mut right) = (vec![0; w * h * 4], vec![0; w * h * 4]);
+    let mut end = None;
+    let mut dark = false;
+    for f in 0..member.config.frames {
+        let pose = scene.render(f, Eye::Left, &mut left, None).unwrap();
+        scene.render(f, Eye::Right, &mut right, None).unwrap();
+        tracker
+            .set_ego_motion(EgoMotion {
+                t_s: pose.t,
+                speed_mps: pose.speed,
+                yaw_rate: pose.yaw_rate,
+            })
+            .unwrap();
+        tracker.set_right(&right, w, h).unwrap();
+        let e = tracker.track(&left, w, h).unwrap();
+        let truth = scene.truth(f);
+        let blackout = truth.state["blackout"] > 0.5;
+        // The 3-D data of a blacked-out frame (matches of sensor noise) does not count.
+        if blackout && extra.is_empty() {
+            assert!(!tracker.stereo.as_ref().unwrap().usable(), "frame {f}");
+        }
+        if dark && !blackout {
+            end = Some(f);
+        }
+        dark = blackout;
+        if let Some(end) = end {
+            let out = tracker.to_lane_estimate(&e);
+            if out.valid && (out.lateral_offset_m - truth.lateral_offset_m).abs() < 0.3 {
+                return Some((f - end) as usize);
+            }
+            if f - end >= 30 {
+                return None;
+            }
+        }
+    }
+    None
+}
+
+/// After a blackout the stereo tracker re-locks within a few frames: the 3-D data of the
+/// blacked-out frames (a few hundred matches of sensor noise) no longer weighs the particles
+/// (`min_road_share`), so the cloud does not drift through the blackout. Drawn `occlusion`
+/// members, scene seeds 2-11, 320x240, tracker seed 1. Measured 2026-11-25 (frames from the
+/// blackout's end to a valid estimate within 0.3 m): 1, 1, 2, 4, 10, 1, 6, 1, 5, 1, mean
+/// 3.2; without the gate (`min_road_share: 0`, the behaviour before) 14, 0, 6, 4, 3, 1, 0,
+/// 3, 9, 25, mean 6.5. Not every seed gains (seeds 6 and 8 lose), the mean and the worst do.
+#[test]
+fn stereo_relocks_within_a_few_frames_after_a_blackout() {
+    let frames: Vec<usize> = (2..=11)
+        .map(|seed| {
+            let member = crate::synth::draw_scenario("occlusion", seed).unwrap();
+            let r = stereo_recovery(&member, "");
+            assert!(r.is_some_and(|r| r <= 12), "seed {seed}: {r:?}");
+            r.unwrap_or(usize::MAX)
+        })
+        .collect();
+    let mean = frames.iter().sum::<usize>() as f64 / frames.len() as f64;
+    assert!(mean <= 4.0, "{frames:?}");
+}

@@ -27,7 +27,8 @@
 //!
 //! Lane changes (our addition; the paper shows the lateral offset jumping by a lane width at
 //! each change, Fig. 10, without saying how): when the stage-1 estimate of y0 leaves
-//! [-w/2, w/2) the car has crossed a boundary, and every particle moves by one lane width so
+//! [-w/2, w/2) by the margin of the rule every tracker shares ([`super::lane_change`]), the
+//! car has crossed a boundary, and every particle moves by one lane width so
 //! that the filter goes on with the lane the car is now in. Re-centring the whole cloud, rather
 //! than wrapping particles one by one, keeps the cloud in one piece: per-particle wrapping
 //! split it at the seam, and the half that kept the old lane (whose outer boundary was a solid
@@ -49,6 +50,7 @@ pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
 
+use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
@@ -594,11 +596,13 @@ impl LeeTracker {
                 let mut estimate =
                     estimate_first_order(self.stage1.states(), self.stage1.weights());
                 frame.ess[0] = self.stage1.ess();
-                // Lane change: the estimated lane centre is more than half a lane from the
-                // car, so the car is in the neighbouring lane; the whole cloud moves one lane
-                // width.
-                let (y0, change) = motion::wrap(estimate.y0, estimate.w);
+                // Lane change (the shared rule, `super::lane_change`): the car has crossed a
+                // boundary's centre, so it is in the neighbouring lane; the whole cloud moves
+                // one lane width.
+                let change =
+                    EgoLane::symmetric(estimate.y0, estimate.w).change(lane_change::MARGIN_M);
                 if change != 0 {
+                    let (y0, _) = motion::wrap(estimate.y0, estimate.w);
                     let shift = y0 - estimate.y0;
                     estimate.y0 = y0;
                     for s in self.stage1.states_mut() {
