@@ -1,3 +1,4 @@
+// @ts-check
 // Camera auto-calibration in the demo: the worker feeds every frame of a video, images or the
 // webcam to the wasm `Calibrator`; this module decides when its estimate replaces the camera the
 // tracker uses, and says what it knows. Pure logic (no DOM), tested in Node.

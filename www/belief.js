@@ -1,3 +1,4 @@
+// @ts-check
 // Each tracker's belief as its paper draws it, from the particles (`particles()` rows, see
 // src/wasm/tracker.rs) and the estimate: weighted histograms of the state the paper reasons
 // about, one panel per partition or stage, with axes and units.
@@ -11,8 +12,13 @@ import { groupColour } from './render.js';
 
 const DEFAULT_BINS = 40;
 
-/** Rows of `particles` (stride numbers each) as arrays. */
+/**
+ * Rows of `particles` (stride numbers each) as arrays.
+ * @param {Float32Array} particles
+ * @param {number} stride
+ */
 function rows(particles, stride) {
+  /** @type {Float32Array[]} */
   const out = [];
   for (let i = 0; i + stride <= particles.length; i += stride) out.push(particles.subarray(i, i + stride));
   return out;
@@ -21,6 +27,11 @@ function rows(particles, stride) {
 /**
  * The panels of `trackerId`'s belief: [{ title, unit, items: [{ value, weight, group }],
  * markers: [{ value, colour, label }], probabilities, colours (what the colours mean) }] (empty for an unknown layout).
+ * @param {string} trackerId
+ * @param {Float32Array} particles
+ * @param {number} stride
+ * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+ * @param {import('../pkg/web/lanepf.js').Layer[] | null} [layers]
  */
 export function beliefPanels(trackerId, particles, stride, estimate, layers = null) {
   const r = rows(particles, stride);

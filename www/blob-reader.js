@@ -1,3 +1,4 @@
+// @ts-check
 // Windowed reads of a Blob (a File, or a fetched clip): the demuxers walk a container's
 // headers and the WebCodecs source reads sample data by offset, one window (1 MiB by default)
 // at a time, so a big video is never held in memory whole.

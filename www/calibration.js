@@ -1,3 +1,4 @@
+// @ts-check
 // The camera panel: presets, editable intrinsics and pose, a helper that estimates pitch, yaw
 // and height from two lane lines dragged over the frame, and per-source memory in
 // localStorage. It calls `onApply(camera)` with a complete camera object.
@@ -19,7 +20,9 @@ export class Calibration {
     this.helper = doc.getElementById('vp-helper');
     this.laneWidth = doc.getElementById('vp-lane-width');
     this.readout = doc.getElementById('vp-readout');
+    /** @type {(camera: object) => void} */
     this.onApply = () => {};
+    /** @type {() => void} */
     this.onRedraw = () => {};
     this.camera = null;
     this.lines = null;
@@ -35,7 +38,7 @@ export class Calibration {
       try {
         this.apply(this.read());
       } catch (err) {
-        this.readout.textContent = err.message;
+        this.readout.textContent = err instanceof Error ? err.message : String(err);
       }
     };
     this.form.addEventListener('submit', (e) => {

@@ -1,3 +1,4 @@
+// @ts-check
 // The camera a tracker gets for a source: the bundled clip's own calibration, a camera file the
 // user imports, or, for other media, the clip's camera scaled to the frame size (a guess that
 // a dash cam sees about as much as the Udacity one; the status line says so).
@@ -42,7 +43,7 @@ export async function readCameraFile(file) {
   try {
     value = JSON.parse(await file.text());
   } catch (err) {
-    throw new Error(`“${file.name}” is not JSON: ${err.message}`);
+    throw new Error(`“${file.name}” is not JSON: ${err instanceof Error ? err.message : err}`, { cause: err });
   }
   for (const key of ['width', 'height', 'fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg']) {
     if (!Number.isFinite(value?.[key])) {

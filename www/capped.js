@@ -1,3 +1,4 @@
+// @ts-check
 // A bounded run log: a long webcam session must not grow the page's memory without end.
 
 /** Frames kept for export: 10 minutes at 30 fps (a few KB each). */

@@ -1,3 +1,4 @@
+// @ts-check
 // Codec strings for `VideoDecoder.configure`, built from the codec configuration records the
 // containers carry (the same records in MP4 boxes and in Matroska's CodecPrivate): avcC for
 // H.264, hvcC for HEVC, vpcC (or Matroska's VP9 feature list, or the first keyframe's header)

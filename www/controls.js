@@ -1,31 +1,66 @@
+// @ts-check
 // The controls: source, tracker and camera pickers, playback, teaching steps, overlay toggles,
 // export. They hold no tracking state; main.js reacts to their callbacks.
 
-const byId = (doc, id) => doc.getElementById(id);
+import { byId } from './dom.js';
 
 export class Controls {
   constructor(doc = document) {
-    for (const [key, id] of Object.entries({
-      play: 'play', step: 'step', stepStage: 'step-stage', nextStage: 'next-stage',
-      restart: 'restart', progress: 'progress', tracker: 'tracker', source: 'source',
-      file: 'file', cameraFile: 'camera-file', showTruth: 'show-truth',
-      showParticles: 'show-particles', showTop: 'show-top', showCues: 'show-cues',
-      showPlots: 'show-plots', departure: 'departure', cueLayer: 'cue-layer',
-      colourGroups: 'colour-groups', stereo: 'stereo', compare: 'compare',
-      exportJsonl: 'export-jsonl', exportCsv: 'export-csv', status: 'status', timing: 'timing',
-      version: 'version', dropZone: 'drop-zone',
-    })) {
-      this[key] = byId(doc, id);
-    }
+    /** @param {string} id */
+    const button = (id) => byId(id, HTMLButtonElement, doc);
+    /** @param {string} id */
+    const input = (id) => byId(id, HTMLInputElement, doc);
+    /** @param {string} id */
+    const select = (id) => byId(id, HTMLSelectElement, doc);
+    /** @param {string} id */
+    const element = (id) => byId(id, HTMLElement, doc);
+    this.play = button('play');
+    this.step = button('step');
+    this.stepStage = button('step-stage');
+    this.nextStage = element('next-stage');
+    this.restart = button('restart');
+    this.progress = byId('progress', HTMLProgressElement, doc);
+    this.tracker = select('tracker');
+    this.source = select('source');
+    this.file = input('file');
+    this.cameraFile = input('camera-file');
+    this.showTruth = input('show-truth');
+    this.showParticles = input('show-particles');
+    this.showTop = input('show-top');
+    this.showCues = input('show-cues');
+    this.showPlots = input('show-plots');
+    this.departure = element('departure');
+    this.cueLayer = select('cue-layer');
+    this.colourGroups = input('colour-groups');
+    this.stereo = input('stereo');
+    this.compare = select('compare');
+    this.exportJsonl = button('export-jsonl');
+    this.exportCsv = button('export-csv');
+    this.status = element('status');
+    this.timing = element('timing');
+    this.version = element('version');
+    this.dropZone = element('drop-zone');
     this.paused = false;
+    /** @type {string[]} */
+    this.stepNames = [];
+    // The callbacks main.js sets.
+    /** @type {() => void} */
     this.onStep = () => {};
+    /** @type {() => void} */
     this.onStepStage = () => {};
+    /** @type {() => void} */
     this.onRestart = () => {};
+    /** @type {(value: string) => void} */
     this.onSource = () => {};
+    /** @type {(files: File[]) => void} */
     this.onFiles = () => {};
+    /** @type {(file: File) => void} */
     this.onCameraFile = () => {};
+    /** @type {(id: string) => void} */
     this.onTracker = () => {};
+    /** @type {(id: string) => void} */
     this.onCompare = () => {};
+    /** @type {(format: 'jsonl' | 'csv') => void} */
     this.onExport = () => {};
     this.lastSource = this.source.value;
     this.tracker.addEventListener('change', () => this.onTracker(this.tracker.value));
@@ -41,11 +76,13 @@ export class Controls {
       this.onSource(this.source.value);
     });
     this.file.addEventListener('change', () => {
-      if (this.file.files.length) this.onFiles([...this.file.files]);
+      const files = this.file.files;
+      if (files?.length) this.onFiles([...files]);
       this.file.value = '';
     });
     this.cameraFile.addEventListener('change', () => {
-      if (this.cameraFile.files.length) this.onCameraFile(this.cameraFile.files[0]);
+      const file = this.cameraFile.files?.[0];
+      if (file) this.onCameraFile(file);
     });
     this.play.addEventListener('click', () => this.setPaused(!this.paused));
     this.step.addEventListener('click', () => this.onStep());
@@ -67,7 +104,7 @@ export class Controls {
     // Keyboard: space plays or pauses, "." steps a frame, "," steps a stage.
     doc.addEventListener('keydown', (e) => {
       // (Not while a control has the focus: space there is that control's own key.)
-      if (e.target.closest?.('input, select, textarea, button, summary') || e.ctrlKey || e.metaKey || e.altKey) return;
+      if ((e.target instanceof Element && e.target.closest('input, select, textarea, button, summary')) || e.ctrlKey || e.metaKey || e.altKey) return;
       if (e.key === ' ') {
         e.preventDefault();
         this.setPaused(!this.paused);
@@ -92,6 +129,7 @@ export class Controls {
     this.updateStageButton();
   }
 
+  /** @param {number | null} [next] the index in `stepNames` of the next step (null: a frame's start) */
   updateStageButton(next = null) {
     const can = this.paused && this.stepNames?.length > 0;
     this.stepStage.disabled = !can;
@@ -105,7 +143,8 @@ export class Controls {
 
   /** The "Ground truth" control is shown only for a source that has ground truth (the simulator's). */
   setHasTruth(yes) {
-    this.showTruth.closest('label').hidden = !yes;
+    const label = this.showTruth.closest('label');
+    if (label) label.hidden = !yes;
   }
 
   /** Shows progress in [0, 1], or hides the bar for a source without an end (null). */

@@ -1,3 +1,4 @@
+// @ts-check
 // What the demuxers accept of a container's tables and clocks, so that a small or damaged
 // file cannot make them allocate gigabytes or report a frame rate of 0: at most MAX_SAMPLES
 // frames (9 h at 30 fps), every frame at least one byte, all of them inside the file, a

@@ -1,3 +1,4 @@
+// @ts-check
 // An MP4 / ISO-BMFF (ISO/IEC 14496-12) demuxer for the first video track, enough for
 // WebCodecs: it reads the top-level box headers, the whole `moov` box and nothing of `mdat`,
 // and returns the codec, the decoder configuration and every sample's place in the file.
@@ -218,7 +219,7 @@ function sampleOffsets(stbl, sizes) {
 }
 
 /** The media time where presentation starts and the delay before it (edts/elst), or none. */
-function editStart(trak, movieTimescale, timescale) {
+function editStart(trak, movieTimescale) {
   const elst = trak.child('edts')?.child('elst');
   if (!elst) return { shift: 0, delayUs: 0 };
   const v1 = elst.u8(elst.start) === 1;
@@ -275,7 +276,7 @@ export async function demuxMp4(blob) {
   const stss = stbl.child('stss');
   const keys = stss ? new Set(Array.from({ length: stss.entries(stss.start + 4, 4) },
     (_, k) => stss.u32(stss.start + 8 + 4 * k) - 1)) : null;
-  const { shift, delayUs } = editStart(trak, movieTimescale, timescale);
+  const { shift, delayUs } = editStart(trak, movieTimescale);
 
   const us = (t) => Math.round((t * 1e6) / timescale);
   const samples = new Array(count);

@@ -1,3 +1,4 @@
+// @ts-check
 // A WebM / Matroska demuxer for the first video track, enough for WebCodecs. It walks the EBML
 // element headers: EBML header (DocType) -> Segment -> Info (TimecodeScale, Duration), Tracks
 // (TrackEntry: TrackNumber, TrackType, CodecID, CodecPrivate, DefaultDuration, Video:
@@ -87,7 +88,15 @@ function float(data) {
   throw new Error(`a float element has ${data.length} bytes`);
 }
 
+/** @typedef {{ scale: number, duration: number | null }} Info */
+
+/**
+ * @param {Uint8Array} bytes
+ * @param {number} base
+ * @returns {Info}
+ */
 function parseInfo(bytes, base) {
+  /** @type {Info} */
   const info = { scale: 1e6, duration: null };
   for (const e of children(bytes, base)) {
     if (e.id === ID.TimecodeScale) info.scale = uint(e.data);
@@ -111,6 +120,10 @@ function parseTracks(bytes, base) {
   const tracks = [];
   for (const entry of children(bytes, base)) {
     if (entry.id !== ID.TrackEntry) continue;
+    /**
+     * @type {{ number: number | null, type: number | null, codecId: string, codecPrivate: Uint8Array | null,
+     *   defaultDuration: number | null, width: number, height: number, encoded: boolean }}
+     */
     const t = { number: null, type: null, codecId: '', codecPrivate: null, defaultDuration: null, width: 0, height: 0, encoded: false };
     for (const e of children(entry.data, entry.pos)) {
       if (e.id === ID.TrackNumber) t.number = uint(e.data);
@@ -159,18 +172,23 @@ async function readCluster(reader, cluster, parentEnd, blocks) {
       timecode = uint(await reader.read(h.start, h.size, 'a Cluster Timecode'));
     } else if (h.id === ID.SimpleBlock || h.id === ID.BlockGroup) {
       if (timecode === null) throw new Error(`the block at byte ${pos} comes before its Cluster's Timecode`);
-      let block = null;
+      let block;
       if (h.id === ID.SimpleBlock) {
         const head = blockHead(await reader.read(h.start, Math.min(h.size, 11)), pos);
         block = { ...head, start: h.start, size: h.size, key: (head.flags & 0x80) !== 0, duration: null };
       } else {
-        block = { key: true, duration: null };
+        /** @type {(ReturnType<typeof blockHead> & { start: number, size: number }) | null} */
+        let found = null;
+        let key = true;
+        /** @type {number | null} */
+        let duration = null;
         for (const e of children(await reader.read(h.start, h.size, 'a BlockGroup'), h.start)) {
-          if (e.id === ID.Block) Object.assign(block, blockHead(e.data.subarray(0, 11), e.pos), { start: e.pos, size: e.data.length });
-          if (e.id === ID.BlockDuration) block.duration = uint(e.data);
-          if (e.id === ID.ReferenceBlock) block.key = false;
+          if (e.id === ID.Block) found = { ...blockHead(e.data.subarray(0, 11), e.pos), start: e.pos, size: e.data.length };
+          if (e.id === ID.BlockDuration) duration = uint(e.data);
+          if (e.id === ID.ReferenceBlock) key = false;
         }
-        if (block.start === undefined) throw new Error(`the BlockGroup at byte ${pos} has no Block`);
+        if (!found) throw new Error(`the BlockGroup at byte ${pos} has no Block`);
+        block = { ...found, key, duration };
       }
       if (block.size <= block.length) throw new Error(`the block at byte ${pos} holds no frame data (the file is corrupt)`);
       if (blocks.length >= MAX_BLOCKS) throw new Error(`the file has more than ${MAX_BLOCKS} blocks, more than this reader accepts`);
@@ -236,7 +254,9 @@ export async function demuxWebm(blob) {
   if (end > reader.size) {
     throw new TruncatedError(`the file is truncated: its Segment ends at byte ${end}, the file at byte ${reader.size}`);
   }
+  /** @type {Info} */
   let info = { scale: 1e6, duration: null };
+  /** @type {ReturnType<typeof parseTracks>} */
   let tracks = [];
   const blocks = [];
   for (pos = segment.start; pos < end;) {
@@ -263,7 +283,8 @@ export async function demuxWebm(blob) {
   if (!mine[0].key) throw new Error('the first frame is not a keyframe');
 
   const us = (units) => Math.round((units * info.scale) / 1000);
-  const samples = mine.map((b) => ({ timestamp: us(b.time), duration: null, key: b.key, offset: b.offset, size: b.size, blockDuration: b.duration }));
+  /** @type {{ timestamp: number, duration: number, key: boolean, offset: number, size: number, blockDuration?: number | null }[]} */
+  const samples = mine.map((b) => ({ timestamp: us(b.time), duration: 0, key: b.key, offset: b.offset, size: b.size, blockDuration: b.duration }));
   // Durations: DefaultDuration (ns), else BlockDuration, else the gap to the next frame shown.
   const shown = [...samples].sort((a, b) => a.timestamp - b.timestamp);
   const gaps = shown.slice(1).map((s, k) => s.timestamp - shown[k].timestamp);
@@ -271,12 +292,12 @@ export async function demuxWebm(blob) {
   const endUs = info.duration ? us(info.duration) : null;
   shown.forEach((s, k) => {
     if (track.defaultDuration) s.duration = Math.round(track.defaultDuration / 1000);
-    else if (s.blockDuration !== null) s.duration = us(s.blockDuration);
+    else if (typeof s.blockDuration === 'number') s.duration = us(s.blockDuration);
     else if (k + 1 < shown.length) s.duration = gaps[k];
-    else s.duration = endUs > s.timestamp ? endUs - s.timestamp : median ?? 0;
+    else s.duration = endUs !== null && endUs > s.timestamp ? endUs - s.timestamp : median ?? 0;
   });
   for (const s of samples) delete s.blockDuration;
-  const last = shown.at(-1);
+  const last = shown[shown.length - 1];
   checkDuration(Math.abs(shown[0].timestamp) / 1e6, 'the first frame\'s timestamp');
   checkDuration((last.timestamp - shown[0].timestamp) / 1e6, 'the frames\' timestamps span');
   const frameNs = track.defaultDuration || (median ? median * 1000 : null);

@@ -1,3 +1,4 @@
+// @ts-check
 // Lane-departure status: how far the car's sides are from the ego lane's boundaries and the
 // time to line crossing (TLC) at the current lateral speed.
 //
@@ -38,8 +39,8 @@ export class Departure {
     if (toLeft < 0 || toRight < 0) {
       return { text: `crossing the ${toLeft < 0 ? 'left' : 'right'} line`, warn: true };
     }
-    const side = lateral > 0 ? 'left' : 'right';
-    const distance = lateral > 0 ? toLeft : toRight;
+    const side = lateral !== null && lateral > 0 ? 'left' : 'right';
+    const distance = side === 'left' ? toLeft : toRight;
     const tlc = lateral && Math.abs(lateral) > 1e-3 ? distance / Math.abs(lateral) : Infinity;
     const text = `in lane · ${toLeft.toFixed(2)} m to the left line, ${toRight.toFixed(2)} m to the right`
       + (Number.isFinite(tlc) && tlc < 10 ? ` · ${tlc.toFixed(1)} s to the ${side} line` : '');

@@ -1,3 +1,4 @@
+// @ts-check
 // Export of a run's results: JSON lines in the project's track format (one estimate per frame,
 // as `lanepf track` writes them) and CSV of the lane parameters every tracker shares.
 

@@ -1,3 +1,4 @@
+// @ts-check
 // What the drawing means: the colour legend under the camera view and the estimate's state
 // badge on it. The legend's samples are drawn by render.js's own functions with its own
 // colours, so the legend cannot say one thing while the canvas shows another.
@@ -5,12 +6,17 @@ import { ROLE_COLOURS, drawEstimate, drawTruth, drawHypotheses } from './render.
 
 const SAMPLE_W = 56;
 const SAMPLE_H = 16;
-/** A boundary of `role` across a sample canvas, as image and as road points. */
+/**
+ * A boundary of `role` across a sample canvas, as image and as road points.
+ * @param {import('../pkg/web/lanepf.js').Role} role
+ * @param {number} [y]
+ * @returns {import('../pkg/web/lanepf.js').Boundary}
+ */
 const line = (role, y = SAMPLE_H / 2) => ({ role, points: [[4, y], [SAMPLE_W - 4, y]], road_points: [] });
 
 /** The legend's entries: key, label, how to draw the sample (ctx, { byGroup }). */
 const ENTRIES = [
-  ...Object.keys(ROLE_COLOURS).map((role) => ({
+  .../** @type {import('../pkg/web/lanepf.js').Role[]} */ (Object.keys(ROLE_COLOURS)).map((role) => ({
     key: role,
     label: `${role} boundary`,
     draw: (ctx) => drawEstimate(ctx, { valid: true, boundaries: [line(role)] }),

@@ -1,3 +1,4 @@
+// @ts-check
 // The demo page: wires a frame source, the tracking worker, the renderer and the controls.
 // One frame at a time: take the next frame from the source, send its pixels to the worker
 // (transferred, not copied), draw what comes back. Every action runs in one queue, so clicks
@@ -22,38 +23,97 @@ import { ParamsPanel } from './params-panel.js';
 import { Pacer } from './pacer.js';
 import { showWeighing } from './weighing-view.js';
 import { resampleText, frameResampling } from './resampling.js';
+import { byId, context2d } from './dom.js';
+
+/** @typedef {import('../pkg/web/lanepf.js').LaneEstimate} LaneEstimate */
+/** @typedef {import('../pkg/web/lanepf.js').CameraConfig} CameraConfig */
+/** @typedef {import('../pkg/web/lanepf.js').ResampleDecision} ResampleDecision */
+/** @typedef {import('../pkg/web/lanepf.js').TrackerId} TrackerId */
+/** @typedef {import('../pkg/worker/index.js').TrackerWorker} TrackerWorker */
+/**
+ * A frame from a source: its pixels (handed to the worker and back), size, name and index, and
+ * from the simulator its ground truth and the car's motion; a stereo frame's right image.
+ * @typedef {{ rgba: Uint8ClampedArray<ArrayBuffer>, right?: Uint8ClampedArray<ArrayBuffer> | null, width: number,
+ *   height: number, name: string, index: number, t?: number, ms?: number, truth?: LaneEstimate | null,
+ *   motion?: import('../pkg/web/lanepf.js').EgoMotion | null }} Frame
+ */
+/**
+ * A source of frames (source.js, media-source.js, webcodecs-source.js): `size` once open for
+ * media (the simulator's sources have none), `progress` in [0, 1] (null: no end).
+ * @typedef {{ label: string, progress?: number | null, size?: { width: number, height: number } | null,
+ *   fps?: number | null, camera?: CameraConfig | null, open(): Promise<unknown>, next(): Promise<Frame | null>,
+ *   restart(): void, close(): void }} Source
+ */
+/**
+ * What the demo's worker answers for a frame (worker.js: `trackFrame`, `beginStepping`,
+ * `stepStage`, `topView`): the frame's pixels back, and what the page draws.
+ * @typedef {{ frame: { data: Uint8ClampedArray<ArrayBuffer>, width: number, height: number },
+ *   estimate?: LaneEstimate | null, trackMs: number, done?: number, nextStep?: number | null,
+ *   hypotheses?: import('../pkg/web/lanepf.js').Hypothesis[] | null, layers?: import('../pkg/web/lanepf.js').Layer[] | null,
+ *   particles?: { data: Float32Array, stride: number } | null, top?: Parameters<typeof drawTopView>[1] | null,
+ *   weighing?: { weights: Float32Array, count: number, ess: number, group: number | null },
+ *   resamplings?: ResampleDecision[], compare?: CompareAnswer | null, calibration?: CalibrationAnswer | null }} FrameAnswer
+ */
+/**
+ * The second tracker's whole frame (compare mode; worker.js `stepCompare`).
+ * @typedef {{ trackerId: string, estimate: LaneEstimate, trackMs: number,
+ *   hypotheses: import('../pkg/web/lanepf.js').Hypothesis[] | null, particles: { data: Float32Array, stride: number } | null,
+ *   layers: null, weighing: NonNullable<FrameAnswer['weighing']>, resamplings: ResampleDecision[] }} CompareAnswer
+ */
+/**
+ * The auto-calibrator's verdict on a frame and its estimate so far (worker.js `calibrate`).
+ * @typedef {{ status: import('../pkg/web/lanepf.js').CalibrationStatus,
+ *   estimate: import('../pkg/web/lanepf.js').CalibrationEstimate | null,
+ *   observation: import('../pkg/web/lanepf.js').CalibrationObservation | null }} CalibrationAnswer
+ */
+
+/** @param {string} id */
+const el = (id) => byId(id, HTMLElement);
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
 
 const controls = new Controls();
-const ctx = document.getElementById('view').getContext('2d');
-const topCtx = document.getElementById('top').getContext('2d');
-const cues = document.getElementById('cues').getContext('2d');
-const ctx2 = document.getElementById('view2').getContext('2d');
+const ctx = context2d('view');
+const topCtx = context2d('top');
+const cues = context2d('cues');
+const ctx2 = context2d('view2');
 // The worker (a TrackerWorker of lanepf/worker, connected to the demo's worker.js), from main().
-let client = null;
-const plots = new Plots(document.getElementById('plots'));
-const legend = new Legend(document.getElementById('legend'));
+/** @type {TrackerWorker} */
+let client;
+const plots = new Plots(byId('plots', HTMLCanvasElement));
+const legend = new Legend(el('legend'));
 const departure = new Departure();
 const panel = new ParamsPanel();
 const auto = new AutoCalibration();
-const autoText = document.getElementById('auto-calibration');
-const autoToggle = document.getElementById('auto-calibrate');
-const showCalibration = document.getElementById('show-calibration');
+const autoText = el('auto-calibration');
+const autoToggle = byId('auto-calibrate', HTMLInputElement);
+const showCalibration = byId('show-calibration', HTMLInputElement);
 const pacer = new Pacer();
-const paceText = document.getElementById('pace');
-const whyLink = document.getElementById('why-link');
+const paceText = el('pace');
+const whyLink = el('why-link');
 whyLink.addEventListener('click', () => {
-  document.getElementById('why-resample').open = true;
+  byId('why-resample', HTMLDetailsElement).open = true;
 });
-// Read by the end-to-end tests and handy in the console.
+// Read by the end-to-end tests and handy in the console (the `last*` of the frame drawn last).
+/**
+ * @type {{ frames: number, lastTruth: LaneEstimate | null, lastFrame: object | null, lastEstimate: LaneEstimate | null,
+ *   lastLayer: object | null, lastHypotheses: object[] | null, lastRgba: Uint8ClampedArray | null, results: object[],
+ *   droppedResults: number, offsetErrors: number[], ended: boolean, source: string | null, pending: number,
+ *   auto: AutoCalibration, camera: CameraConfig | null, [more: string]: unknown }}
+ */
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
   lastHypotheses: null, lastRgba: null, results: [], droppedResults: 0, offsetErrors: [], ended: false, source: null, pending: 0,
   auto, camera: null,
 });
 
+/**
+ * @type {{ source: Source | null, sourceName: string, sourceStatus?: string, trackerId: string, compareId: string,
+ *   hasTruth: boolean, camera: CameraConfig | null, importedCamera: CameraConfig | null, inFrame: Frame | null,
+ *   inFrameResamplings: ResampleDecision[], inFrameMs: number, inFrameCompare?: CompareAnswer | null,
+ *   lastFrame: Frame | null, lastResult: Partial<FrameAnswer> | null }}
+ */
 const state = {
   source: null,
   sourceName: '',
@@ -70,6 +130,8 @@ const state = {
   lastFrame: null, // the frame on the canvas and what the worker said about it
   lastResult: null,
 };
+/** The camera panel (from main(), once the presets are loaded). */
+/** @type {Calibration | null} */
 let calibration = null;
 
 // Before the WebAssembly module loads: the menus, the teaching text and the canvases as they
@@ -83,7 +145,7 @@ controls.tracker.value = state.trackerId;
 controls.compare.value = state.compareId;
 // The simulator's scenes and the test road are 640x480; the bundled clip 640x360 (index.html).
 if (!['clip', 'webcam', 'file'].includes(firstSource)) {
-  for (const id of ['view', 'view2']) document.getElementById(id).height = 480;
+  for (const id of ['view', 'view2']) byId(id, HTMLCanvasElement).height = 480;
 }
 panel.show(state.trackerId, null);
 showNames();
@@ -93,10 +155,10 @@ controls.onCompare = (id) => { state.compareId = id; };
 
 /** Names the tracker each view shows, on the view itself. */
 function showNames() {
-  const name = document.getElementById('view-name');
+  const name = el('view-name');
   name.textContent = state.trackerId || 'no tracker';
   name.hidden = false;
-  document.getElementById('compare-name').textContent = state.compareId;
+  el('compare-name').textContent = state.compareId;
 }
 
 /**
@@ -140,7 +202,7 @@ const want = () => ({
 /** Draws the frame and everything on it; `redraw`: the same frame again (no bookkeeping). */
 function draw(frame, result, redraw = false) {
   // Frames flow again after an error: back to the source's description.
-  if (!redraw && document.body.dataset.state === 'error') controls.say(state.source.label);
+  if (!redraw && document.body.dataset.state === 'error' && state.source) controls.say(state.source.label);
   state.lastFrame = frame;
   state.lastResult = result;
   drawFrame(ctx, frame.rgba, frame.width, frame.height);
@@ -152,22 +214,22 @@ function draw(frame, result, redraw = false) {
   // The truth over the estimate: thin dashes on a thick line where they agree.
   if (estimate) drawEstimate(ctx, estimate);
   if (truth) drawTruth(ctx, truth.boundaries);
-  showBadge(document.getElementById('view-badge'), estimate);
+  showBadge(el('view-badge'), estimate);
   const seen = result?.calibration?.observation;
   if (seen && (showCalibration.checked || auto.looking())) drawCalibrationLines(ctx, seen);
   calibration?.draw(ctx, estimate);
   const top = controls.showTop.checked ? result?.top : null;
-  document.getElementById('top-figure').hidden = !top;
+  el('top-figure').hidden = !top;
   if (top) drawTopView(topCtx, top, { truth, estimate, hypotheses, byGroup });
   drawCompare(frame, result?.compare ?? null, truth, byGroup);
   const layers = controls.showCues.checked ? result?.layers : null;
   const layer = layers?.[controls.setLayers(layers)];
-  document.getElementById('cues-figure').hidden = !layer;
+  el('cues-figure').hidden = !layer;
   if (layer) {
     const st = estimate?.state ?? {};
     const probabilities = 'adachi.p1' in st ? [1, 2, 3, 4].map((r) => st[`adachi.p${r}`]) : null;
     drawLayer(cues, layer, { hypotheses: result?.hypotheses, probabilities });
-    document.getElementById('cues-caption').textContent = layer.name;
+    el('cues-caption').textContent = layer.name;
   }
   drawWeighing(result, estimate);
   if (redraw) return;
@@ -203,7 +265,7 @@ function draw(frame, result, redraw = false) {
 function drawWeighing(result, estimate) {
   const weighing = result?.weighing ?? null;
   const drawn = controls.showParticles.checked ? (result?.hypotheses?.length ?? 0) : 0;
-  showCount(document.getElementById('view-count'), drawn, weighing?.count ?? 0);
+  showCount(el('view-count'), drawn, weighing?.count ?? 0);
   const step = result?.done !== undefined && result?.done !== null ? controls.stepNames[result.done] : null;
   let label = step ? `after “${step}”` : 'after the whole frame';
   if (!step && !estimate && state.inFrame) label = 'at the start of the frame';
@@ -221,7 +283,7 @@ function drawWeighing(result, estimate) {
 
 /** The second tracker's view: the same frame with its boundaries and particles. */
 function drawCompare(frame, compared, truth, byGroup) {
-  document.getElementById('compare-figure').hidden = !compared;
+  el('compare-figure').hidden = !compared;
   // Side by side on a wide screen (style.css), the teaching panel then below them.
   document.body.classList.toggle('comparing', !!compared);
   if (!compared) return;
@@ -229,21 +291,21 @@ function drawCompare(frame, compared, truth, byGroup) {
   drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
   if (compared.estimate) drawEstimate(ctx2, compared.estimate);
   if (truth) drawTruth(ctx2, truth.boundaries);
-  showBadge(document.getElementById('compare-badge'), compared.estimate);
+  showBadge(el('compare-badge'), compared.estimate);
   let text = `${compared.trackerId} · track ${compared.trackMs.toFixed(1)} ms`;
   if (compared.estimate && !compared.estimate.valid) text += ' · not valid';
   if (compared.estimate && frame.truth) {
     const err = Math.abs(compared.estimate.lateral_offset_m - frame.truth.lateral_offset_m);
     text += ` · offset error ${(100 * err).toFixed(0)} cm`;
   }
-  document.getElementById('compare-caption').textContent = text;
+  el('compare-caption').textContent = text;
 }
 
 /** A frame's end: its estimate into the plots (with the resampling `decisions` it reported), the log and the status. */
 function record(frame, result, decisions) {
   if (!result?.estimate) return;
   plots.push(result.estimate, frame.truth, result, result.compare ?? null, frameResampling(decisions));
-  document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+  el('plots-figure').hidden = !controls.showPlots.checked;
   const t = frame.motion?.t_s ?? frame.t ?? null;
   const status = departure.update(result.estimate, t, frame.motion?.speed_mps ?? null);
   controls.departure.textContent = status?.text ?? '';
@@ -259,18 +321,26 @@ function record(frame, result, decisions) {
  * Sends a frame's pixels to the demo's op `op` in the worker (transferred); the pixels come back
  * with the answer, or on the Error (`err.frame`).
  */
+/**
+ * @param {string} op
+ * @param {Frame} frame
+ * @param {{ motion?: Frame['motion'], right?: Frame['right'] }} [extra]
+ * @returns {Promise<FrameAnswer>}
+ */
 async function toWorker(op, frame, extra = {}) {
   const args = { frame: { data: frame.rgba, width: frame.width, height: frame.height }, want: want(), ...extra };
   // A stereo frame's right image goes along once (it is not needed back).
   const transfer = [frame.rgba.buffer];
   if (extra.right) transfer.push(extra.right.buffer);
   try {
-    const result = await client.request(op, args, transfer);
+    const result = /** @type {FrameAnswer} */ (await client.request(op, args, transfer));
     frame.rgba = result.frame.data;
     return result;
   } catch (err) {
-    if (err.frame?.data) {
-      frame.rgba = err.frame.data;
+    // (The request's frame comes back on the Error.)
+    const back = /** @type {{ frame?: FrameAnswer['frame'] }} */ (err)?.frame;
+    if (back?.data) {
+      frame.rgba = back.data;
       draw(frame, null);
     }
     throw err;
@@ -288,12 +358,14 @@ async function refreshTopView() {
 
 /** The next frame, or null at the end of the source (which pauses the page). */
 async function nextFrame() {
-  const frame = await state.source.next();
+  const source = state.source;
+  if (!source) throw new Error('no source is open');
+  const frame = await source.next();
   if (!frame) {
     demo.ended = true;
     controls.setPaused(true);
     controls.setProgress(1);
-    controls.say(`End of ${state.source.label}: ${demo.results.length} frames tracked. Restart to run it again.`);
+    controls.say(`End of ${source.label}: ${demo.results.length} frames tracked. Restart to run it again.`);
   }
   return frame;
 }
@@ -334,7 +406,7 @@ async function applyAuto(reason) {
   const camera = auto.estimate.camera;
   state.camera = camera;
   demo.camera = camera;
-  calibration.show(camera, state.sourceName);
+  calibration?.show(camera, state.sourceName);
   await openTracker({ keepLog: true });
   auto.markApplied(camera, reason);
 }
@@ -354,14 +426,15 @@ async function stepStage() {
     showStageInPlots('start of the frame: image cues', result);
     // Not in the middle of a stepped frame: the camera changes on the next whole frame.
     await autoCalibrate(result.calibration, false);
-    controls.updateStageButton(result.nextStep);
+    controls.updateStageButton(result.nextStep ?? null);
     return;
   }
   const result = await toWorker('stepStage', frame);
   // The second tracker took the whole frame at its start: its views stay while this one steps.
   result.compare = state.inFrameCompare;
-  const step = controls.stepNames[result.done];
-  state.inFrameResamplings.push(...result.resamplings);
+  const step = result.done === undefined ? '' : controls.stepNames[result.done];
+  const decisions = result.resamplings ?? [];
+  state.inFrameResamplings.push(...decisions);
   state.inFrameMs += result.trackMs;
   draw(frame, result);
   if (result.estimate) {
@@ -371,17 +444,17 @@ async function stepStage() {
     controls.updateStageButton(null);
   } else {
     showStageInPlots(step, result);
-    controls.updateStageButton(result.nextStep);
+    controls.updateStageButton(result.nextStep ?? null);
   }
   // What the tracker reported of its resampling in this step, with its numbers.
-  const said = resampleText(result.resamplings);
+  const said = resampleText(decisions);
   let text = `${state.trackerId}: ran “${step}”`;
   if (said) text += ` · ${said}`;
   else if (/resampl/i.test(step)) text += ' · the tracker reported no resampling in this step';
   controls.say(text);
   whyLink.hidden = !said;
-  demo.lastResampling = result.resamplings.at(-1) ?? null;
-  demo.lastResamplings = result.resamplings;
+  demo.lastResampling = decisions.at(-1) ?? null;
+  demo.lastResamplings = decisions;
 }
 
 /**
@@ -393,7 +466,7 @@ function showStageInPlots(label, result) {
     label, ess: result.weighing?.ess ?? null, trackMs: state.inFrameMs,
     ...frameResampling(state.inFrameResamplings),
   });
-  document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+  el('plots-figure').hidden = !controls.showPlots.checked;
   demo.plotsStage = plots.live;
 }
 
@@ -413,7 +486,8 @@ async function openTracker({ keepLog = false } = {}) {
   const options = { ...panel.changedOptions(), seed: panel.seedValue() };
   // The top view follows the camera, the tracker or none.
   await client.request('openTopView', { camera: state.camera });
-  if (trackerId) await client.open(trackerId, withCamera(options, state.camera));
+  // (An id from the menu or the URL: the tracker refuses an unknown one with a LanepfConfigError.)
+  if (trackerId) await client.open(/** @type {TrackerId} */ (trackerId), withCamera(options, state.camera));
   else await client.close();
   // The comparison tracker: its own defaults, the same camera and seed.
   await client.request('openCompare', {
@@ -421,7 +495,7 @@ async function openTracker({ keepLog = false } = {}) {
   });
   controls.setStepNames(trackerId ? client.stepNames : []);
   showNames();
-  document.getElementById('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length,
+  el('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length,
     trackerId ? state.compareId : '');
   pacer.reset();
   demo.camera = state.camera;
@@ -467,7 +541,7 @@ async function startAuto(source, userCamera) {
     await client.request('openCalibrator', { width, height, intrinsics: own ?? imported });
     auto.start(own || userCamera || imported ? 'manual' : 'auto', { known: own });
   } catch (err) {
-    auto.start('off', { error: err.message });
+    auto.start('off', { error: err instanceof Error ? err.message : String(err) });
   }
 }
 
@@ -488,7 +562,8 @@ async function openSource(next, name) {
   } else {
     state.camera = next.camera;
   }
-  const saved = calibration.saved(name, state.camera.width, state.camera.height);
+  if (!state.camera) throw new Error(`${next.label}: no camera`);
+  const saved = calibration?.saved(name, state.camera.width, state.camera.height);
   if (saved) {
     state.camera = saved;
     note = ' · camera: as you calibrated it for this source';
@@ -497,7 +572,7 @@ async function openSource(next, name) {
   autoToggle.checked = auto.mode === 'auto';
   autoToggle.disabled = auto.mode === 'off';
   showAuto();
-  calibration.show(state.camera, name);
+  calibration?.show(state.camera, name);
   pacer.start(next.fps ?? null, { live: next instanceof WebcamSource });
   await openTracker();
   state.sourceStatus = next.label + note;
@@ -535,7 +610,7 @@ function showTruthControls(hasTruth) {
   state.hasTruth = hasTruth;
   controls.setHasTruth(hasTruth);
   legend.update({ hasTruth, byGroup: controls.colourGroups.checked });
-  document.getElementById('caption').textContent = hasTruth
+  el('caption').textContent = hasTruth
     ? 'Camera view: the estimate, the ground truth and the particles (colours below). Drop a video or images here.'
     : 'Camera view: the estimate and the particles (colours below). Drop a video or images here.';
 }
@@ -567,20 +642,23 @@ function redrawLast() {
 
 async function main() {
   client = await connectWorker();
-  const { version, trackers, scenarios } = await client.request('hello');
-  calibration = new Calibration(document, document.getElementById('view'), await loadPresets());
-  demo.calibration = calibration;
-  calibration.onRedraw = () => {
+  const hello = /** @type {{ version: string, trackers: TrackerId[], scenarios: import('../pkg/web/lanepf.js').ScenarioInfo[] }} */ (
+    await client.request('hello'));
+  const { version, trackers, scenarios } = hello;
+  const cameraPanel = new Calibration(document, byId('view', HTMLCanvasElement), await loadPresets());
+  calibration = cameraPanel;
+  demo.calibration = cameraPanel;
+  cameraPanel.onRedraw = () => {
     if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
   };
-  calibration.onApply = (camera) => run(async () => {
+  cameraPanel.onApply = (camera) => run(async () => {
     // A camera applied by hand wins over the auto-calibrated one.
     auto.setMode('manual');
     autoToggle.checked = false;
     showAuto();
     state.camera = camera;
     await openTracker();
-    calibration.save(camera);
+    cameraPanel.save(camera);
     await refreshTopView();
     controls.say(`Camera applied: pitch ${camera.pitch_deg.toFixed(2)}°, yaw ${camera.yaw_deg.toFixed(2)}°, `
       + `height ${camera.height_m.toFixed(2)} m (remembered for this source).`);
@@ -607,7 +685,7 @@ async function main() {
       autoToggle.checked = false;
       showAuto();
       state.camera = scaleCamera(state.importedCamera, state.source.size.width, state.source.size.height);
-      calibration.show(state.camera, state.sourceName);
+      cameraPanel.show(state.camera, state.sourceName);
       await openTracker();
     }
     controls.say(`Camera “${file.name}” will be used for your videos, images and the webcam.`);
@@ -634,7 +712,9 @@ async function main() {
   controls.onStep = () => run(stepFrame);
   controls.onStepStage = () => run(stepStage);
   controls.onRestart = () => run(async () => {
-    state.source.restart();
+    const source = state.source;
+    if (!source) throw new Error('no source is open');
+    source.restart();
     await client.request('resetTrackers');
     pacer.reset();
     state.inFrame = null;
@@ -646,7 +726,7 @@ async function main() {
     departure.reset();
     controls.setExportable(false);
     controls.updateStageButton(null);
-    controls.say(state.source.label);
+    controls.say(source.label);
   });
   controls.onExport = (format) => {
     const base = `lanepf-${state.trackerId || 'frames'}-${state.sourceName.replace(/[^\w.-]+/g, '_')}`;
@@ -663,7 +743,7 @@ async function main() {
     redrawLast();
   });
   controls.showPlots.addEventListener('change', () => {
-    document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+    el('plots-figure').hidden = !controls.showPlots.checked;
   });
   if (document.body.dataset.state !== 'error') document.body.dataset.state = 'running';
 

@@ -1,19 +1,29 @@
+// @ts-check
 // The teaching panel: the chosen tracker's paper in a few sentences, sliders for the parameters
 // the paper names, the seed, and a button back to the defaults. It calls `onChange(options,
 // seed)` when the person lets go of a slider.
+import { byId } from './dom.js';
 import { TRACKERS, getPath, setPath } from './explain.js';
 
 export class ParamsPanel {
   constructor(doc = document) {
     this.doc = doc;
-    this.section = doc.getElementById('teach');
-    this.title = doc.getElementById('teach-title');
-    this.text = doc.getElementById('teach-text');
-    this.form = doc.getElementById('params');
-    this.seed = doc.getElementById('seed');
-    this.reset = doc.getElementById('params-reset');
+    this.section = byId('teach', HTMLElement, doc);
+    this.title = byId('teach-title', HTMLElement, doc);
+    this.text = byId('teach-text', HTMLElement, doc);
+    this.form = byId('params', HTMLFormElement, doc);
+    this.seed = byId('seed', HTMLInputElement, doc);
+    this.reset = byId('params-reset', HTMLButtonElement, doc);
+    /** @type {(options: Record<string, unknown>, seed: number) => void} */
     this.onChange = () => {};
+    /** The tracker shown (null: none) and the one whose options are kept. */
+    /** @type {string | null} */
+    this.id = null;
+    /** @type {string | null} */
+    this.defaultsId = null;
+    /** @type {Record<string, unknown> | null} */
     this.defaults = {};
+    /** @type {Record<string, unknown>} */
     this.options = {};
     this.form.addEventListener('submit', (e) => e.preventDefault());
     this.seed.addEventListener('change', () => this.changed());
@@ -81,7 +91,7 @@ export class ParamsPanel {
     }
     input.type = 'range';
     Object.assign(input, { min: p.min, max: p.max, step: p.step });
-    input.value = value;
+    input.value = `${value}`;
     out.textContent = current ? `${value}` : '…';
     input.addEventListener('input', () => { out.textContent = input.value; });
     input.addEventListener('change', () => {
@@ -94,9 +104,10 @@ export class ParamsPanel {
 
   /** Keeps only the top-level options that differ from the defaults. */
   trim(options) {
+    /** @type {Record<string, unknown>} */
     const out = {};
     for (const [k, v] of Object.entries(options)) {
-      if (JSON.stringify(v) !== JSON.stringify(this.defaults[k])) out[k] = v;
+      if (JSON.stringify(v) !== JSON.stringify(this.defaults?.[k])) out[k] = v;
     }
     return out;
   }

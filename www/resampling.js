@@ -1,3 +1,4 @@
+// @ts-check
 // Resampling made visible, from what the tracker reports: each filter's decision as it made it
 // (`Tracker.resamplings()`: the rule, the ESS it tested, the threshold, whether it resampled;
 // src/filter/resampling_log.rs). Nothing here knows a tracker's rules: the step text and the

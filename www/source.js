@@ -1,3 +1,4 @@
+// @ts-check
 // The synthetic frame sources: the test road and the simulator's named scenes, rendered inside
 // the worker by the wasm module. Each yields frames { rgba, width, height, truth, motion, name,
 // index } on demand (see media-source.js for video, images and the webcam).

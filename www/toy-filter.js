@@ -1,3 +1,4 @@
+// @ts-check
 // The first lesson's particle filter: a car on a line, a noisy position sensor, N particles.
 // One step of the filter is three stages, run one at a time so each can be looked at:
 //   predict:  every particle moves by the car's commanded speed plus motion noise;
@@ -49,6 +50,7 @@ export function ess(weights) {
  */
 export function systematic(weights, u) {
   const n = weights.length;
+  /** @type {number[]} */
   const parents = new Array(n);
   let cumulative = weights[0];
   let i = 0;
@@ -60,9 +62,33 @@ export function systematic(weights, u) {
   return parents;
 }
 
+/** What `resample` did: whether it resampled, on which ESS and threshold, and how many distinct parents. */
+/** @typedef {{ resampled: boolean, ess: number, threshold: number, distinct?: number }} ResampleOutcome */
+
 export class ToyFilter {
+  /** @param {Partial<typeof DEFAULTS>} [options] */
   constructor(options = {}) {
     this.options = { ...DEFAULTS, ...options };
+    // The state; `reset` sets it.
+    this.random = rng(this.options.seed);
+    this.car = 0;
+    /** The last sensor reading (null before the first predict). */
+    /** @type {number | null} */
+    this.reading = null;
+    this.step = 0;
+    this.next = 0;
+    /** The particles' positions and weights. */
+    /** @type {number[]} */
+    this.x = [];
+    /** @type {number[]} */
+    this.w = [];
+    /** The last resampling's parent of each particle, and the particles before it (null: none). */
+    /** @type {number[] | null} */
+    this.parents = null;
+    /** @type {number[] | null} */
+    this.before = null;
+    /** @type {ResampleOutcome | null} */
+    this.lastResample = null;
     this.reset();
   }
 
@@ -106,6 +132,7 @@ export class ToyFilter {
     this.parents = null;
     this.car += o.speed + o.sigmaCar * this.random.normal();
     // The line wraps: a car that drives off the end comes back at the start (and so do they).
+    /** @param {number} v */
     const wrap = (v) => ((v % o.length) + o.length) % o.length;
     this.car = wrap(this.car);
     this.x = this.x.map((v) => wrap(v + o.speed + o.sigmaMotion * this.random.normal()));
@@ -116,7 +143,9 @@ export class ToyFilter {
   weigh() {
     const o = this.options;
     const z = this.reading;
+    if (z === null) throw new Error('weigh: no reading yet (predict comes first)');
     // Distance on the wrapped line.
+    /** @param {number} v */
     const d = (v) => {
       const a = Math.abs(v - z) % o.length;
       return Math.min(a, o.length - a);
@@ -129,6 +158,7 @@ export class ToyFilter {
     return { ess: ess(this.w) };
   }
 
+  /** @returns {ResampleOutcome} */
   resample() {
     const o = this.options;
     const n = this.x.length;
@@ -140,9 +170,10 @@ export class ToyFilter {
       return this.lastResample;
     }
     const parents = systematic(this.w, this.random.uniform());
-    this.before = this.x;
+    const before = this.x;
+    this.before = before;
     this.parents = parents;
-    this.x = parents.map((p) => this.before[p]);
+    this.x = parents.map((p) => before[p]);
     this.w = new Array(n).fill(1 / n);
     this.lastResample = { resampled: true, ess: e, threshold, distinct: new Set(parents).size };
     return this.lastResample;
@@ -167,6 +198,7 @@ export class ToyFilter {
   /** The weights summed over `bins` equal bins of the line (the weight histogram). */
   histogram(bins) {
     const L = this.options.length;
+    /** @type {number[]} */
     const h = new Array(bins).fill(0);
     this.x.forEach((v, k) => {
       h[Math.min(bins - 1, Math.floor((v / L) * bins))] += this.w[k];

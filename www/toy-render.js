@@ -1,3 +1,4 @@
+// @ts-check
 // Drawing the first lesson (toy.html): the line with the car, the reading and the particles;
 // the weight histogram; the ESS over the steps. `t` in [0, 1] draws the resampling animation:
 // each new particle slides from its parent's place to its own, the particles left without a
@@ -78,6 +79,9 @@ const radius = (w, n) => Math.max(1.5, Math.min(9, 2.5 * Math.sqrt(w * n)));
 /**
  * The scene and the particles; with `anim` ({ t, before, weightsBefore, parents }) the
  * resampling animation at time t in [0, 1].
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {import('./toy-filter.js').ToyFilter} f
+ * @param {{ t: number, before: number[], weightsBefore: number[], parents: number[] } | null} [anim]
  */
 export function drawView(ctx, f, anim = null) {
   clear(ctx);

@@ -1,3 +1,4 @@
+// @ts-check
 // Pitch and yaw from the vanishing point of two lane lines (the calibration helper).
 //
 // With no roll, the road's forward direction e_x seen by a camera of pitch p (down positive)

@@ -1,3 +1,4 @@
+// @ts-check
 // Which reader a video gets: WebCodecs (webcodecs-source.js: frame-accurate, faster than real
 // time) when the browser has a VideoDecoder, the container parses and the decoder takes its
 // codec; otherwise the seeking <video> reader of media-source.js. The label says which.
@@ -30,7 +31,7 @@ export class VideoFile {
         return source;
       } catch (err) {
         source?.close();
-        why = err.message;
+        why = err instanceof Error ? err.message : String(err);
       }
     }
     const fallback = new VideoSource(this.options);
@@ -38,7 +39,7 @@ export class VideoFile {
       await fallback.open();
     } catch (err) {
       fallback.close();
-      throw new Error(`${err.message} (Not WebCodecs: ${why}.)`);
+      throw new Error(`${err instanceof Error ? err.message : err} (Not WebCodecs: ${why}.)`, { cause: err });
     }
     fallback.label += `, by seeking a <video> element (not WebCodecs: ${why})`;
     return fallback;

@@ -1,3 +1,4 @@
+// @ts-check
 // The weight histogram of the road trackers' particles, redrawn after every frame and every
 // stage when stepping: how many particles (y) have each weight, in units of the uniform weight
 // 1/N (x: 1 = an average particle), with the ESS written above. After a resampling every

@@ -1,3 +1,4 @@
+// @ts-check
 // The page's side of the demo's worker (worker.js): the package's own client, `TrackerWorker`
 // of lanepf/worker, connected to the demo's worker rather than the package's. The tracker is
 // opened and closed with `open` / `close`; the demo's ops (scenes, the comparison tracker,
