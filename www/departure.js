@@ -12,6 +12,8 @@ export const WARN_TLC_S = 1.0;
 
 export class Departure {
   constructor() {
+    /** The last valid estimate's offset and time (null: none). */
+    /** @type {{ q: number, t: number | null } | null} */
     this.previous = null;
   }
 
@@ -22,6 +24,9 @@ export class Departure {
   /**
    * `estimate`: a valid estimate; `t`: the frame's time in seconds; `speed`: m/s or null.
    * Returns { text, warn } or null when there is nothing to say.
+   * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+   * @param {number | null} t
+   * @param {number | null} speed
    */
   update(estimate, t, speed) {
     if (!estimate?.valid || !(estimate.lane_width_m > 0)) {
@@ -33,8 +38,11 @@ export class Departure {
     const toLeft = half - q - CAR_HALF_WIDTH_M;
     const toRight = half + q - CAR_HALF_WIDTH_M;
     let lateral = null;
-    if (Number.isFinite(speed)) lateral = -speed * Math.sin(estimate.heading_rad);
-    else if (this.previous && Number.isFinite(t) && t > this.previous.t) lateral = (q - this.previous.q) / (t - this.previous.t);
+    const prev = this.previous;
+    if (typeof speed === 'number' && Number.isFinite(speed)) lateral = -speed * Math.sin(estimate.heading_rad);
+    else if (prev && typeof t === 'number' && Number.isFinite(t) && prev.t !== null && t > prev.t) {
+      lateral = (q - prev.q) / (t - prev.t);
+    }
     this.previous = { q, t };
     if (toLeft < 0 || toRight < 0) {
       return { text: `crossing the ${toLeft < 0 ? 'left' : 'right'} line`, warn: true };

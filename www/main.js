@@ -401,8 +401,12 @@ function showAuto() {
   autoText.hidden = auto.mode === 'off' && !auto.error;
 }
 
-/** The tracker gets the auto-calibrated camera (rebuilt with it; the run log is kept). */
+/**
+ * The tracker gets the auto-calibrated camera (rebuilt with it; the run log is kept).
+ * @param {import('./auto-calibration.js').Reason} reason
+ */
 async function applyAuto(reason) {
+  if (!auto.estimate) return; // (called with an estimate to apply)
   const camera = auto.estimate.camera;
   state.camera = camera;
   demo.camera = camera;
