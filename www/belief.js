@@ -13,6 +13,14 @@ import { groupColour } from './render.js';
 const DEFAULT_BINS = 40;
 
 /**
+ * One panel of a belief view: a weighted histogram of `items`, lines at `markers`, and what
+ * the colours mean.
+ * @typedef {{ title: string, unit: string, items: { value: number, weight: number, group: number }[],
+ *   markers: { value: number, colour: string, label: string }[], probabilities?: number[] | null,
+ *   colours?: string, bins?: number }} Panel
+ */
+
+/**
  * Rows of `particles` (stride numbers each) as arrays.
  * @param {Float32Array} particles
  * @param {number} stride
@@ -32,6 +40,7 @@ function rows(particles, stride) {
  * @param {number} stride
  * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
  * @param {import('../pkg/web/lanepf.js').Layer[] | null} [layers]
+ * @returns {Panel[]}
  */
 export function beliefPanels(trackerId, particles, stride, estimate, layers = null) {
   const r = rows(particles, stride);

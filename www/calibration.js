@@ -9,6 +9,10 @@ export const FIELDS = ['fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg', 'yaw_deg
 const STORE = 'lanepf.camera.';
 const HANDLE_PX = 9;
 
+/** @typedef {[number, number]} Point */
+/** The helper's two lines, each through two handles. */
+/** @typedef {[[Point, Point], [Point, Point]]} Lines */
+
 export class Calibration {
   constructor(doc, canvas, presets) {
     this.doc = doc;
@@ -25,7 +29,10 @@ export class Calibration {
     /** @type {() => void} */
     this.onRedraw = () => {};
     this.camera = null;
+    /** @type {Lines | null} */
     this.lines = null;
+    /** The handle being dragged: line i, point j. */
+    /** @type {{ i: number, j: number } | null} */
     this.drag = null;
     for (const name of FIELDS) {
       const label = doc.createElement('label');
@@ -107,28 +114,38 @@ export class Calibration {
     return this.helper.checked;
   }
 
-  /** Starts the two lines on the estimated ego boundaries, or on a generic lane. */
+  /**
+   * Starts the two lines on the estimated ego boundaries, or on a generic lane.
+   * @returns {Lines}
+   */
   startLines(estimate, width, height) {
     const pick = (role) => {
       const pts = estimate?.boundaries.find((b) => b.role === role)?.points;
       return pts && pts.length >= 4 ? [pts[0], pts[Math.floor(pts.length * 0.6)]] : null;
     };
+    /**
+     * A copy of a line's two points.
+     * @param {number[][]} l
+     * @returns {[Point, Point]}
+     */
+    const copy = (l) => [[l[0][0], l[0][1]], [l[1][0], l[1][1]]];
     this.lines = [
-      pick('ego-left') ?? [[0.3 * width, 0.95 * height], [0.46 * width, 0.65 * height]],
-      pick('ego-right') ?? [[0.7 * width, 0.95 * height], [0.54 * width, 0.65 * height]],
-    ].map((l) => l.map((p) => [...p]));
+      copy(pick('ego-left') ?? [[0.3 * width, 0.95 * height], [0.46 * width, 0.65 * height]]),
+      copy(pick('ego-right') ?? [[0.7 * width, 0.95 * height], [0.54 * width, 0.65 * height]]),
+    ];
+    return this.lines;
   }
 
   /** Draws the lines, their handles and the vanishing point on the camera view. */
   draw(ctx, estimate) {
     if (!this.active()) return;
-    if (!this.lines) this.startLines(estimate, ctx.canvas.width, ctx.canvas.height);
+    const lines = this.lines ?? this.startLines(estimate, ctx.canvas.width, ctx.canvas.height);
     ctx.save();
     ctx.strokeStyle = '#ff5252';
     ctx.fillStyle = '#ff5252';
     ctx.lineWidth = 2;
-    const vp = intersect(...this.lines);
-    for (const [a, b] of this.lines) {
+    const vp = intersect(...lines);
+    for (const [a, b] of lines) {
       ctx.beginPath();
       ctx.moveTo(a[0], a[1]);
       ctx.lineTo(...(vp ?? b));
@@ -152,15 +169,16 @@ export class Calibration {
 
   /** The pose the lines give, and a sentence about it. */
   estimate() {
-    const vp = this.lines && intersect(...this.lines);
-    if (!vp || !this.camera) return null;
+    const lines = this.lines;
+    const vp = lines && intersect(...lines);
+    if (!lines || !vp || !this.camera) return null;
     const pose = poseFromVanishingPoint(this.camera, vp);
     // Height from the lines' spacing on the lowest row both reach.
-    const row = Math.min(Math.max(this.lines[0][0][1], this.lines[0][1][1]),
-      Math.max(this.lines[1][0][1], this.lines[1][1][1]));
+    const row = Math.min(Math.max(lines[0][0][1], lines[0][1][1]),
+      Math.max(lines[1][0][1], lines[1][1][1]));
     const xOn = ([a, b]) => a[0] + ((b[0] - a[0]) * (row - a[1])) / (b[1] - a[1]);
-    const h = heightFromLaneWidth(this.camera, pose.pitch_deg, row, xOn(this.lines[0]),
-      xOn(this.lines[1]), Number(this.laneWidth.value));
+    const h = heightFromLaneWidth(this.camera, pose.pitch_deg, row, xOn(lines[0]),
+      xOn(lines[1]), Number(this.laneWidth.value));
     return { vp, ...pose, height_m: h };
   }
 
@@ -176,8 +194,10 @@ export class Calibration {
   pointer(e, kind) {
     if (!this.active() || !this.lines) return;
     const r = this.canvas.getBoundingClientRect();
+    /** @type {Point} */
     const p = [(e.clientX - r.left) * (this.canvas.width / r.width), (e.clientY - r.top) * (this.canvas.height / r.height)];
     if (kind === 'down') {
+      /** @type {{ i: number, j: number, d: number } | null} */
       let best = null;
       this.lines.forEach((line, i) => line.forEach((q, j) => {
         const d = Math.hypot(q[0] - p[0], q[1] - p[1]);

@@ -485,7 +485,8 @@ async function finishStepping() {
 async function openTracker({ keepLog = false } = {}) {
   state.inFrame = null;
   const trackerId = state.trackerId;
-  const defaults = trackerId ? await client.request('defaults', { trackerId }) : null;
+  // (The worker's trackerDefaults(id).)
+  const defaults = trackerId ? /** @type {Record<string, unknown>} */ (await client.request('defaults', { trackerId })) : null;
   panel.show(trackerId, defaults);
   const options = { ...panel.changedOptions(), seed: panel.seedValue() };
   // The top view follows the camera, the tracker or none.

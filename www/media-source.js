@@ -56,7 +56,12 @@ export function frameSize(width, height, sideBySide) {
   return workSize(sideBySide ? width / 2 : width, height);
 }
 
-/** The label's note on the frame size the tracker gets, when it is not the picture's own. */
+/**
+ * The label's note on the frame size the tracker gets, when it is not the picture's own.
+ * @param {{ width: number, height: number }} size
+ * @param {number} width
+ * @param {boolean} sideBySide
+ */
 export function sizeNote(size, width, sideBySide) {
   if (sideBySide) return `, side-by-side stereo of ${size.width}x${size.height}`;
   return size.width !== width ? `, tracked at ${size.width}x${size.height}` : '';
@@ -296,7 +301,10 @@ export class ImageSource {
     this.progress = 0;
   }
 
-  /** Reads image `k`, which must have the first image's size. */
+  /**
+   * Reads image `k`, which must have the first image's size.
+   * @param {number} k
+   */
   async read(k) {
     const { size, grabber } = this;
     if (!size || !grabber) throw new Error('the images are not open');

@@ -52,6 +52,8 @@ export class ParamsPanel {
    * Shows tracker `id` (null: none) with its `defaults` (trackerDefaults(id)); with no defaults
    * yet (the module still loading) the sliders are there but disabled, so the page does not move
    * when they come.
+   * @param {string | null} id
+   * @param {Record<string, unknown> | null} defaults
    */
   show(id, defaults) {
     this.id = id;
@@ -69,6 +71,11 @@ export class ParamsPanel {
     this.form.replaceChildren(...info.params.map((p) => this.control(p, current)));
   }
 
+  /**
+   * A slider or checkbox for parameter `p`, at its value in `current` (null: disabled).
+   * @param {import('./explain.js').Param} p
+   * @param {Record<string, unknown> | null} current
+   */
   control(p, current) {
     const label = this.doc.createElement('label');
     const name = this.doc.createElement('span');
@@ -102,7 +109,10 @@ export class ParamsPanel {
     return label;
   }
 
-  /** Keeps only the top-level options that differ from the defaults. */
+  /**
+   * Keeps only the top-level options that differ from the defaults.
+   * @param {Record<string, unknown>} options
+   */
   trim(options) {
     /** @type {Record<string, unknown>} */
     const out = {};

@@ -12,7 +12,7 @@
 // Pure and seeded: no DOM, the same seed gives the same run (tested in Node and the browser).
 
 /** The stages of one step, in order. */
-export const STAGES = ['predict', 'weigh', 'resample'];
+export const STAGES = /** @type {const} */ (['predict', 'weigh', 'resample']);
 
 /** Defaults: a 100 m line, a car at 1 m per step, a sensor good to 4 m, 200 particles. */
 export const DEFAULTS = {
@@ -20,7 +20,10 @@ export const DEFAULTS = {
   essThreshold: 0.5, seed: 1,
 };
 
-/** A small seeded generator (mulberry32) and standard normal draws (Box-Muller). */
+/**
+ * A small seeded generator (mulberry32) and standard normal draws (Box-Muller).
+ * @param {number} seed
+ */
 export function rng(seed) {
   let a = seed >>> 0;
   const uniform = () => {
@@ -37,7 +40,10 @@ export function rng(seed) {
   return { uniform, normal };
 }
 
-/** Effective sample size of normalised weights: 1 / sum(w^2). */
+/**
+ * Effective sample size of normalised weights: 1 / sum(w^2).
+ * @param {number[]} weights
+ */
 export function ess(weights) {
   let s = 0;
   for (const w of weights) s += w * w;
@@ -47,6 +53,8 @@ export function ess(weights) {
 /**
  * Systematic resampling: one uniform draw u in [0, 1/N), then the N points u + k/N pick the
  * particles whose cumulative weight they fall in. Returns each child's parent index.
+ * @param {number[]} weights
+ * @param {number} u
  */
 export function systematic(weights, u) {
   const n = weights.length;
@@ -64,6 +72,11 @@ export function systematic(weights, u) {
 
 /** What `resample` did: whether it resampled, on which ESS and threshold, and how many distinct parents. */
 /** @typedef {{ resampled: boolean, ess: number, threshold: number, distinct?: number }} ResampleOutcome */
+/**
+ * What a stage did (`advance`).
+ * @typedef {{ stage: 'predict', car: number, reading: number } | { stage: 'weigh', ess: number }
+ *   | ({ stage: 'resample' } & ResampleOutcome)} StageOutcome
+ */
 
 export class ToyFilter {
   /** @param {Partial<typeof DEFAULTS>} [options] */
@@ -111,13 +124,18 @@ export class ToyFilter {
     return STAGES[this.next];
   }
 
-  /** Runs the next stage; returns what it did ({ stage, ... }) for the page to tell. */
+  /**
+   * Runs the next stage; returns what it did ({ stage, ... }) for the page to tell.
+   * @returns {StageOutcome}
+   */
   advance() {
     const stage = STAGES[this.next];
-    const out = this[stage]();
+    /** @type {StageOutcome} */
+    const out = stage === 'predict' ? { stage, ...this.predict() }
+      : stage === 'weigh' ? { stage, ...this.weigh() } : { stage, ...this.resample() };
     this.next = (this.next + 1) % STAGES.length;
     if (this.next === 0) this.step += 1;
-    return { stage, ...out };
+    return out;
   }
 
   /** Runs the stages left in this step (a whole step from its start). */
@@ -196,6 +214,7 @@ export class ToyFilter {
   }
 
   /** The weights summed over `bins` equal bins of the line (the weight histogram). */
+  /** @param {number} bins */
   histogram(bins) {
     const L = this.options.length;
     /** @type {number[]} */

@@ -47,7 +47,10 @@ function drawAll() {
   $('toy-next').textContent = `next: ${filter.nextStage}`;
 }
 
-/** What a stage did, in a sentence. */
+/**
+ * What a stage did, in a sentence.
+ * @param {import('./toy-filter.js').StageOutcome} out
+ */
 function tell(out) {
   const step = `step ${filter.step + (out.stage === 'resample' ? 0 : 1)}`;
   if (out.stage === 'predict') {

@@ -5,7 +5,10 @@
 import { VideoSource } from './media-source.js';
 import { WebCodecsVideoSource } from './webcodecs-source.js';
 
-/** The bytes of a video given by URL (the bundled clip), as a Blob. */
+/**
+ * The bytes of a video given by URL (the bundled clip), as a Blob.
+ * @param {string} url
+ */
 async function fetchBlob(url) {
   const res = await fetch(url);
   if (!res.ok) throw new Error(`cannot load ${url}: HTTP ${res.status}`);
@@ -14,6 +17,7 @@ async function fetchBlob(url) {
 
 /** A video, `file` (a File) or `url`, with VideoSource's options; `pick()` opens a reader for it. */
 export class VideoFile {
+  /** @param {ConstructorParameters<typeof VideoSource>[0]} options */
   constructor(options) {
     this.options = options;
     this.label = `Video “${options.name}”`;
@@ -25,7 +29,8 @@ export class VideoFile {
     if (typeof VideoDecoder !== 'undefined') {
       let source = null;
       try {
-        const blob = this.options.file ?? await fetchBlob(this.options.url);
+        // (A file, or else a URL, is given.)
+        const blob = this.options.file ?? await fetchBlob(/** @type {string} */ (this.options.url));
         source = new WebCodecsVideoSource({ ...this.options, blob });
         await source.open();
         return source;

@@ -11,6 +11,14 @@ import { beliefPanels, drawBelief } from './belief.js';
  * the canvases' ids; each figure is `${id}-figure` with a `${id}-caption`), after `label`
  * ("after the whole frame", "after “predict”"); `shown`: the plots are on. Hides the figures
  * when there is nothing to draw.
+ * @param {{ weights: string, belief: string, named?: boolean }} ids
+ * @param {string} trackerId
+ * @param {{ weighing?: { weights: Float32Array, count: number, ess: number, group: number | null },
+ *   particles?: { data: Float32Array, stride: number } | null, layers?: import('../pkg/web/lanepf.js').Layer[] | null }
+ *   | null | undefined} part what the worker sent with the frame or stage
+ * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+ * @param {string} label
+ * @param {boolean} shown
  */
 export function showWeighing(ids, trackerId, part, estimate, label, shown) {
   /** @param {string} id */
