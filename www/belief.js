@@ -17,7 +17,7 @@ const DEFAULT_BINS = 40;
  * the colours mean.
  * @typedef {{ title: string, unit: string, items: { value: number, weight: number, group: number }[],
  *   markers: { value: number, colour: string, label: string }[], probabilities?: number[] | null,
- *   colours?: string, bins?: number }} Panel
+ *   colours?: string, bins?: number, range?: [number, number] }} Panel
  */
 
 /**
@@ -49,6 +49,7 @@ export function beliefPanels(trackerId, particles, stride, estimate, layers = nu
     const p = [1, 2, 3, 4].map((k) => st[`adachi.p${k}`]);
     // The vote histogram as the tracker binned it (its own bins, not re-binned).
     const votes = layers?.find((l) => l.kind === 'histogram');
+    /** @type {Panel[]} */
     const histogram = votes ? [{
       title: `${votes.name} over ρ (Adachi Sec. 3.2, eq. 4)`, unit: 'm, ρ positive right',
       items: Array.from(votes.values, (v, k) => ({ value: votes.start + (k + 0.5) * votes.step, weight: v, group: 0 })),
@@ -111,9 +112,14 @@ export function beliefPanels(trackerId, particles, stride, estimate, layers = nu
   return [];
 }
 
-/** Draws `panels` on `canvas`, one below the other, each a weighted stacked histogram. */
+/**
+ * Draws `panels` on `canvas`, one below the other, each a weighted stacked histogram.
+ * @param {HTMLCanvasElement} canvas
+ * @param {Panel[]} panels
+ */
 export function drawBelief(canvas, panels) {
   const ctx = canvas.getContext('2d');
+  if (!ctx) throw new Error('the belief canvas has no 2-D context');
   ctx.fillStyle = '#0b0e11';
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   ctx.font = '12px system-ui, sans-serif';
@@ -121,6 +127,13 @@ export function drawBelief(canvas, panels) {
   panels.forEach((panel, k) => drawPanel(ctx, panel, k * ph, ph, canvas.width));
 }
 
+/**
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Panel} panel
+ * @param {number} top
+ * @param {number} height
+ * @param {number} width
+ */
 function drawPanel(ctx, panel, top, height, width) {
   const left = 46;
   const plotTop = top + 34;
@@ -156,6 +169,7 @@ function drawPanel(ctx, panel, top, height, width) {
       y -= bh;
     });
   }
+  /** @param {number} v */
   const x = (v) => left + ((v - lo) / (hi - lo)) * w;
   panel.markers.forEach((m, i) => {
     if (!Number.isFinite(m.value)) return;

@@ -116,6 +116,7 @@ export class Controls {
     });
   }
 
+  /** @param {boolean} paused */
   setPaused(paused) {
     this.paused = paused;
     this.play.textContent = paused ? 'Play' : 'Pause';
@@ -123,7 +124,10 @@ export class Controls {
     this.updateStageButton();
   }
 
-  /** The per-step button works while paused, for a tracker with a per-step mode. */
+  /**
+   * The per-step button works while paused, for a tracker with a per-step mode.
+   * @param {string[] | null | undefined} names
+   */
   setStepNames(names) {
     this.stepNames = names ?? [];
     this.updateStageButton();
@@ -141,25 +145,35 @@ export class Controls {
     }
   }
 
-  /** The "Ground truth" control is shown only for a source that has ground truth (the simulator's). */
+  /**
+   * The "Ground truth" control is shown only for a source that has ground truth (the simulator's).
+   * @param {boolean} yes
+   */
   setHasTruth(yes) {
     const label = this.showTruth.closest('label');
     if (label) label.hidden = !yes;
   }
 
-  /** Shows progress in [0, 1], or hides the bar for a source without an end (null). */
+  /**
+   * Shows progress in [0, 1], or hides the bar for a source without an end (null).
+   * @param {number | null} value
+   */
   setProgress(value) {
     const known = typeof value === 'number' && value >= 0;
     this.progress.hidden = !known;
     if (known) this.progress.value = value;
   }
 
+  /** @param {boolean} yes */
   setExportable(yes) {
     this.exportJsonl.disabled = !yes;
     this.exportCsv.disabled = !yes;
   }
 
-  /** Lists the tracker's cue layers by name, keeping the choice when the names stay. */
+  /**
+   * Lists the tracker's cue layers by name, keeping the choice when the names stay.
+   * @param {{ name: string }[] | null | undefined} layers
+   */
   setLayers(layers) {
     const names = (layers ?? []).map((l) => l.name);
     const old = [...this.cueLayer.options].map((o) => o.textContent);
@@ -176,8 +190,13 @@ export class Controls {
    * The tracker lists: "no tracker" (or "nothing" to compare with) and then every registered id.
    * index.html lists them already, so the menus work while the module loads; they are rebuilt
    * only if the module's list differs, keeping the choice.
+   * @param {string[]} ids
    */
   setTrackers(ids) {
+    /**
+     * @param {HTMLSelectElement} select
+     * @param {string} none the label of the empty choice
+     */
     const fill = (select, none) => {
       const have = [...select.options].map((o) => o.value);
       if (have.join('\n') === ['', ...ids].join('\n')) return;
@@ -189,7 +208,10 @@ export class Controls {
     fill(this.compare, 'nothing');
   }
 
-  /** Adds the simulator's scenarios after the built-in sources. */
+  /**
+   * Adds the simulator's scenarios after the built-in sources.
+   * @param {{ name: string, description: string }[]} list
+   */
   setScenarios(list) {
     for (const { name, description } of list) {
       const o = new Option(`Scene: ${name}`, name);
@@ -198,7 +220,11 @@ export class Controls {
     }
   }
 
-  /** Selects a source option, adding it (e.g. an uploaded file's name) when missing. */
+  /**
+   * Selects a source option, adding it (e.g. an uploaded file's name) when missing.
+   * @param {string} value
+   * @param {string} label
+   */
   showSource(value, label) {
     if (![...this.source.options].some((o) => o.value === value)) {
       this.source.add(new Option(label, value), this.source.options[3]);
@@ -207,6 +233,11 @@ export class Controls {
     this.lastSource = value;
   }
 
+  /**
+   * The status line; `isError` marks the page as in error (the tests wait on it).
+   * @param {string} text
+   * @param {boolean} [isError]
+   */
   say(text, isError = false) {
     this.status.textContent = text;
     if (isError) document.body.dataset.state = 'error';

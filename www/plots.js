@@ -58,6 +58,10 @@ export const COMPARE_COLOUR = '#f48fb1';
  * The plots' caption: whose estimate is plotted (`trackerId`, '' for none), the second
  * tracker's (`compareId`, '' for none), the ground truth only for a source that has one,
  * lee-cpf's raw filter only for lee-cpf.
+ * @param {string} trackerId
+ * @param {boolean} hasTruth
+ * @param {number} [length]
+ * @param {string} [compareId]
  */
 export function plotsCaption(trackerId, hasTruth, length = 300, compareId = '') {
   if (!trackerId) return 'No tracker: nothing to plot (choose one under Tracker)';
@@ -74,9 +78,15 @@ export function plotsCaption(trackerId, hasTruth, length = 300, compareId = '') 
 }
 
 export class Plots {
+  /**
+   * @param {HTMLCanvasElement} canvas
+   * @param {number} [length] frames shown
+   */
   constructor(canvas, length = 300) {
     this.canvas = canvas;
-    this.ctx = canvas.getContext('2d');
+    const ctx = canvas.getContext('2d');
+    if (!ctx) throw new Error('the plots canvas has no 2-D context');
+    this.ctx = ctx;
     this.length = length;
     /** @type {Live | null} */
     this.live = null;
@@ -157,7 +167,13 @@ export class Plots {
     this.draw();
   }
 
-  /** Series `k` with the frame in progress (if any) as its newest point, at most `length`. */
+  /**
+   * Series `k` with the frame in progress (if any) as its newest point, at most `length`.
+   * @template T
+   * @param {T[]} series
+   * @param {T} value
+   * @returns {T[]}
+   */
   withLive(series, value) {
     if (!this.live) return series;
     return [...series, value].slice(-this.length);
@@ -166,6 +182,7 @@ export class Plots {
   draw() {
     const { ctx, canvas } = this;
     const live = this.live;
+    /** @param {Series} s */
     const liveValue = (s) => (!live ? null : s.name === 'ESS' ? live.ess : s.name === 'time' ? live.trackMs : null);
     const threshold = this.withLive(this.threshold, finite(live?.threshold));
     const resampled = this.withLive(this.resampled, !!live?.resampled);
@@ -190,13 +207,20 @@ export class Plots {
       const pad = 0.1 * (hi - lo);
       // Counts and times never go below zero: no padding under a zero floor.
       [lo, hi] = [lo >= 0 && lo - pad < 0 ? 0 : lo - pad, hi + pad];
+      /** @param {number} v */
       const y = (v) => top + strip - 4 - ((v - lo) / (hi - lo)) * (strip - 8);
+      /** @param {number} i */
       const x = (i) => left + (i / Math.max(1, this.length - 1)) * w;
       ctx.strokeStyle = '#222a31';
       ctx.beginPath();
       ctx.moveTo(0, top + strip - 0.5);
       ctx.lineTo(canvas.width, top + strip - 0.5);
       ctx.stroke();
+      /**
+       * @param {(number | null)[]} series
+       * @param {string} colour
+       * @param {number[]} dash
+       */
       const line = (series, colour, dash) => {
         ctx.strokeStyle = colour;
         ctx.setLineDash(dash);
@@ -219,10 +243,11 @@ export class Plots {
       line(other, COMPARE_COLOUR, []);
       line(points, '#4fc3f7', []);
       // The frame in progress: its point ringed, so that each stage's change shows.
-      if (live && points.at(-1) !== null) {
+      const newest = points.at(-1);
+      if (live && newest !== null && newest !== undefined) {
         ctx.strokeStyle = LIVE_COLOUR;
         ctx.beginPath();
-        ctx.arc(x(points.length - 1), y(points.at(-1)), 4, 0, 2 * Math.PI);
+        ctx.arc(x(points.length - 1), y(newest), 4, 0, 2 * Math.PI);
         ctx.stroke();
       }
       if (ess) {
@@ -250,6 +275,7 @@ export class Plots {
           if (done) ctx.fillRect(Math.round(x(i)) - 1, top + strip - 7, 2, 6);
         });
       }
+      /** @param {(number | null)[]} series */
       const latest = (series) => {
         const last = series.filter((v) => v !== null).at(-1);
         return last === undefined ? '–' : last.toFixed(Math.abs(last) < 10 ? 3 : 1);
