@@ -4,8 +4,11 @@
 // localStorage. It calls `onApply(camera)` with a complete camera object.
 import { intersect, poseFromVanishingPoint, heightFromLaneWidth } from './vanishing.js';
 import { scaleCamera } from './camera-presets.js';
+import { byId } from './dom.js';
 
-export const FIELDS = ['fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg', 'yaw_deg', 'roll_deg'];
+/** @typedef {import('../pkg/web/lanepf.js').CameraConfig} CameraConfig */
+
+export const FIELDS = /** @type {const} */ (['fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg', 'yaw_deg', 'roll_deg']);
 const STORE = 'lanepf.camera.';
 const HANDLE_PX = 9;
 
@@ -14,21 +17,29 @@ const HANDLE_PX = 9;
 /** @typedef {[[Point, Point], [Point, Point]]} Lines */
 
 export class Calibration {
+  /**
+   * @param {Document} doc
+   * @param {HTMLCanvasElement} canvas the camera view (the helper's lines are dragged on it)
+   * @param {Record<string, { label: string, camera: CameraConfig }>} presets
+   */
   constructor(doc, canvas, presets) {
     this.doc = doc;
     this.canvas = canvas;
     this.presets = presets;
-    this.panel = doc.getElementById('calibration');
-    this.form = doc.getElementById('camera-fields');
-    this.preset = doc.getElementById('camera-preset');
-    this.helper = doc.getElementById('vp-helper');
-    this.laneWidth = doc.getElementById('vp-lane-width');
-    this.readout = doc.getElementById('vp-readout');
-    /** @type {(camera: object) => void} */
+    this.panel = byId('calibration', HTMLDetailsElement, doc);
+    this.form = byId('camera-fields', HTMLFormElement, doc);
+    this.preset = byId('camera-preset', HTMLSelectElement, doc);
+    this.helper = byId('vp-helper', HTMLInputElement, doc);
+    this.laneWidth = byId('vp-lane-width', HTMLInputElement, doc);
+    this.readout = byId('vp-readout', HTMLElement, doc);
+    /** @type {(camera: CameraConfig) => void} */
     this.onApply = () => {};
     /** @type {() => void} */
     this.onRedraw = () => {};
+    /** The camera shown (the one the tracker uses) and its source's name. */
+    /** @type {CameraConfig | null} */
     this.camera = null;
+    this.sourceName = '';
     /** @type {Lines | null} */
     this.lines = null;
     /** The handle being dragged: line i, point j. */
@@ -52,8 +63,8 @@ export class Calibration {
       e.preventDefault();
       applyFields();
     });
-    doc.getElementById('camera-apply').addEventListener('click', applyFields);
-    doc.getElementById('camera-preset-apply').addEventListener('click', () => {
+    byId('camera-apply', HTMLButtonElement, doc).addEventListener('click', applyFields);
+    byId('camera-preset-apply', HTMLButtonElement, doc).addEventListener('click', () => {
       const p = this.presets[this.preset.value];
       if (p && this.camera) this.apply(scaleCamera(p.camera, this.camera.width, this.camera.height));
     });
@@ -66,32 +77,58 @@ export class Calibration {
     canvas.addEventListener('pointerup', (e) => this.pointer(e, 'up'));
   }
 
-  /** Shows `camera` in the fields (the camera the tracker now uses). */
+  /**
+   * The input of camera field `name`.
+   * @param {string} name
+   */
+  field(name) {
+    const input = this.form.elements.namedItem(name);
+    if (!(input instanceof HTMLInputElement)) throw new Error(`the camera panel has no field ${name}`);
+    return input;
+  }
+
+  /**
+   * Shows `camera` in the fields (the camera the tracker now uses).
+   * @param {CameraConfig} camera
+   * @param {string} sourceName
+   */
   show(camera, sourceName) {
     this.camera = camera;
     this.sourceName = sourceName;
-    for (const name of FIELDS) this.form.elements[name].value = +(camera[name] ?? 0).toFixed(4);
+    for (const name of FIELDS) this.field(name).value = String(+(camera[name] ?? 0).toFixed(4));
     this.lines = null;
   }
 
+  /** The camera shown with the fields' values; throws naming a field that is not a number. */
   read() {
-    const out = { ...this.camera };
+    /** @type {Record<string, number>} */
+    const values = {};
     for (const name of FIELDS) {
-      const text = this.form.elements[name].value.trim();
+      const text = this.field(name).value.trim();
       const v = Number(text);
       if (text === '' || !Number.isFinite(v)) throw new Error(`Camera ${name}: “${text}” is not a number.`);
-      out[name] = v;
+      values[name] = v;
     }
-    return out;
+    // (The camera shown, every numeric field replaced.)
+    return /** @type {CameraConfig} */ ({ ...this.camera, ...values });
   }
 
-  /** Shows `camera` and hands it on; the page saves it once a tracker accepts it. */
+  /**
+   * Shows `camera` and hands it on; the page saves it once a tracker accepts it.
+   * @param {CameraConfig} camera
+   */
   apply(camera) {
     this.show(camera, this.sourceName);
     this.onApply(camera);
   }
 
-  /** The camera saved for a source of this size, or null. */
+  /**
+   * The camera saved for a source of this size, or null.
+   * @param {string} sourceName
+   * @param {number} width
+   * @param {number} height
+   * @returns {CameraConfig | null}
+   */
   saved(sourceName, width, height) {
     try {
       const c = JSON.parse(localStorage.getItem(STORE + sourceName) ?? 'null');
@@ -101,7 +138,10 @@ export class Calibration {
     }
   }
 
-  /** Remembers `camera` for the current source. */
+  /**
+   * Remembers `camera` for the current source.
+   * @param {CameraConfig} camera
+   */
   save(camera) {
     try {
       localStorage.setItem(STORE + this.sourceName, JSON.stringify(camera));
@@ -116,9 +156,13 @@ export class Calibration {
 
   /**
    * Starts the two lines on the estimated ego boundaries, or on a generic lane.
+   * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+   * @param {number} width
+   * @param {number} height
    * @returns {Lines}
    */
   startLines(estimate, width, height) {
+    /** @param {string} role */
     const pick = (role) => {
       const pts = estimate?.boundaries.find((b) => b.role === role)?.points;
       return pts && pts.length >= 4 ? [pts[0], pts[Math.floor(pts.length * 0.6)]] : null;
@@ -136,7 +180,11 @@ export class Calibration {
     return this.lines;
   }
 
-  /** Draws the lines, their handles and the vanishing point on the camera view. */
+  /**
+   * Draws the lines, their handles and the vanishing point on the camera view.
+   * @param {CanvasRenderingContext2D} ctx
+   * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+   */
   draw(ctx, estimate) {
     if (!this.active()) return;
     const lines = this.lines ?? this.startLines(estimate, ctx.canvas.width, ctx.canvas.height);
@@ -176,12 +224,14 @@ export class Calibration {
     // Height from the lines' spacing on the lowest row both reach.
     const row = Math.min(Math.max(lines[0][0][1], lines[0][1][1]),
       Math.max(lines[1][0][1], lines[1][1][1]));
+    /** @param {[Point, Point]} line */
     const xOn = ([a, b]) => a[0] + ((b[0] - a[0]) * (row - a[1])) / (b[1] - a[1]);
     const h = heightFromLaneWidth(this.camera, pose.pitch_deg, row, xOn(lines[0]),
       xOn(lines[1]), Number(this.laneWidth.value));
     return { vp, ...pose, height_m: h };
   }
 
+  /** @param {Point | null} vp */
   describe(vp) {
     const e = this.estimate();
     if (!vp || !e) return 'The two lines are parallel: drag them onto the lane markings.';
@@ -190,7 +240,11 @@ export class Calibration {
       + `yaw ${e.yaw_deg.toFixed(2)}°${h}`;
   }
 
-  /** Dragging a handle moves it; letting go applies the pose the lines give. */
+  /**
+   * Dragging a handle moves it; letting go applies the pose the lines give.
+   * @param {PointerEvent} e
+   * @param {'down' | 'move' | 'up'} kind
+   */
   pointer(e, kind) {
     if (!this.active() || !this.lines) return;
     const r = this.canvas.getBoundingClientRect();

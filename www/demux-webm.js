@@ -24,9 +24,13 @@ const CLUSTER_CHILDREN = new Set([0xe7, 0x5854, 0xa7, 0xab, 0xa3, 0xa0, 0xaf, 0x
 // Most blocks of all tracks together (audio has more blocks a second than video).
 const MAX_BLOCKS = 4 * MAX_SAMPLES;
 
+/** @param {number} id */
 const hex = (id) => `0x${id.toString(16).toUpperCase()}`;
 
-/** Whether `head` starts with the EBML magic. */
+/**
+ * Whether `head` starts with the EBML magic.
+ * @param {Uint8Array} head
+ */
 export function isWebm(head) {
   return head.length >= 4 && head[0] === 0x1a && head[1] === 0x45 && head[2] === 0xdf && head[3] === 0xa3;
 }
@@ -34,6 +38,9 @@ export function isWebm(head) {
 /**
  * The element header at bytes[at] (file position `pos`): { id, size (null: unknown), start
  * (file position of the data) }. The ID keeps its length marker; the size drops it.
+ * @param {Uint8Array} bytes
+ * @param {number} at
+ * @param {number} pos
  */
 function parseHeader(bytes, at, pos) {
   const cut = () => new TruncatedError(`the file is truncated: the element header at byte ${pos} is cut short`);
@@ -57,11 +64,21 @@ function parseHeader(bytes, at, pos) {
   return { id, size: allOnes ? null : size, start: pos + idLen + sizeLen };
 }
 
+/**
+ * @param {BlobReader} reader
+ * @param {number} pos
+ */
 async function headerAt(reader, pos) {
   return parseHeader(await reader.peek(pos, 12), 0, pos);
 }
 
-/** The children of an element held in memory (`bytes` starts at file position `base`). */
+/**
+ * The children of an element held in memory (`bytes` starts at file position `base`).
+ * @param {Uint8Array} bytes
+ * @param {number} base
+ * @param {number} [from]
+ * @param {number} [to]
+ */
 function* children(bytes, base, from = 0, to = bytes.length) {
   for (let at = from; at < to;) {
     const h = parseHeader(bytes.subarray(0, to), at, base + at);
@@ -73,6 +90,7 @@ function* children(bytes, base, from = 0, to = bytes.length) {
   }
 }
 
+/** @param {Uint8Array} data */
 function uint(data) {
   if (data.length > 8) throw new Error('an unsigned integer element is longer than 8 bytes');
   let v = 0;
@@ -80,6 +98,7 @@ function uint(data) {
   return v;
 }
 
+/** @param {Uint8Array} data */
 function float(data) {
   const view = new DataView(data.buffer, data.byteOffset, data.byteLength);
   if (data.length === 4) return view.getFloat32(0);
@@ -116,6 +135,10 @@ function parseInfo(bytes, base) {
   return info;
 }
 
+/**
+ * @param {Uint8Array} bytes
+ * @param {number} base
+ */
 function parseTracks(bytes, base) {
   const tracks = [];
   for (const entry of children(bytes, base)) {
@@ -144,7 +167,11 @@ function parseTracks(bytes, base) {
   return tracks;
 }
 
-/** A Block's or SimpleBlock's head: track number, relative timecode, flags, head length. */
+/**
+ * A Block's or SimpleBlock's head: track number, relative timecode, flags, head length.
+ * @param {Uint8Array} bytes
+ * @param {number} pos
+ */
 function blockHead(bytes, pos) {
   const n = bytes[0] ? Math.clz32(bytes[0]) - 23 : 9;
   if (n < 1 || n > 8 || bytes.length < n + 3) throw new Error(`the block at byte ${pos} has a malformed head (the file is corrupt)`);
@@ -154,7 +181,19 @@ function blockHead(bytes, pos) {
   return { track, rel, flags: bytes[n + 2], length: n + 3 };
 }
 
-/** Reads one Cluster's blocks into `blocks`; returns the position after the Cluster. */
+/**
+ * A block of the file: its track, time (ticks), keyframe, BlockDuration, lacing and frame bytes.
+ * @typedef {{ track: number, time: number, key: boolean, duration: number | null, laced: boolean,
+ *   offset: number, size: number }} Block
+ */
+
+/**
+ * Reads one Cluster's blocks into `blocks`; returns the position after the Cluster.
+ * @param {BlobReader} reader
+ * @param {{ size: number | null, start: number }} cluster
+ * @param {number} parentEnd
+ * @param {Block[]} blocks
+ */
 async function readCluster(reader, cluster, parentEnd, blocks) {
   const end = cluster.size === null ? parentEnd : cluster.start + cluster.size;
   let timecode = null;
@@ -203,6 +242,12 @@ async function readCluster(reader, cluster, parentEnd, blocks) {
 }
 
 /** The codec string and description for a track, reading the first keyframe where needed. */
+/**
+ * @param {ReturnType<typeof parseTracks>[number]} track
+ * @param {BlobReader} reader
+ * @param {{ offset: number, size: number }} first the first sample
+ * @returns {Promise<{ codec: string, description?: Uint8Array | null }>}
+ */
 async function decoderConfig(track, reader, first) {
   const p = track.codecPrivate;
   const needPrivate = () => {
@@ -215,13 +260,13 @@ async function decoderConfig(track, reader, first) {
       // Matroska's VP9 CodecPrivate is optional; the first keyframe's header gives the rest.
       const given = p ? vp9PrivateInfo(p) : {};
       const header = given.profile === undefined || given.bitDepth === undefined
-        ? vp9FrameInfo(await reader.read(first.offset, Math.min(first.size, 16), 'the first frame')) : {};
+        ? vp9FrameInfo(await reader.read(first.offset, Math.min(first.size, 16), 'the first frame')) : null;
+      const profile = given.profile ?? header?.profile;
+      const bitDepth = given.bitDepth ?? header?.bitDepth;
+      // (The keyframe's header gives both when the CodecPrivate does not.)
+      if (profile === undefined || bitDepth === undefined) throw new Error('the VP9 track gives no profile or bit depth');
       return {
-        codec: vp9Codec({
-          profile: given.profile ?? header.profile,
-          level: given.level || vp9Level(track.width, track.height),
-          bitDepth: given.bitDepth ?? header.bitDepth,
-        }),
+        codec: vp9Codec({ profile, level: given.level || vp9Level(track.width, track.height), bitDepth }),
       };
     }
     case 'V_AV1': return { codec: av1Codec(needPrivate()) };
@@ -238,6 +283,7 @@ async function decoderConfig(track, reader, first) {
  * order, each { timestamp (µs), duration (µs), key, offset, size }. Throws a clear Error for
  * anything it cannot read.
  */
+/** @param {Blob} blob */
 export async function demuxWebm(blob) {
   const reader = new BlobReader(blob);
   const ebml = await headerAt(reader, 0);
@@ -258,6 +304,7 @@ export async function demuxWebm(blob) {
   let info = { scale: 1e6, duration: null };
   /** @type {ReturnType<typeof parseTracks>} */
   let tracks = [];
+  /** @type {Block[]} */
   const blocks = [];
   for (pos = segment.start; pos < end;) {
     const h = await headerAt(reader, pos);
@@ -282,6 +329,7 @@ export async function demuxWebm(blob) {
   if (mine.some((b) => b.laced)) throw new Error('the video track uses lacing (several frames per block), which is not supported');
   if (!mine[0].key) throw new Error('the first frame is not a keyframe');
 
+  /** @param {number} units */
   const us = (units) => Math.round((units * info.scale) / 1000);
   /** @type {{ timestamp: number, duration: number, key: boolean, offset: number, size: number, blockDuration?: number | null }[]} */
   const samples = mine.map((b) => ({ timestamp: us(b.time), duration: 0, key: b.key, offset: b.offset, size: b.size, blockDuration: b.duration }));

@@ -98,7 +98,7 @@ whyLink.addEventListener('click', () => {
 // Read by the end-to-end tests and handy in the console (the `last*` of the frame drawn last).
 /**
  * @type {{ frames: number, lastTruth: LaneEstimate | null, lastFrame: object | null, lastEstimate: LaneEstimate | null,
- *   lastLayer: object | null, lastHypotheses: object[] | null, lastRgba: Uint8ClampedArray | null, results: object[],
+ *   lastLayer: object | null, lastHypotheses: object[] | null, lastRgba: Uint8ClampedArray | null, results: Record<string, unknown>[],
  *   droppedResults: number, offsetErrors: number[], ended: boolean, source: string | null, pending: number,
  *   auto: AutoCalibration, camera: CameraConfig | null, [more: string]: unknown }}
  */
@@ -150,8 +150,8 @@ if (!['clip', 'webcam', 'file'].includes(firstSource)) {
 panel.show(state.trackerId, null);
 showNames();
 // A tracker chosen while the module loads is the one opened (main() then takes over these).
-controls.onTracker = (id) => { state.trackerId = id; };
-controls.onCompare = (id) => { state.compareId = id; };
+controls.onTracker = (/** @type {string} */ id) => { state.trackerId = id; };
+controls.onCompare = (/** @type {string} */ id) => { state.compareId = id; };
 
 /** Names the tracker each view shows, on the view itself. */
 function showNames() {
@@ -166,6 +166,7 @@ function showNames() {
  * README) and the page's own state: the page calls the trackers correctly, so a state error
  * of a stereo tracker is its missing right image, and a configuration error of one on a camera
  * without a baseline is that baseline.
+ * @param {{ name?: string }} err
  */
 function hint(err) {
   if (![state.trackerId, state.compareId].includes('danescu-stereo')) return '';
@@ -180,6 +181,7 @@ function hint(err) {
 
 let queue = Promise.resolve();
 /** Runs `fn` after everything queued before it; errors pause the page and are shown. */
+/** @param {() => void | Promise<void>} fn */
 function run(fn) {
   demo.pending += 1;
   queue = queue.then(fn).catch((err) => {
@@ -200,6 +202,11 @@ const want = () => ({
 });
 
 /** Draws the frame and everything on it; `redraw`: the same frame again (no bookkeeping). */
+/**
+ * @param {Frame} frame
+ * @param {Partial<FrameAnswer> | null} result
+ * @param {boolean} [redraw]
+ */
 function draw(frame, result, redraw = false) {
   // Frames flow again after an error: back to the source's description.
   if (!redraw && document.body.dataset.state === 'error' && state.source) controls.say(state.source.label);
@@ -246,7 +253,7 @@ function draw(frame, result, redraw = false) {
   let text = `frame ${frame.name}`;
   if (frame.ms) text += ` · render ${frame.ms.toFixed(1)} ms`;
   if (estimate) {
-    text += ` · track ${result.trackMs.toFixed(1)} ms`;
+    text += ` · track ${(result?.trackMs ?? 0).toFixed(1)} ms`;
     if (!estimate.valid) text += ' · not valid';
     if (frame.truth) {
       const err = Math.abs(estimate.lateral_offset_m - frame.truth.lateral_offset_m);
@@ -262,6 +269,10 @@ function draw(frame, result, redraw = false) {
  * tracker's too, in compare mode), and how many particles the view draws of the tracker's
  * total (in the legend).
  */
+/**
+ * @param {Partial<FrameAnswer> | null} result
+ * @param {LaneEstimate | null} estimate
+ */
 function drawWeighing(result, estimate) {
   const weighing = result?.weighing ?? null;
   const drawn = controls.showParticles.checked ? (result?.hypotheses?.length ?? 0) : 0;
@@ -276,12 +287,18 @@ function drawWeighing(result, estimate) {
   // The second tracker takes whole frames, also while the first is stepped through.
   const compared = result?.compare ?? null;
   const other = showWeighing({ weights: 'compare-weights', belief: 'compare-belief', named: true },
-    compared?.trackerId, compared, compared?.estimate ?? null, 'after the whole frame', shown);
+    compared?.trackerId ?? '', compared, compared?.estimate ?? null, 'after the whole frame', shown);
   demo.lastCompareWeighing = other.weighing;
   demo.lastCompareBelief = other.belief;
 }
 
 /** The second tracker's view: the same frame with its boundaries and particles. */
+/**
+ * @param {Frame} frame
+ * @param {CompareAnswer | null} compared
+ * @param {LaneEstimate | null | undefined} truth
+ * @param {boolean} byGroup
+ */
 function drawCompare(frame, compared, truth, byGroup) {
   el('compare-figure').hidden = !compared;
   // Side by side on a wide screen (style.css), the teaching panel then below them.
@@ -302,6 +319,11 @@ function drawCompare(frame, compared, truth, byGroup) {
 }
 
 /** A frame's end: its estimate into the plots (with the resampling `decisions` it reported), the log and the status. */
+/**
+ * @param {Frame} frame
+ * @param {Partial<FrameAnswer> & { trackMs: number }} result
+ * @param {ResampleDecision[] | undefined} decisions
+ */
 function record(frame, result, decisions) {
   if (!result?.estimate) return;
   plots.push(result.estimate, frame.truth, result, result.compare ?? null, frameResampling(decisions));
@@ -389,7 +411,11 @@ async function stepFrame() {
   await autoCalibrate(result.calibration);
 }
 
-/** Shows what the auto-calibrator knows and applies its camera when it is time. */
+/**
+ * Shows what the auto-calibrator knows and applies its camera when it is time.
+ * @param {CalibrationAnswer | null | undefined} calibrationResult
+ * @param {boolean} [canApply]
+ */
 async function autoCalibrate(calibrationResult, canApply = true) {
   const reason = auto.update(calibrationResult);
   if (reason && canApply) await applyAuto(reason);
@@ -465,6 +491,10 @@ async function stepStage() {
  * The plots follow the stages of a frame stepped through: the frame in progress is their newest
  * point (the ESS of the weights now, the time so far, the resampling reported so far).
  */
+/**
+ * @param {string} label
+ * @param {FrameAnswer} result
+ */
 function showStageInPlots(label, result) {
   plots.stage({
     label, ess: result.weighing?.ess ?? null, trackMs: state.inFrameMs,
@@ -489,14 +519,16 @@ async function openTracker({ keepLog = false } = {}) {
   const defaults = trackerId ? /** @type {Record<string, unknown>} */ (await client.request('defaults', { trackerId })) : null;
   panel.show(trackerId, defaults);
   const options = { ...panel.changedOptions(), seed: panel.seedValue() };
+  const camera = state.camera;
+  if (!camera) throw new Error('No camera yet: open a source first.');
   // The top view follows the camera, the tracker or none.
-  await client.request('openTopView', { camera: state.camera });
+  await client.request('openTopView', { camera });
   // (An id from the menu or the URL: the tracker refuses an unknown one with a LanepfConfigError.)
-  if (trackerId) await client.open(/** @type {TrackerId} */ (trackerId), withCamera(options, state.camera));
+  if (trackerId) await client.open(/** @type {TrackerId} */ (trackerId), withCamera(options, camera));
   else await client.close();
   // The comparison tracker: its own defaults, the same camera and seed.
   await client.request('openCompare', {
-    trackerId: trackerId ? state.compareId : '', config: withCamera({ seed: options.seed }, state.camera),
+    trackerId: trackerId ? state.compareId : '', config: withCamera({ seed: options.seed }, camera),
   });
   controls.setStepNames(trackerId ? client.stepNames : []);
   showNames();
@@ -515,7 +547,9 @@ async function openTracker({ keepLog = false } = {}) {
 }
 
 /** The camera for media without one: an imported file (rescaled), else the clip's, rescaled. */
+/** @param {Source} source */
 async function cameraFor(source) {
+  if (!source.size) throw new Error(`${source.label}: no picture size`);
   const { width, height } = source.size;
   if (source.camera) return { camera: scaleCamera(source.camera, width, height), note: '' };
   if (state.importedCamera) {
@@ -532,6 +566,10 @@ async function cameraFor(source) {
  * Opens the auto-calibrator for media (none for the simulator's sources). Its intrinsics: the
  * source's own camera (the bundled clip) or an imported camera file, scaled; else the
  * calibrator's field-of-view default. It applies its camera unless the user chose one.
+ */
+/**
+ * @param {Source} source
+ * @param {CameraConfig | null} userCamera
  */
 async function startAuto(source, userCamera) {
   if (!source.size) {
@@ -550,6 +588,10 @@ async function startAuto(source, userCamera) {
   }
 }
 
+/**
+ * @param {Source | VideoFile} next
+ * @param {string} name
+ */
 async function openSource(next, name) {
   // A video picks its reader as it opens: WebCodecs where it can, else seeking (video-select.js).
   if (next instanceof VideoFile) next = await next.pick();
@@ -565,10 +607,10 @@ async function openSource(next, name) {
     ({ camera: state.camera, note } = await cameraFor(next));
     await client.request('dropRight');
   } else {
-    state.camera = next.camera;
+    state.camera = next.camera ?? null;
   }
   if (!state.camera) throw new Error(`${next.label}: no camera`);
-  const saved = calibration?.saved(name, state.camera.width, state.camera.height);
+  const saved = calibration?.saved(name, state.camera.width, state.camera.height) ?? null;
   if (saved) {
     state.camera = saved;
     note = ' · camera: as you calibrated it for this source';
@@ -585,6 +627,10 @@ async function openSource(next, name) {
   controls.setProgress(next.progress ?? null);
 }
 
+/**
+ * @param {string} value
+ * @param {import('../pkg/web/lanepf.js').ScenarioInfo[]} scenarios
+ */
 async function sourceFor(value, scenarios) {
   if (value === 'clip') {
     return new VideoFile({ url: CLIP.url, name: CLIP.name, fps: CLIP.fps, camera: await loadClipCamera() });
@@ -596,6 +642,7 @@ async function sourceFor(value, scenarios) {
   return new SceneSource(client, scene.name, scene.description);
 }
 
+/** @param {File[]} files */
 function filesSource(files) {
   const stereo = controls.stereo.checked;
   const videos = files.filter((f) => f.type.startsWith('video/') || /\.(mp4|webm|mov|mkv|ogv)$/i.test(f.name));
@@ -611,6 +658,7 @@ function filesSource(files) {
  * Ground truth exists for the simulator's sources only: elsewhere (the clip, your media, the
  * webcam) its control, caption and legend entry are hidden.
  */
+/** @param {boolean} hasTruth */
 function showTruthControls(hasTruth) {
   state.hasTruth = hasTruth;
   controls.setHasTruth(hasTruth);
@@ -665,7 +713,7 @@ async function main() {
     await openTracker();
     cameraPanel.save(camera);
     await refreshTopView();
-    controls.say(`Camera applied: pitch ${camera.pitch_deg.toFixed(2)}°, yaw ${camera.yaw_deg.toFixed(2)}°, `
+    controls.say(`Camera applied: pitch ${camera.pitch_deg.toFixed(2)}°, yaw ${(camera.yaw_deg ?? 0).toFixed(2)}°, `
       + `height ${camera.height_m.toFixed(2)} m (remembered for this source).`);
   });
   controls.version.textContent = `lanepf ${version}`;

@@ -13,8 +13,13 @@ export function connectWorker() {
   return TrackerWorker.connect({ worker });
 }
 
-/** A tracker config from the panel's options and the page's camera; a `camera` among the
- *  options would be silently replaced, so it is refused. */
+/**
+ * A tracker config from the panel's options and the page's camera; a `camera` among the
+ * options would be silently replaced, so it is refused.
+ * @param {Record<string, unknown> | null | undefined} options
+ * @param {import('../pkg/web/lanepf.js').CameraConfig} camera
+ * @returns {import('../pkg/web/lanepf.js').TrackerConfig}
+ */
 export function withCamera(options, camera) {
   if (options && 'camera' in options) {
     throw Object.assign(new Error('tracker options: `camera` comes from the camera panel, not the options'),
