@@ -7,15 +7,16 @@ PORT ?= 8080
 WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
                  CHROMEDRIVER=/usr/bin/chromedriver WASM_BINDGEN_TEST_TIMEOUT=120
 
-.PHONY: demo test test-all test-slow setup pkg lint test-native test-wasm test-chromium test-browser \
+.PHONY: demo test test-all test-slow setup pkg lint lint-rust lint-js test-native test-wasm test-chromium test-browser \
         fuzz-wasm bench bench-browser
 
 ## Build everything and serve the demo on http://127.0.0.1:$(PORT)/
 demo: pkg
 	node scripts/serve.mjs --port $(PORT)
 
-## The fast tier (the README's test command and CI's): formatting, clippy, native, wasm in
-## headless Chromium, the Node tests, the npm package and every end-to-end file in Chromium.
+## The fast tier (the README's test command and CI's): formatting, clippy, the JavaScript's types
+## and ESLint, native, wasm in headless Chromium, the Node tests, the npm package and every
+## end-to-end file in Chromium.
 test: setup lint test-native test-wasm pkg test-chromium
 	@echo "make test: all suites passed (make test-all also runs Firefox and WebKit)"
 
@@ -30,11 +31,22 @@ pkg:
 	bash scripts/setup.sh --no-browser
 	bash scripts/build-pkg.sh
 
-lint:
+## rustfmt and clippy, then the JavaScript: the demo type-checked against the package's .d.ts
+## (tsc, www/tsconfig*.json) and ESLint (eslint.config.js).
+lint: lint-rust lint-js
+
+lint-rust:
 	cargo fmt --all -- --check
 	cargo clippy --all-targets -- -D warnings
 	cargo clippy --lib --no-default-features -- -D warnings
 	cargo clippy --lib --target wasm32-unknown-unknown -- -D warnings
+
+# The demo's types need the generated pkg/web/lanepf.d.ts, hence `pkg` (built once per make run:
+# `make test` builds it here, in its lint step, not again later).
+lint-js: pkg
+	node_modules/.bin/tsc -p www/tsconfig.json
+	node_modules/.bin/tsc -p www/tsconfig.worker.json
+	node_modules/.bin/eslint www scripts tests pkg/worker pkg/frames pkg/bundler eslint.config.js
 
 test-native:
 	cargo test

@@ -56,12 +56,14 @@ fi
 
 # 3. npm tools: binaryen (wasm-opt 132; Debian's is too old), playwright-core and puppeteer-core
 #    (no browser download), and what the npm package's test builds its fixture apps with:
-#    Vite (and vite-plugin-wasm), webpack 5 and TypeScript.
+#    Vite (and vite-plugin-wasm), webpack 5 and TypeScript (which also type-checks the demo, with
+#    ESLint, its @eslint/js rules and globals, in `make lint`).
 if [ ! -x node_modules/.bin/wasm-opt ] || [ ! -d node_modules/playwright-core ] \
    || [ ! -d node_modules/puppeteer-core ] || [ ! -d node_modules/vite ] || [ ! -d node_modules/webpack ] \
    || [ ! -d node_modules/typescript ] || [ ! -d node_modules/vite-plugin-wasm ] \
+   || [ ! -d node_modules/eslint ] || [ ! -d node_modules/@eslint/js ] || [ ! -d node_modules/globals ] \
    || [ package.json -nt node_modules/.package-lock.json ]; then
-  say "installing npm dev tools (binaryen, playwright-core, puppeteer-core, vite, webpack, typescript)"
+  say "installing npm dev tools (binaryen, playwright-core, puppeteer-core, vite, webpack, typescript, eslint)"
   if [ -f package-lock.json ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
 fi
 

@@ -1,3 +1,4 @@
+// @ts-check
 // Camera auto-calibration in the demo: the worker feeds every frame of a video, images or the
 // webcam to the wasm `Calibrator`; this module decides when its estimate replaces the camera the
 // tracker uses, and says what it knows. Pure logic (no DOM), tested in Node.
@@ -6,6 +7,15 @@
 // with whatever it has, then again whenever a confident estimate moves by more than MOVE_DEG
 // or MOVE_HEIGHT), 'manual' (a camera the user applied, imported or saved for the source wins;
 // the estimate is only shown) and 'off' (no calibrator: the simulator's sources).
+
+/** @typedef {import('../pkg/web/lanepf.js').CameraConfig} CameraConfig */
+/** @typedef {import('../pkg/web/lanepf.js').CalibrationStatus} CalibrationStatus */
+/** @typedef {import('../pkg/web/lanepf.js').CalibrationEstimate} CalibrationEstimate */
+/** A camera's pose: what is compared and said. */
+/** @typedef {Pick<CameraConfig, 'pitch_deg' | 'yaw_deg' | 'height_m'>} Pose */
+/** @typedef {'off' | 'auto' | 'manual'} Mode */
+/** Why an estimate was applied. */
+/** @typedef {'confident' | 'timeout' | 'moved' | 'chosen'} Reason */
 
 /** Confidence at which the estimate is applied. */
 export const APPLY_CONFIDENCE = 0.8;
@@ -16,26 +26,51 @@ export const MOVE_DEG = 0.5;
 /** ... or the height by more than this share. */
 export const MOVE_HEIGHT = 0.1;
 
-/** Whether `next` differs from `applied` by more than MOVE_DEG in pitch or yaw or MOVE_HEIGHT in height. */
+/**
+ * Whether `next` differs from `applied` by more than MOVE_DEG in pitch or yaw or MOVE_HEIGHT in height.
+ * @param {Pose} applied
+ * @param {Pose} next
+ */
 export function moved(applied, next) {
   return Math.abs(next.pitch_deg - applied.pitch_deg) > MOVE_DEG
     || Math.abs((next.yaw_deg ?? 0) - (applied.yaw_deg ?? 0)) > MOVE_DEG
     || Math.abs(next.height_m / applied.height_m - 1) > MOVE_HEIGHT;
 }
 
-/** A camera's pose in words. */
+/**
+ * A camera's pose in words.
+ * @param {Pose} c
+ */
 export function describePose(c) {
   return `pitch ${c.pitch_deg.toFixed(2)}°, yaw ${(c.yaw_deg ?? 0).toFixed(2)}°, height ${c.height_m.toFixed(2)} m`;
 }
 
 export class AutoCalibration {
   constructor() {
+    /** @type {Mode} */
+    this.mode = 'off';
+    /** The source's own camera (the bundled clip), shown beside the estimate. */
+    /** @type {Pose | null} */
+    this.known = null;
+    this.error = '';
+    /** @type {CalibrationStatus | null} */
+    this.status = null;
+    /** @type {CalibrationEstimate | null} */
+    this.estimate = null;
+    /** The camera the tracker got from the estimate, why, and at which frame seen. */
+    /** @type {Pose | null} */
+    this.applied = null;
+    /** @type {Reason | ''} */
+    this.reason = '';
+    this.appliedAt = 0;
     this.start('off');
   }
 
   /**
    * A new source: `mode` as above; `known`: the source has its own camera (the bundled clip),
    * shown beside the estimate; `error`: why there is no calibrator.
+   * @param {Mode} mode
+   * @param {{ known?: Pose | null, error?: string }} [source]
    */
   start(mode, { known = null, error = '' } = {}) {
     this.mode = mode;
@@ -48,7 +83,10 @@ export class AutoCalibration {
     this.appliedAt = 0;
   }
 
-  /** The user's choice: 'auto' (the checkbox ticked) or 'manual' (a camera of their own). */
+  /**
+   * The user's choice: 'auto' (the checkbox ticked) or 'manual' (a camera of their own).
+   * @param {'auto' | 'manual'} mode
+   */
   setMode(mode) {
     if (this.mode !== 'off') this.mode = mode;
   }
@@ -56,6 +94,8 @@ export class AutoCalibration {
   /**
    * Takes the worker's `{ status, estimate }` for a frame; returns why the estimate should be
    * applied now ('confident', 'timeout', 'moved'), or null.
+   * @param {{ status: CalibrationStatus, estimate: CalibrationEstimate | null } | null | undefined} calibration
+   * @returns {Reason | null}
    */
   update(calibration) {
     if (!calibration) return null;
@@ -64,6 +104,7 @@ export class AutoCalibration {
     return this.decide();
   }
 
+  /** @returns {Reason | null} */
   decide() {
     const e = this.estimate;
     if (this.mode !== 'auto' || !e) return null;
@@ -75,7 +116,11 @@ export class AutoCalibration {
     return e.confidence >= APPLY_CONFIDENCE && moved(this.applied, e.camera) ? 'moved' : null;
   }
 
-  /** Records that the tracker now uses `camera` (the estimate), and why. */
+  /**
+   * Records that the tracker now uses `camera` (the estimate), and why.
+   * @param {Pose} camera
+   * @param {Reason} reason
+   */
   markApplied(camera, reason) {
     this.applied = camera;
     this.reason = reason;
@@ -106,7 +151,8 @@ export class AutoCalibration {
         timeout: `after ${APPLY_AFTER_FRAMES} frames, below confidence ${APPLY_CONFIDENCE}`,
         moved: 'as the estimate moved',
         chosen: 'as you ticked Auto-calibrate',
-      }[this.reason] ?? '';
+        '': '',
+      }[this.reason];
       return `Auto-calibrated: ${summary}. The tracker uses ${describePose(this.applied)} `
         + `since frame ${this.appliedAt} (${why}); re-applied when a confident estimate moves by `
         + `${MOVE_DEG}° or ${100 * MOVE_HEIGHT} %.`;

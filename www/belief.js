@@ -1,3 +1,4 @@
+// @ts-check
 // Each tracker's belief as its paper draws it, from the particles (`particles()` rows, see
 // src/wasm/tracker.rs) and the estimate: weighted histograms of the state the paper reasons
 // about, one panel per partition or stage, with axes and units.
@@ -11,8 +12,21 @@ import { groupColour } from './render.js';
 
 const DEFAULT_BINS = 40;
 
-/** Rows of `particles` (stride numbers each) as arrays. */
+/**
+ * One panel of a belief view: a weighted histogram of `items`, lines at `markers`, and what
+ * the colours mean.
+ * @typedef {{ title: string, unit: string, items: { value: number, weight: number, group: number }[],
+ *   markers: { value: number, colour: string, label: string }[], probabilities?: number[] | null,
+ *   colours?: string, bins?: number, range?: [number, number] }} Panel
+ */
+
+/**
+ * Rows of `particles` (stride numbers each) as arrays.
+ * @param {Float32Array} particles
+ * @param {number} stride
+ */
 function rows(particles, stride) {
+  /** @type {Float32Array[]} */
   const out = [];
   for (let i = 0; i + stride <= particles.length; i += stride) out.push(particles.subarray(i, i + stride));
   return out;
@@ -21,6 +35,12 @@ function rows(particles, stride) {
 /**
  * The panels of `trackerId`'s belief: [{ title, unit, items: [{ value, weight, group }],
  * markers: [{ value, colour, label }], probabilities, colours (what the colours mean) }] (empty for an unknown layout).
+ * @param {string} trackerId
+ * @param {Float32Array} particles
+ * @param {number} stride
+ * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+ * @param {import('../pkg/web/lanepf.js').Layer[] | null} [layers]
+ * @returns {Panel[]}
  */
 export function beliefPanels(trackerId, particles, stride, estimate, layers = null) {
   const r = rows(particles, stride);
@@ -29,6 +49,7 @@ export function beliefPanels(trackerId, particles, stride, estimate, layers = nu
     const p = [1, 2, 3, 4].map((k) => st[`adachi.p${k}`]);
     // The vote histogram as the tracker binned it (its own bins, not re-binned).
     const votes = layers?.find((l) => l.kind === 'histogram');
+    /** @type {Panel[]} */
     const histogram = votes ? [{
       title: `${votes.name} over ρ (Adachi Sec. 3.2, eq. 4)`, unit: 'm, ρ positive right',
       items: Array.from(votes.values, (v, k) => ({ value: votes.start + (k + 0.5) * votes.step, weight: v, group: 0 })),
@@ -91,9 +112,14 @@ export function beliefPanels(trackerId, particles, stride, estimate, layers = nu
   return [];
 }
 
-/** Draws `panels` on `canvas`, one below the other, each a weighted stacked histogram. */
+/**
+ * Draws `panels` on `canvas`, one below the other, each a weighted stacked histogram.
+ * @param {HTMLCanvasElement} canvas
+ * @param {Panel[]} panels
+ */
 export function drawBelief(canvas, panels) {
   const ctx = canvas.getContext('2d');
+  if (!ctx) throw new Error('the belief canvas has no 2-D context');
   ctx.fillStyle = '#0b0e11';
   ctx.fillRect(0, 0, canvas.width, canvas.height);
   ctx.font = '12px system-ui, sans-serif';
@@ -101,6 +127,13 @@ export function drawBelief(canvas, panels) {
   panels.forEach((panel, k) => drawPanel(ctx, panel, k * ph, ph, canvas.width));
 }
 
+/**
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Panel} panel
+ * @param {number} top
+ * @param {number} height
+ * @param {number} width
+ */
 function drawPanel(ctx, panel, top, height, width) {
   const left = 46;
   const plotTop = top + 34;
@@ -136,6 +169,7 @@ function drawPanel(ctx, panel, top, height, width) {
       y -= bh;
     });
   }
+  /** @param {number} v */
   const x = (v) => left + ((v - lo) / (hi - lo)) * w;
   panel.markers.forEach((m, i) => {
     if (!Number.isFinite(m.value)) return;

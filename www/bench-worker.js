@@ -1,3 +1,4 @@
+// @ts-check
 // The benchmark's worker: renders the frames of a scenario with the package's Scene, then steps
 // each tracker over them as the demo does (the right frame for a stereo tracker, the car's
 // motion from the ground truth for all, both in step's options) and times each step with
@@ -5,9 +6,23 @@
 // Message in: the page's params; out: { type: 'progress' | 'version' | 'done' | 'error', ... }.
 import init, { version, trackerIds, Scene, Tracker } from '../pkg/web/lanepf.js';
 
-/** The p-quantile of sorted numbers, as `lanepf bench` computes it (nearest rank on n - 1). */
+/** @typedef {import('../pkg/web/lanepf.js').StepOptions} StepOptions */
+/** @typedef {import('../pkg/web/lanepf.js').EgoMotion} EgoMotion */
+/**
+ * The page's settings (bench.js `readParams`; names as the query string gave them: the Scene
+ * and Tracker constructors refuse unknown ones).
+ * @typedef {{ frames: number, width: number, height: number, scenario: import('../pkg/web/lanepf.js').ScenarioName,
+ *   seed: number, warmup: number, trackers: import('../pkg/web/lanepf.js').TrackerId[] | null }} BenchParams
+ */
+
+/**
+ * The p-quantile of sorted numbers, as `lanepf bench` computes it (nearest rank on n - 1).
+ * @param {number[]} sorted
+ * @param {number} p
+ */
 const quantile = (sorted, p) => sorted[Math.round((sorted.length - 1) * p)];
 
+/** @param {BenchParams} params */
 async function bench({ frames, width, height, scenario, seed, warmup, trackers }) {
   await init();
   self.postMessage({ type: 'version', version: version() });
@@ -35,6 +50,7 @@ async function bench({ frames, width, height, scenario, seed, warmup, trackers }
     const ms = [];
     for (let f = 0; f < frames; f++) {
       const frame = { data: left[f], width, height };
+      /** @type {StepOptions} */
       const options = { motion: motion[f] };
       if (tracker.isStereo) options.right = { data: right[f], width, height };
       const t = performance.now();

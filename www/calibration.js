@@ -1,28 +1,49 @@
+// @ts-check
 // The camera panel: presets, editable intrinsics and pose, a helper that estimates pitch, yaw
 // and height from two lane lines dragged over the frame, and per-source memory in
 // localStorage. It calls `onApply(camera)` with a complete camera object.
 import { intersect, poseFromVanishingPoint, heightFromLaneWidth } from './vanishing.js';
 import { scaleCamera } from './camera-presets.js';
+import { byId } from './dom.js';
 
-export const FIELDS = ['fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg', 'yaw_deg', 'roll_deg'];
+/** @typedef {import('../pkg/web/lanepf.js').CameraConfig} CameraConfig */
+
+export const FIELDS = /** @type {const} */ (['fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg', 'yaw_deg', 'roll_deg']);
 const STORE = 'lanepf.camera.';
 const HANDLE_PX = 9;
 
+/** @typedef {[number, number]} Point */
+/** The helper's two lines, each through two handles. */
+/** @typedef {[[Point, Point], [Point, Point]]} Lines */
+
 export class Calibration {
+  /**
+   * @param {Document} doc
+   * @param {HTMLCanvasElement} canvas the camera view (the helper's lines are dragged on it)
+   * @param {Record<string, { label: string, camera: CameraConfig }>} presets
+   */
   constructor(doc, canvas, presets) {
     this.doc = doc;
     this.canvas = canvas;
     this.presets = presets;
-    this.panel = doc.getElementById('calibration');
-    this.form = doc.getElementById('camera-fields');
-    this.preset = doc.getElementById('camera-preset');
-    this.helper = doc.getElementById('vp-helper');
-    this.laneWidth = doc.getElementById('vp-lane-width');
-    this.readout = doc.getElementById('vp-readout');
+    this.panel = byId('calibration', HTMLDetailsElement, doc);
+    this.form = byId('camera-fields', HTMLFormElement, doc);
+    this.preset = byId('camera-preset', HTMLSelectElement, doc);
+    this.helper = byId('vp-helper', HTMLInputElement, doc);
+    this.laneWidth = byId('vp-lane-width', HTMLInputElement, doc);
+    this.readout = byId('vp-readout', HTMLElement, doc);
+    /** @type {(camera: CameraConfig) => void} */
     this.onApply = () => {};
+    /** @type {() => void} */
     this.onRedraw = () => {};
+    /** The camera shown (the one the tracker uses) and its source's name. */
+    /** @type {CameraConfig | null} */
     this.camera = null;
+    this.sourceName = '';
+    /** @type {Lines | null} */
     this.lines = null;
+    /** The handle being dragged: line i, point j. */
+    /** @type {{ i: number, j: number } | null} */
     this.drag = null;
     for (const name of FIELDS) {
       const label = doc.createElement('label');
@@ -35,15 +56,15 @@ export class Calibration {
       try {
         this.apply(this.read());
       } catch (err) {
-        this.readout.textContent = err.message;
+        this.readout.textContent = err instanceof Error ? err.message : String(err);
       }
     };
     this.form.addEventListener('submit', (e) => {
       e.preventDefault();
       applyFields();
     });
-    doc.getElementById('camera-apply').addEventListener('click', applyFields);
-    doc.getElementById('camera-preset-apply').addEventListener('click', () => {
+    byId('camera-apply', HTMLButtonElement, doc).addEventListener('click', applyFields);
+    byId('camera-preset-apply', HTMLButtonElement, doc).addEventListener('click', () => {
       const p = this.presets[this.preset.value];
       if (p && this.camera) this.apply(scaleCamera(p.camera, this.camera.width, this.camera.height));
     });
@@ -56,32 +77,58 @@ export class Calibration {
     canvas.addEventListener('pointerup', (e) => this.pointer(e, 'up'));
   }
 
-  /** Shows `camera` in the fields (the camera the tracker now uses). */
+  /**
+   * The input of camera field `name`.
+   * @param {string} name
+   */
+  field(name) {
+    const input = this.form.elements.namedItem(name);
+    if (!(input instanceof HTMLInputElement)) throw new Error(`the camera panel has no field ${name}`);
+    return input;
+  }
+
+  /**
+   * Shows `camera` in the fields (the camera the tracker now uses).
+   * @param {CameraConfig} camera
+   * @param {string} sourceName
+   */
   show(camera, sourceName) {
     this.camera = camera;
     this.sourceName = sourceName;
-    for (const name of FIELDS) this.form.elements[name].value = +(camera[name] ?? 0).toFixed(4);
+    for (const name of FIELDS) this.field(name).value = String(+(camera[name] ?? 0).toFixed(4));
     this.lines = null;
   }
 
+  /** The camera shown with the fields' values; throws naming a field that is not a number. */
   read() {
-    const out = { ...this.camera };
+    /** @type {Record<string, number>} */
+    const values = {};
     for (const name of FIELDS) {
-      const text = this.form.elements[name].value.trim();
+      const text = this.field(name).value.trim();
       const v = Number(text);
       if (text === '' || !Number.isFinite(v)) throw new Error(`Camera ${name}: “${text}” is not a number.`);
-      out[name] = v;
+      values[name] = v;
     }
-    return out;
+    // (The camera shown, every numeric field replaced.)
+    return /** @type {CameraConfig} */ ({ ...this.camera, ...values });
   }
 
-  /** Shows `camera` and hands it on; the page saves it once a tracker accepts it. */
+  /**
+   * Shows `camera` and hands it on; the page saves it once a tracker accepts it.
+   * @param {CameraConfig} camera
+   */
   apply(camera) {
     this.show(camera, this.sourceName);
     this.onApply(camera);
   }
 
-  /** The camera saved for a source of this size, or null. */
+  /**
+   * The camera saved for a source of this size, or null.
+   * @param {string} sourceName
+   * @param {number} width
+   * @param {number} height
+   * @returns {CameraConfig | null}
+   */
   saved(sourceName, width, height) {
     try {
       const c = JSON.parse(localStorage.getItem(STORE + sourceName) ?? 'null');
@@ -91,7 +138,10 @@ export class Calibration {
     }
   }
 
-  /** Remembers `camera` for the current source. */
+  /**
+   * Remembers `camera` for the current source.
+   * @param {CameraConfig} camera
+   */
   save(camera) {
     try {
       localStorage.setItem(STORE + this.sourceName, JSON.stringify(camera));
@@ -104,28 +154,46 @@ export class Calibration {
     return this.helper.checked;
   }
 
-  /** Starts the two lines on the estimated ego boundaries, or on a generic lane. */
+  /**
+   * Starts the two lines on the estimated ego boundaries, or on a generic lane.
+   * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+   * @param {number} width
+   * @param {number} height
+   * @returns {Lines}
+   */
   startLines(estimate, width, height) {
+    /** @param {string} role */
     const pick = (role) => {
       const pts = estimate?.boundaries.find((b) => b.role === role)?.points;
       return pts && pts.length >= 4 ? [pts[0], pts[Math.floor(pts.length * 0.6)]] : null;
     };
+    /**
+     * A copy of a line's two points.
+     * @param {number[][]} l
+     * @returns {[Point, Point]}
+     */
+    const copy = (l) => [[l[0][0], l[0][1]], [l[1][0], l[1][1]]];
     this.lines = [
-      pick('ego-left') ?? [[0.3 * width, 0.95 * height], [0.46 * width, 0.65 * height]],
-      pick('ego-right') ?? [[0.7 * width, 0.95 * height], [0.54 * width, 0.65 * height]],
-    ].map((l) => l.map((p) => [...p]));
+      copy(pick('ego-left') ?? [[0.3 * width, 0.95 * height], [0.46 * width, 0.65 * height]]),
+      copy(pick('ego-right') ?? [[0.7 * width, 0.95 * height], [0.54 * width, 0.65 * height]]),
+    ];
+    return this.lines;
   }
 
-  /** Draws the lines, their handles and the vanishing point on the camera view. */
+  /**
+   * Draws the lines, their handles and the vanishing point on the camera view.
+   * @param {CanvasRenderingContext2D} ctx
+   * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+   */
   draw(ctx, estimate) {
     if (!this.active()) return;
-    if (!this.lines) this.startLines(estimate, ctx.canvas.width, ctx.canvas.height);
+    const lines = this.lines ?? this.startLines(estimate, ctx.canvas.width, ctx.canvas.height);
     ctx.save();
     ctx.strokeStyle = '#ff5252';
     ctx.fillStyle = '#ff5252';
     ctx.lineWidth = 2;
-    const vp = intersect(...this.lines);
-    for (const [a, b] of this.lines) {
+    const vp = intersect(...lines);
+    for (const [a, b] of lines) {
       ctx.beginPath();
       ctx.moveTo(a[0], a[1]);
       ctx.lineTo(...(vp ?? b));
@@ -149,18 +217,21 @@ export class Calibration {
 
   /** The pose the lines give, and a sentence about it. */
   estimate() {
-    const vp = this.lines && intersect(...this.lines);
-    if (!vp || !this.camera) return null;
+    const lines = this.lines;
+    const vp = lines && intersect(...lines);
+    if (!lines || !vp || !this.camera) return null;
     const pose = poseFromVanishingPoint(this.camera, vp);
     // Height from the lines' spacing on the lowest row both reach.
-    const row = Math.min(Math.max(this.lines[0][0][1], this.lines[0][1][1]),
-      Math.max(this.lines[1][0][1], this.lines[1][1][1]));
+    const row = Math.min(Math.max(lines[0][0][1], lines[0][1][1]),
+      Math.max(lines[1][0][1], lines[1][1][1]));
+    /** @param {[Point, Point]} line */
     const xOn = ([a, b]) => a[0] + ((b[0] - a[0]) * (row - a[1])) / (b[1] - a[1]);
-    const h = heightFromLaneWidth(this.camera, pose.pitch_deg, row, xOn(this.lines[0]),
-      xOn(this.lines[1]), Number(this.laneWidth.value));
+    const h = heightFromLaneWidth(this.camera, pose.pitch_deg, row, xOn(lines[0]),
+      xOn(lines[1]), Number(this.laneWidth.value));
     return { vp, ...pose, height_m: h };
   }
 
+  /** @param {Point | null} vp */
   describe(vp) {
     const e = this.estimate();
     if (!vp || !e) return 'The two lines are parallel: drag them onto the lane markings.';
@@ -169,12 +240,18 @@ export class Calibration {
       + `yaw ${e.yaw_deg.toFixed(2)}°${h}`;
   }
 
-  /** Dragging a handle moves it; letting go applies the pose the lines give. */
+  /**
+   * Dragging a handle moves it; letting go applies the pose the lines give.
+   * @param {PointerEvent} e
+   * @param {'down' | 'move' | 'up'} kind
+   */
   pointer(e, kind) {
     if (!this.active() || !this.lines) return;
     const r = this.canvas.getBoundingClientRect();
+    /** @type {Point} */
     const p = [(e.clientX - r.left) * (this.canvas.width / r.width), (e.clientY - r.top) * (this.canvas.height / r.height)];
     if (kind === 'down') {
+      /** @type {{ i: number, j: number, d: number } | null} */
       let best = null;
       this.lines.forEach((line, i) => line.forEach((q, j) => {
         const d = Math.hypot(q[0] - p[0], q[1] - p[1]);

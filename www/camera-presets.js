@@ -1,3 +1,4 @@
+// @ts-check
 // The camera a tracker gets for a source: the bundled clip's own calibration, a camera file the
 // user imports, or, for other media, the clip's camera scaled to the frame size (a guess that
 // a dash cam sees about as much as the Udacity one; the status line says so).
@@ -9,19 +10,31 @@ export const CLIP = {
   fps: 25,
 };
 
+/** @typedef {import('../pkg/web/lanepf.js').CameraConfig} CameraConfig */
+
+/** @type {CameraConfig | null} */
 let clipCamera = null;
 
-/** The bundled clip's camera (fetched once from the page's own files). */
+/**
+ * The bundled clip's camera (fetched once from the page's own files).
+ * @returns {Promise<CameraConfig>}
+ */
 export async function loadClipCamera() {
-  if (!clipCamera) {
-    const res = await fetch(CLIP.camera);
-    if (!res.ok) throw new Error(`cannot load ${CLIP.camera}: HTTP ${res.status}`);
-    clipCamera = await res.json();
-  }
-  return clipCamera;
+  if (clipCamera) return clipCamera;
+  const res = await fetch(CLIP.camera);
+  if (!res.ok) throw new Error(`cannot load ${CLIP.camera}: HTTP ${res.status}`);
+  const camera = await res.json();
+  clipCamera = camera;
+  return camera;
 }
 
-/** `camera` rescaled to width x height (intrinsics scale with the image; pose is kept). */
+/**
+ * `camera` rescaled to width x height (intrinsics scale with the image; pose is kept).
+ * @param {CameraConfig} camera
+ * @param {number} width
+ * @param {number} height
+ * @returns {CameraConfig}
+ */
 export function scaleCamera(camera, width, height) {
   const sx = width / camera.width;
   const sy = height / camera.height;
@@ -36,13 +49,17 @@ export function scaleCamera(camera, width, height) {
   };
 }
 
-/** Reads a camera.json file; throws an Error a person can act on. */
+/**
+ * Reads a camera.json file; throws an Error a person can act on.
+ * @param {File} file
+ * @returns {Promise<CameraConfig>}
+ */
 export async function readCameraFile(file) {
   let value;
   try {
     value = JSON.parse(await file.text());
   } catch (err) {
-    throw new Error(`“${file.name}” is not JSON: ${err.message}`);
+    throw new Error(`“${file.name}” is not JSON: ${err instanceof Error ? err.message : err}`, { cause: err });
   }
   for (const key of ['width', 'height', 'fx', 'fy', 'cx', 'cy', 'height_m', 'pitch_deg']) {
     if (!Number.isFinite(value?.[key])) {
@@ -67,6 +84,7 @@ export async function loadPresets() {
     kitti: ['KITTI object demo pair (stereo, 1242x375)', 'cameras/kitti-object-demo.camera.json'],
     karlsruhe: ['Karlsruhe urban pairs (stereo, 1344x391)', 'cameras/karlsruhe-urban.camera.json'],
   };
+  /** @type {Record<string, { label: string, camera: CameraConfig }>} */
   const presets = { caltech: { label: 'Caltech Lanes (640x480)', camera: CALTECH } };
   for (const [key, [label, url]] of Object.entries(files)) {
     const res = await fetch(url);

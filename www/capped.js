@@ -1,3 +1,4 @@
+// @ts-check
 // A bounded run log: a long webcam session must not grow the page's memory without end.
 
 /** Frames kept for export: 10 minutes at 30 fps (a few KB each). */
@@ -7,6 +8,10 @@ export const MAX_RESULTS = 18000;
  * Appends `item` to `list`. Once the list is a batch (max / 18, at least 1) over `max`, the
  * oldest entries are dropped so that `max` remain (in batches: one splice per batch, not per
  * frame). Returns how many entries were dropped by this call.
+ * @template T
+ * @param {T[]} list
+ * @param {T} item
+ * @param {number} [max]
  */
 export function appendCapped(list, item, max = MAX_RESULTS) {
   list.push(item);

@@ -1,16 +1,28 @@
+// @ts-check
 // Codec strings for `VideoDecoder.configure`, built from the codec configuration records the
 // containers carry (the same records in MP4 boxes and in Matroska's CodecPrivate): avcC for
 // H.264, hvcC for HEVC, vpcC (or Matroska's VP9 feature list, or the first keyframe's header)
 // for VP9, av1C for AV1. See the WebCodecs codec registry.
 
+/** @param {number} v */
 const hex2 = (v) => v.toString(16).padStart(2, '0');
+/** @param {number} v */
 const dec2 = (v) => String(v).padStart(2, '0');
 
+/**
+ * @param {Uint8Array} bytes
+ * @param {number} n
+ * @param {string} what
+ */
 function need(bytes, n, what) {
   if (bytes.length < n) throw new Error(`the ${what} record is too short (${bytes.length} bytes, needs ${n})`);
 }
 
-/** `avc1.PPCCLL` from an AVCDecoderConfigurationRecord (avcC): profile, constraints, level. */
+/**
+ * `avc1.PPCCLL` from an AVCDecoderConfigurationRecord (avcC): profile, constraints, level.
+ * @param {Uint8Array} avcC
+ * @param {string} [fourcc]
+ */
 export function avcCodec(avcC, fourcc = 'avc1') {
   need(avcC, 7, 'avcC');
   if (avcC[0] !== 1) throw new Error(`the avcC record has version ${avcC[0]}, not 1`);
@@ -20,6 +32,8 @@ export function avcCodec(avcC, fourcc = 'avc1') {
 /**
  * `hvc1.P.C.TL.B...` from an HEVCDecoderConfigurationRecord (hvcC): profile space and idc, the
  * compatibility flags bit-reversed, tier and level, the constraint bytes without trailing zeros.
+ * @param {Uint8Array} hvcC
+ * @param {string} [fourcc]
  */
 export function hevcCodec(hvcC, fourcc = 'hvc1') {
   need(hvcC, 13, 'hvcC');
@@ -36,27 +50,41 @@ export function hevcCodec(hvcC, fourcc = 'hvc1') {
     ...constraints.map((c) => c.toString(16).toUpperCase())].join('.');
 }
 
-/** `vp09.PP.LL.DD`: profile, level (10 for 1.0, ...), bit depth. */
+/**
+ * `vp09.PP.LL.DD`: profile, level (10 for 1.0, ...), bit depth.
+ * @param {{ profile: number, level: number, bitDepth: number }} info
+ */
 export function vp9Codec({ profile, level, bitDepth }) {
   return `vp09.${dec2(profile)}.${dec2(level)}.${dec2(bitDepth)}`;
 }
 
-/** Profile, level and bit depth from a VPCodecConfigurationRecord box's payload (vpcC, version 1). */
+/**
+ * Profile, level and bit depth from a VPCodecConfigurationRecord box's payload (vpcC, version 1).
+ * @param {Uint8Array} vpcC
+ */
 export function vpcCInfo(vpcC) {
   need(vpcC, 12, 'vpcC');
   if (vpcC[0] !== 1) throw new Error(`the vpcC box has version ${vpcC[0]}; only version 1 is read`);
   return { profile: vpcC[4], level: vpcC[5], bitDepth: vpcC[6] >> 4 };
 }
 
-/** The smallest VP9 level whose largest picture holds width x height (a default when none is given). */
+/**
+ * The smallest VP9 level whose largest picture holds width x height (a default when none is given).
+ * @param {number} width
+ * @param {number} height
+ */
 export function vp9Level(width, height) {
   const levels = [[10, 36864], [11, 73728], [20, 122880], [21, 245760], [30, 552960], [31, 983040],
     [40, 2228224], [50, 8912896], [60, 35651584]];
   return (levels.find(([, max]) => width * height <= max) ?? [62])[0];
 }
 
-/** Matroska's VP9 CodecPrivate: ID-length-value features (1 profile, 2 level, 3 bit depth). */
+/**
+ * Matroska's VP9 CodecPrivate: ID-length-value features (1 profile, 2 level, 3 bit depth).
+ * @param {Uint8Array} bytes
+ */
 export function vp9PrivateInfo(bytes) {
+  /** @type {{ profile?: number, level?: number, bitDepth?: number }} */
   const info = {};
   for (let i = 0; i + 2 <= bytes.length;) {
     const [id, len] = [bytes[i], bytes[i + 1]];
@@ -70,9 +98,13 @@ export function vp9PrivateInfo(bytes) {
   return info;
 }
 
-/** Profile and bit depth from a VP9 keyframe's uncompressed header (frame marker, sync code, colour config). */
+/**
+ * Profile and bit depth from a VP9 keyframe's uncompressed header (frame marker, sync code, colour config).
+ * @param {Uint8Array} frame
+ */
 export function vp9FrameInfo(frame) {
   let bit = 0;
+  /** @param {number} n bits */
   const read = (n) => {
     let v = 0;
     for (let k = 0; k < n; k++, bit++) {
@@ -94,7 +126,10 @@ export function vp9FrameInfo(frame) {
   return { profile, bitDepth };
 }
 
-/** `av01.P.LLT.DD` from an AV1CodecConfigurationRecord (av1C): profile, level, tier, bit depth. */
+/**
+ * `av01.P.LLT.DD` from an AV1CodecConfigurationRecord (av1C): profile, level, tier, bit depth.
+ * @param {Uint8Array} av1C
+ */
 export function av1Codec(av1C) {
   need(av1C, 4, 'av1C');
   if (av1C[0] !== 0x81) throw new Error('the av1C record has no marker and version 1');

@@ -1,31 +1,66 @@
+// @ts-check
 // The controls: source, tracker and camera pickers, playback, teaching steps, overlay toggles,
 // export. They hold no tracking state; main.js reacts to their callbacks.
 
-const byId = (doc, id) => doc.getElementById(id);
+import { byId } from './dom.js';
 
 export class Controls {
   constructor(doc = document) {
-    for (const [key, id] of Object.entries({
-      play: 'play', step: 'step', stepStage: 'step-stage', nextStage: 'next-stage',
-      restart: 'restart', progress: 'progress', tracker: 'tracker', source: 'source',
-      file: 'file', cameraFile: 'camera-file', showTruth: 'show-truth',
-      showParticles: 'show-particles', showTop: 'show-top', showCues: 'show-cues',
-      showPlots: 'show-plots', departure: 'departure', cueLayer: 'cue-layer',
-      colourGroups: 'colour-groups', stereo: 'stereo', compare: 'compare',
-      exportJsonl: 'export-jsonl', exportCsv: 'export-csv', status: 'status', timing: 'timing',
-      version: 'version', dropZone: 'drop-zone',
-    })) {
-      this[key] = byId(doc, id);
-    }
+    /** @param {string} id */
+    const button = (id) => byId(id, HTMLButtonElement, doc);
+    /** @param {string} id */
+    const input = (id) => byId(id, HTMLInputElement, doc);
+    /** @param {string} id */
+    const select = (id) => byId(id, HTMLSelectElement, doc);
+    /** @param {string} id */
+    const element = (id) => byId(id, HTMLElement, doc);
+    this.play = button('play');
+    this.step = button('step');
+    this.stepStage = button('step-stage');
+    this.nextStage = element('next-stage');
+    this.restart = button('restart');
+    this.progress = byId('progress', HTMLProgressElement, doc);
+    this.tracker = select('tracker');
+    this.source = select('source');
+    this.file = input('file');
+    this.cameraFile = input('camera-file');
+    this.showTruth = input('show-truth');
+    this.showParticles = input('show-particles');
+    this.showTop = input('show-top');
+    this.showCues = input('show-cues');
+    this.showPlots = input('show-plots');
+    this.departure = element('departure');
+    this.cueLayer = select('cue-layer');
+    this.colourGroups = input('colour-groups');
+    this.stereo = input('stereo');
+    this.compare = select('compare');
+    this.exportJsonl = button('export-jsonl');
+    this.exportCsv = button('export-csv');
+    this.status = element('status');
+    this.timing = element('timing');
+    this.version = element('version');
+    this.dropZone = element('drop-zone');
     this.paused = false;
+    /** @type {string[]} */
+    this.stepNames = [];
+    // The callbacks main.js sets.
+    /** @type {() => void} */
     this.onStep = () => {};
+    /** @type {() => void} */
     this.onStepStage = () => {};
+    /** @type {() => void} */
     this.onRestart = () => {};
+    /** @type {(value: string) => void} */
     this.onSource = () => {};
+    /** @type {(files: File[]) => void} */
     this.onFiles = () => {};
+    /** @type {(file: File) => void} */
     this.onCameraFile = () => {};
+    /** @type {(id: string) => void} */
     this.onTracker = () => {};
+    /** @type {(id: string) => void} */
     this.onCompare = () => {};
+    /** @type {(format: 'jsonl' | 'csv') => void} */
     this.onExport = () => {};
     this.lastSource = this.source.value;
     this.tracker.addEventListener('change', () => this.onTracker(this.tracker.value));
@@ -41,11 +76,13 @@ export class Controls {
       this.onSource(this.source.value);
     });
     this.file.addEventListener('change', () => {
-      if (this.file.files.length) this.onFiles([...this.file.files]);
+      const files = this.file.files;
+      if (files?.length) this.onFiles([...files]);
       this.file.value = '';
     });
     this.cameraFile.addEventListener('change', () => {
-      if (this.cameraFile.files.length) this.onCameraFile(this.cameraFile.files[0]);
+      const file = this.cameraFile.files?.[0];
+      if (file) this.onCameraFile(file);
     });
     this.play.addEventListener('click', () => this.setPaused(!this.paused));
     this.step.addEventListener('click', () => this.onStep());
@@ -67,7 +104,7 @@ export class Controls {
     // Keyboard: space plays or pauses, "." steps a frame, "," steps a stage.
     doc.addEventListener('keydown', (e) => {
       // (Not while a control has the focus: space there is that control's own key.)
-      if (e.target.closest?.('input, select, textarea, button, summary') || e.ctrlKey || e.metaKey || e.altKey) return;
+      if ((e.target instanceof Element && e.target.closest('input, select, textarea, button, summary')) || e.ctrlKey || e.metaKey || e.altKey) return;
       if (e.key === ' ') {
         e.preventDefault();
         this.setPaused(!this.paused);
@@ -79,6 +116,7 @@ export class Controls {
     });
   }
 
+  /** @param {boolean} paused */
   setPaused(paused) {
     this.paused = paused;
     this.play.textContent = paused ? 'Play' : 'Pause';
@@ -86,12 +124,16 @@ export class Controls {
     this.updateStageButton();
   }
 
-  /** The per-step button works while paused, for a tracker with a per-step mode. */
+  /**
+   * The per-step button works while paused, for a tracker with a per-step mode.
+   * @param {string[] | null | undefined} names
+   */
   setStepNames(names) {
     this.stepNames = names ?? [];
     this.updateStageButton();
   }
 
+  /** @param {number | null} [next] the index in `stepNames` of the next step (null: a frame's start) */
   updateStageButton(next = null) {
     const can = this.paused && this.stepNames?.length > 0;
     this.stepStage.disabled = !can;
@@ -103,24 +145,35 @@ export class Controls {
     }
   }
 
-  /** The "Ground truth" control is shown only for a source that has ground truth (the simulator's). */
+  /**
+   * The "Ground truth" control is shown only for a source that has ground truth (the simulator's).
+   * @param {boolean} yes
+   */
   setHasTruth(yes) {
-    this.showTruth.closest('label').hidden = !yes;
+    const label = this.showTruth.closest('label');
+    if (label) label.hidden = !yes;
   }
 
-  /** Shows progress in [0, 1], or hides the bar for a source without an end (null). */
+  /**
+   * Shows progress in [0, 1], or hides the bar for a source without an end (null).
+   * @param {number | null} value
+   */
   setProgress(value) {
     const known = typeof value === 'number' && value >= 0;
     this.progress.hidden = !known;
     if (known) this.progress.value = value;
   }
 
+  /** @param {boolean} yes */
   setExportable(yes) {
     this.exportJsonl.disabled = !yes;
     this.exportCsv.disabled = !yes;
   }
 
-  /** Lists the tracker's cue layers by name, keeping the choice when the names stay. */
+  /**
+   * Lists the tracker's cue layers by name, keeping the choice when the names stay.
+   * @param {{ name: string }[] | null | undefined} layers
+   */
   setLayers(layers) {
     const names = (layers ?? []).map((l) => l.name);
     const old = [...this.cueLayer.options].map((o) => o.textContent);
@@ -137,8 +190,13 @@ export class Controls {
    * The tracker lists: "no tracker" (or "nothing" to compare with) and then every registered id.
    * index.html lists them already, so the menus work while the module loads; they are rebuilt
    * only if the module's list differs, keeping the choice.
+   * @param {string[]} ids
    */
   setTrackers(ids) {
+    /**
+     * @param {HTMLSelectElement} select
+     * @param {string} none the label of the empty choice
+     */
     const fill = (select, none) => {
       const have = [...select.options].map((o) => o.value);
       if (have.join('\n') === ['', ...ids].join('\n')) return;
@@ -150,7 +208,10 @@ export class Controls {
     fill(this.compare, 'nothing');
   }
 
-  /** Adds the simulator's scenarios after the built-in sources. */
+  /**
+   * Adds the simulator's scenarios after the built-in sources.
+   * @param {{ name: string, description: string }[]} list
+   */
   setScenarios(list) {
     for (const { name, description } of list) {
       const o = new Option(`Scene: ${name}`, name);
@@ -159,7 +220,11 @@ export class Controls {
     }
   }
 
-  /** Selects a source option, adding it (e.g. an uploaded file's name) when missing. */
+  /**
+   * Selects a source option, adding it (e.g. an uploaded file's name) when missing.
+   * @param {string} value
+   * @param {string} label
+   */
   showSource(value, label) {
     if (![...this.source.options].some((o) => o.value === value)) {
       this.source.add(new Option(label, value), this.source.options[3]);
@@ -168,6 +233,11 @@ export class Controls {
     this.lastSource = value;
   }
 
+  /**
+   * The status line; `isError` marks the page as in error (the tests wait on it).
+   * @param {string} text
+   * @param {boolean} [isError]
+   */
   say(text, isError = false) {
     this.status.textContent = text;
     if (isError) document.body.dataset.state = 'error';

@@ -1,3 +1,4 @@
+// @ts-check
 // An MP4 / ISO-BMFF (ISO/IEC 14496-12) demuxer for the first video track, enough for
 // WebCodecs: it reads the top-level box headers, the whole `moov` box and nothing of `mdat`,
 // and returns the codec, the decoder configuration and every sample's place in the file.
@@ -11,15 +12,28 @@ import { checkDuration, checkRate, checkSampleCount } from './demux-limits.js';
 
 const TOP_LEVEL = new Set(['ftyp', 'styp', 'moov', 'mdat', 'free', 'skip', 'wide', 'pdin', 'uuid', 'meta', 'moof', 'mfra', 'sidx']);
 
+/**
+ * @param {Uint8Array} b
+ * @param {number} i
+ */
 const fourcc = (b, i) => String.fromCharCode(b[i], b[i + 1], b[i + 2], b[i + 3]);
 
-/** Whether `head` (the first 12 bytes) looks like an ISO-BMFF file. */
+/**
+ * Whether `head` (the first 12 bytes) looks like an ISO-BMFF file.
+ * @param {Uint8Array} head
+ */
 export function isMp4(head) {
   return head.length >= 8 && TOP_LEVEL.has(fourcc(head, 4));
 }
 
 /** Big-endian reads within one box's bytes, with the box named in errors. */
 class Box {
+  /**
+   * @param {Uint8Array} bytes
+   * @param {string} type
+   * @param {number} start
+   * @param {number} end
+   */
   constructor(bytes, type, start, end) {
     this.bytes = bytes;
     this.view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
@@ -28,21 +42,35 @@ class Box {
     this.end = end;
   }
 
+  /**
+   * @param {number} at
+   * @param {number} n
+   */
   check(at, n) {
     if (at < this.start || at + n > this.end) {
       throw new Error(`the “${this.type}” box is too short (${this.end - this.start} bytes)`);
     }
   }
 
+/** @param {number} at */
   u8(at) { this.check(at, 1); return this.bytes[at]; }
+/** @param {number} at */
   u16(at) { this.check(at, 2); return this.view.getUint16(at); }
+/** @param {number} at */
   u32(at) { this.check(at, 4); return this.view.getUint32(at); }
+/** @param {number} at */
   i32(at) { this.check(at, 4); return this.view.getInt32(at); }
+/** @param {number} at */
   u64(at) { this.check(at, 8); return Number(this.view.getBigUint64(at)); }
+/** @param {number} at */
   i64(at) { this.check(at, 8); return Number(this.view.getBigInt64(at)); }
   payload(from = this.start) { return this.bytes.subarray(from, this.end); }
 
-  /** Number of `entrySize`-byte entries a table promises at `at`, checked against the box size. */
+  /**
+   * Number of `entrySize`-byte entries a table promises at `at`, checked against the box size.
+   * @param {number} at
+   * @param {number} entrySize
+   */
   entries(at, entrySize) {
     const n = this.u32(at);
     if (n * entrySize > this.end - at - 4) {
@@ -53,6 +81,7 @@ class Box {
 
   /** The child boxes in [from, end). */
   children(from = this.start) {
+    /** @type {Box[]} */
     const out = [];
     for (let at = from; at < this.end;) {
       if (at + 8 > this.end) throw new Error(`a box inside “${this.type}” is cut short`);
@@ -75,10 +104,12 @@ class Box {
     return out;
   }
 
+  /** @param {string} type */
   child(type) {
     return this.children().find((b) => b.type === type) ?? null;
   }
 
+  /** @param {string} type */
   need(type) {
     const box = this.child(type);
     if (!box) throw new Error(`the “${this.type}” box has no “${type}” box`);
@@ -87,6 +118,7 @@ class Box {
 }
 
 /** Walks the top-level boxes by their headers; returns the moov box's bytes. */
+/** @param {BlobReader} reader */
 async function readMoov(reader) {
   let moov = null;
   for (let pos = 0; pos < reader.size;) {
@@ -115,7 +147,10 @@ async function readMoov(reader) {
   return new Box(moov, 'moov', 0, moov.length);
 }
 
-/** The decoder configuration from the first sample entry of stsd. */
+/**
+ * The decoder configuration from the first sample entry of stsd.
+ * @param {Box} stsd
+ */
 function sampleEntry(stsd) {
   const n = stsd.entries(stsd.start + 4, 8);
   if (n < 1) throw new Error('the video track has no sample description (stsd is empty)');
@@ -124,6 +159,7 @@ function sampleEntry(stsd) {
   const width = entry.u16(entry.start + 24);
   const height = entry.u16(entry.start + 26);
   const boxes = entry.children(entry.start + 78);
+  /** @param {string} type */
   const record = (type) => {
     const box = boxes.find((b) => b.type === type);
     if (!box) throw new Error(`the “${entry.type}” sample entry has no “${type}” box`);
@@ -148,9 +184,17 @@ function sampleEntry(stsd) {
   throw new Error(`the video codec “${t}” is not one this reader knows (H.264, HEVC, VP8, VP9, AV1)`);
 }
 
-/** Expands a run-length table (stts, ctts) of `entries` at `at` to `count` values. */
+/**
+ * Expands a run-length table (stts, ctts) of `entries` at `at` to `count` values.
+ * @param {Box} box
+ * @param {number} at
+ * @param {number} count
+ * @param {number} entrySize
+ * @param {(at: number) => number} value
+ */
 function expandRuns(box, at, count, entrySize, value) {
   const n = box.entries(at, entrySize);
+  /** @type {number[]} */
   const out = new Array(count);
   let i = 0;
   for (let k = 0; k < n; k++) {
@@ -166,6 +210,9 @@ function expandRuns(box, at, count, entrySize, value) {
 /**
  * Sample sizes from stsz: at most MAX_SAMPLES, none empty, a constant size times the count
  * no more than the file (checked before anything the size of the table is allocated).
+ * @param {Box} stbl
+ * @param {number} fileSize
+ * @returns {number[]}
  */
 function sampleSizes(stbl, fileSize) {
   if (stbl.child('stz2')) throw new Error('compact sample sizes (stz2) are not supported');
@@ -189,11 +236,17 @@ function sampleSizes(stbl, fileSize) {
   return sizes;
 }
 
-/** Sample offsets in the file from stsc (samples per chunk) and stco/co64 (chunk offsets). */
+/**
+ * Sample offsets in the file from stsc (samples per chunk) and stco/co64 (chunk offsets).
+ * @param {Box} stbl
+ * @param {number[]} sizes
+ * @returns {number[]}
+ */
 function sampleOffsets(stbl, sizes) {
   const co64 = stbl.child('co64');
   const stco = co64 ?? stbl.need('stco');
   const chunks = stco.entries(stco.start + 4, co64 ? 8 : 4);
+  /** @param {number} c */
   const chunkOffset = (c) => (co64 ? co64.u64(co64.start + 8 + 8 * c) : stco.u32(stco.start + 8 + 4 * c));
   const stsc = stbl.need('stsc');
   const runs = stsc.entries(stsc.start + 4, 12);
@@ -218,7 +271,11 @@ function sampleOffsets(stbl, sizes) {
 }
 
 /** The media time where presentation starts and the delay before it (edts/elst), or none. */
-function editStart(trak, movieTimescale, timescale) {
+/**
+ * @param {Box} trak
+ * @param {number} movieTimescale
+ */
+function editStart(trak, movieTimescale) {
   const elst = trak.child('edts')?.child('elst');
   if (!elst) return { shift: 0, delayUs: 0 };
   const v1 = elst.u8(elst.start) === 1;
@@ -240,6 +297,7 @@ function editStart(trak, movieTimescale, timescale) {
  * { timestamp (µs, presentation), duration (µs), key, offset, size }. Throws a clear Error
  * for anything it cannot read.
  */
+/** @param {Blob} blob */
 export async function demuxMp4(blob) {
   const reader = new BlobReader(blob);
   const moov = await readMoov(reader);
@@ -275,8 +333,9 @@ export async function demuxMp4(blob) {
   const stss = stbl.child('stss');
   const keys = stss ? new Set(Array.from({ length: stss.entries(stss.start + 4, 4) },
     (_, k) => stss.u32(stss.start + 8 + 4 * k) - 1)) : null;
-  const { shift, delayUs } = editStart(trak, movieTimescale, timescale);
+  const { shift, delayUs } = editStart(trak, movieTimescale);
 
+  /** @param {number} t */
   const us = (t) => Math.round((t * 1e6) / timescale);
   const samples = new Array(count);
   let dts = 0;

@@ -1,3 +1,4 @@
+// @ts-check
 // A WebM / Matroska demuxer for the first video track, enough for WebCodecs. It walks the EBML
 // element headers: EBML header (DocType) -> Segment -> Info (TimecodeScale, Duration), Tracks
 // (TrackEntry: TrackNumber, TrackType, CodecID, CodecPrivate, DefaultDuration, Video:
@@ -23,9 +24,13 @@ const CLUSTER_CHILDREN = new Set([0xe7, 0x5854, 0xa7, 0xab, 0xa3, 0xa0, 0xaf, 0x
 // Most blocks of all tracks together (audio has more blocks a second than video).
 const MAX_BLOCKS = 4 * MAX_SAMPLES;
 
+/** @param {number} id */
 const hex = (id) => `0x${id.toString(16).toUpperCase()}`;
 
-/** Whether `head` starts with the EBML magic. */
+/**
+ * Whether `head` starts with the EBML magic.
+ * @param {Uint8Array} head
+ */
 export function isWebm(head) {
   return head.length >= 4 && head[0] === 0x1a && head[1] === 0x45 && head[2] === 0xdf && head[3] === 0xa3;
 }
@@ -33,6 +38,9 @@ export function isWebm(head) {
 /**
  * The element header at bytes[at] (file position `pos`): { id, size (null: unknown), start
  * (file position of the data) }. The ID keeps its length marker; the size drops it.
+ * @param {Uint8Array} bytes
+ * @param {number} at
+ * @param {number} pos
  */
 function parseHeader(bytes, at, pos) {
   const cut = () => new TruncatedError(`the file is truncated: the element header at byte ${pos} is cut short`);
@@ -56,11 +64,21 @@ function parseHeader(bytes, at, pos) {
   return { id, size: allOnes ? null : size, start: pos + idLen + sizeLen };
 }
 
+/**
+ * @param {BlobReader} reader
+ * @param {number} pos
+ */
 async function headerAt(reader, pos) {
   return parseHeader(await reader.peek(pos, 12), 0, pos);
 }
 
-/** The children of an element held in memory (`bytes` starts at file position `base`). */
+/**
+ * The children of an element held in memory (`bytes` starts at file position `base`).
+ * @param {Uint8Array} bytes
+ * @param {number} base
+ * @param {number} [from]
+ * @param {number} [to]
+ */
 function* children(bytes, base, from = 0, to = bytes.length) {
   for (let at = from; at < to;) {
     const h = parseHeader(bytes.subarray(0, to), at, base + at);
@@ -72,6 +90,7 @@ function* children(bytes, base, from = 0, to = bytes.length) {
   }
 }
 
+/** @param {Uint8Array} data */
 function uint(data) {
   if (data.length > 8) throw new Error('an unsigned integer element is longer than 8 bytes');
   let v = 0;
@@ -79,6 +98,7 @@ function uint(data) {
   return v;
 }
 
+/** @param {Uint8Array} data */
 function float(data) {
   const view = new DataView(data.buffer, data.byteOffset, data.byteLength);
   if (data.length === 4) return view.getFloat32(0);
@@ -87,7 +107,15 @@ function float(data) {
   throw new Error(`a float element has ${data.length} bytes`);
 }
 
+/** @typedef {{ scale: number, duration: number | null }} Info */
+
+/**
+ * @param {Uint8Array} bytes
+ * @param {number} base
+ * @returns {Info}
+ */
 function parseInfo(bytes, base) {
+  /** @type {Info} */
   const info = { scale: 1e6, duration: null };
   for (const e of children(bytes, base)) {
     if (e.id === ID.TimecodeScale) info.scale = uint(e.data);
@@ -107,10 +135,18 @@ function parseInfo(bytes, base) {
   return info;
 }
 
+/**
+ * @param {Uint8Array} bytes
+ * @param {number} base
+ */
 function parseTracks(bytes, base) {
   const tracks = [];
   for (const entry of children(bytes, base)) {
     if (entry.id !== ID.TrackEntry) continue;
+    /**
+     * @type {{ number: number | null, type: number | null, codecId: string, codecPrivate: Uint8Array | null,
+     *   defaultDuration: number | null, width: number, height: number, encoded: boolean }}
+     */
     const t = { number: null, type: null, codecId: '', codecPrivate: null, defaultDuration: null, width: 0, height: 0, encoded: false };
     for (const e of children(entry.data, entry.pos)) {
       if (e.id === ID.TrackNumber) t.number = uint(e.data);
@@ -131,7 +167,11 @@ function parseTracks(bytes, base) {
   return tracks;
 }
 
-/** A Block's or SimpleBlock's head: track number, relative timecode, flags, head length. */
+/**
+ * A Block's or SimpleBlock's head: track number, relative timecode, flags, head length.
+ * @param {Uint8Array} bytes
+ * @param {number} pos
+ */
 function blockHead(bytes, pos) {
   const n = bytes[0] ? Math.clz32(bytes[0]) - 23 : 9;
   if (n < 1 || n > 8 || bytes.length < n + 3) throw new Error(`the block at byte ${pos} has a malformed head (the file is corrupt)`);
@@ -141,7 +181,19 @@ function blockHead(bytes, pos) {
   return { track, rel, flags: bytes[n + 2], length: n + 3 };
 }
 
-/** Reads one Cluster's blocks into `blocks`; returns the position after the Cluster. */
+/**
+ * A block of the file: its track, time (ticks), keyframe, BlockDuration, lacing and frame bytes.
+ * @typedef {{ track: number, time: number, key: boolean, duration: number | null, laced: boolean,
+ *   offset: number, size: number }} Block
+ */
+
+/**
+ * Reads one Cluster's blocks into `blocks`; returns the position after the Cluster.
+ * @param {BlobReader} reader
+ * @param {{ size: number | null, start: number }} cluster
+ * @param {number} parentEnd
+ * @param {Block[]} blocks
+ */
 async function readCluster(reader, cluster, parentEnd, blocks) {
   const end = cluster.size === null ? parentEnd : cluster.start + cluster.size;
   let timecode = null;
@@ -159,18 +211,23 @@ async function readCluster(reader, cluster, parentEnd, blocks) {
       timecode = uint(await reader.read(h.start, h.size, 'a Cluster Timecode'));
     } else if (h.id === ID.SimpleBlock || h.id === ID.BlockGroup) {
       if (timecode === null) throw new Error(`the block at byte ${pos} comes before its Cluster's Timecode`);
-      let block = null;
+      let block;
       if (h.id === ID.SimpleBlock) {
         const head = blockHead(await reader.read(h.start, Math.min(h.size, 11)), pos);
         block = { ...head, start: h.start, size: h.size, key: (head.flags & 0x80) !== 0, duration: null };
       } else {
-        block = { key: true, duration: null };
+        /** @type {(ReturnType<typeof blockHead> & { start: number, size: number }) | null} */
+        let found = null;
+        let key = true;
+        /** @type {number | null} */
+        let duration = null;
         for (const e of children(await reader.read(h.start, h.size, 'a BlockGroup'), h.start)) {
-          if (e.id === ID.Block) Object.assign(block, blockHead(e.data.subarray(0, 11), e.pos), { start: e.pos, size: e.data.length });
-          if (e.id === ID.BlockDuration) block.duration = uint(e.data);
-          if (e.id === ID.ReferenceBlock) block.key = false;
+          if (e.id === ID.Block) found = { ...blockHead(e.data.subarray(0, 11), e.pos), start: e.pos, size: e.data.length };
+          if (e.id === ID.BlockDuration) duration = uint(e.data);
+          if (e.id === ID.ReferenceBlock) key = false;
         }
-        if (block.start === undefined) throw new Error(`the BlockGroup at byte ${pos} has no Block`);
+        if (!found) throw new Error(`the BlockGroup at byte ${pos} has no Block`);
+        block = { ...found, key, duration };
       }
       if (block.size <= block.length) throw new Error(`the block at byte ${pos} holds no frame data (the file is corrupt)`);
       if (blocks.length >= MAX_BLOCKS) throw new Error(`the file has more than ${MAX_BLOCKS} blocks, more than this reader accepts`);
@@ -185,6 +242,12 @@ async function readCluster(reader, cluster, parentEnd, blocks) {
 }
 
 /** The codec string and description for a track, reading the first keyframe where needed. */
+/**
+ * @param {ReturnType<typeof parseTracks>[number]} track
+ * @param {BlobReader} reader
+ * @param {{ offset: number, size: number }} first the first sample
+ * @returns {Promise<{ codec: string, description?: Uint8Array | null }>}
+ */
 async function decoderConfig(track, reader, first) {
   const p = track.codecPrivate;
   const needPrivate = () => {
@@ -197,13 +260,13 @@ async function decoderConfig(track, reader, first) {
       // Matroska's VP9 CodecPrivate is optional; the first keyframe's header gives the rest.
       const given = p ? vp9PrivateInfo(p) : {};
       const header = given.profile === undefined || given.bitDepth === undefined
-        ? vp9FrameInfo(await reader.read(first.offset, Math.min(first.size, 16), 'the first frame')) : {};
+        ? vp9FrameInfo(await reader.read(first.offset, Math.min(first.size, 16), 'the first frame')) : null;
+      const profile = given.profile ?? header?.profile;
+      const bitDepth = given.bitDepth ?? header?.bitDepth;
+      // (The keyframe's header gives both when the CodecPrivate does not.)
+      if (profile === undefined || bitDepth === undefined) throw new Error('the VP9 track gives no profile or bit depth');
       return {
-        codec: vp9Codec({
-          profile: given.profile ?? header.profile,
-          level: given.level || vp9Level(track.width, track.height),
-          bitDepth: given.bitDepth ?? header.bitDepth,
-        }),
+        codec: vp9Codec({ profile, level: given.level || vp9Level(track.width, track.height), bitDepth }),
       };
     }
     case 'V_AV1': return { codec: av1Codec(needPrivate()) };
@@ -220,6 +283,7 @@ async function decoderConfig(track, reader, first) {
  * order, each { timestamp (µs), duration (µs), key, offset, size }. Throws a clear Error for
  * anything it cannot read.
  */
+/** @param {Blob} blob */
 export async function demuxWebm(blob) {
   const reader = new BlobReader(blob);
   const ebml = await headerAt(reader, 0);
@@ -236,8 +300,11 @@ export async function demuxWebm(blob) {
   if (end > reader.size) {
     throw new TruncatedError(`the file is truncated: its Segment ends at byte ${end}, the file at byte ${reader.size}`);
   }
+  /** @type {Info} */
   let info = { scale: 1e6, duration: null };
+  /** @type {ReturnType<typeof parseTracks>} */
   let tracks = [];
+  /** @type {Block[]} */
   const blocks = [];
   for (pos = segment.start; pos < end;) {
     const h = await headerAt(reader, pos);
@@ -262,8 +329,10 @@ export async function demuxWebm(blob) {
   if (mine.some((b) => b.laced)) throw new Error('the video track uses lacing (several frames per block), which is not supported');
   if (!mine[0].key) throw new Error('the first frame is not a keyframe');
 
+  /** @param {number} units */
   const us = (units) => Math.round((units * info.scale) / 1000);
-  const samples = mine.map((b) => ({ timestamp: us(b.time), duration: null, key: b.key, offset: b.offset, size: b.size, blockDuration: b.duration }));
+  /** @type {{ timestamp: number, duration: number, key: boolean, offset: number, size: number, blockDuration?: number | null }[]} */
+  const samples = mine.map((b) => ({ timestamp: us(b.time), duration: 0, key: b.key, offset: b.offset, size: b.size, blockDuration: b.duration }));
   // Durations: DefaultDuration (ns), else BlockDuration, else the gap to the next frame shown.
   const shown = [...samples].sort((a, b) => a.timestamp - b.timestamp);
   const gaps = shown.slice(1).map((s, k) => s.timestamp - shown[k].timestamp);
@@ -271,12 +340,12 @@ export async function demuxWebm(blob) {
   const endUs = info.duration ? us(info.duration) : null;
   shown.forEach((s, k) => {
     if (track.defaultDuration) s.duration = Math.round(track.defaultDuration / 1000);
-    else if (s.blockDuration !== null) s.duration = us(s.blockDuration);
+    else if (typeof s.blockDuration === 'number') s.duration = us(s.blockDuration);
     else if (k + 1 < shown.length) s.duration = gaps[k];
-    else s.duration = endUs > s.timestamp ? endUs - s.timestamp : median ?? 0;
+    else s.duration = endUs !== null && endUs > s.timestamp ? endUs - s.timestamp : median ?? 0;
   });
   for (const s of samples) delete s.blockDuration;
-  const last = shown.at(-1);
+  const last = shown[shown.length - 1];
   checkDuration(Math.abs(shown[0].timestamp) / 1e6, 'the first frame\'s timestamp');
   checkDuration((last.timestamp - shown[0].timestamp) / 1e6, 'the frames\' timestamps span');
   const frameNs = track.defaultDuration || (median ? median * 1000 : null);

@@ -1,3 +1,4 @@
+// @ts-check
 // Lane-departure status: how far the car's sides are from the ego lane's boundaries and the
 // time to line crossing (TLC) at the current lateral speed.
 //
@@ -11,6 +12,8 @@ export const WARN_TLC_S = 1.0;
 
 export class Departure {
   constructor() {
+    /** The last valid estimate's offset and time (null: none). */
+    /** @type {{ q: number, t: number | null } | null} */
     this.previous = null;
   }
 
@@ -21,6 +24,9 @@ export class Departure {
   /**
    * `estimate`: a valid estimate; `t`: the frame's time in seconds; `speed`: m/s or null.
    * Returns { text, warn } or null when there is nothing to say.
+   * @param {import('../pkg/web/lanepf.js').LaneEstimate | null | undefined} estimate
+   * @param {number | null} t
+   * @param {number | null} speed
    */
   update(estimate, t, speed) {
     if (!estimate?.valid || !(estimate.lane_width_m > 0)) {
@@ -32,14 +38,17 @@ export class Departure {
     const toLeft = half - q - CAR_HALF_WIDTH_M;
     const toRight = half + q - CAR_HALF_WIDTH_M;
     let lateral = null;
-    if (Number.isFinite(speed)) lateral = -speed * Math.sin(estimate.heading_rad);
-    else if (this.previous && Number.isFinite(t) && t > this.previous.t) lateral = (q - this.previous.q) / (t - this.previous.t);
+    const prev = this.previous;
+    if (typeof speed === 'number' && Number.isFinite(speed)) lateral = -speed * Math.sin(estimate.heading_rad);
+    else if (prev && typeof t === 'number' && Number.isFinite(t) && prev.t !== null && t > prev.t) {
+      lateral = (q - prev.q) / (t - prev.t);
+    }
     this.previous = { q, t };
     if (toLeft < 0 || toRight < 0) {
       return { text: `crossing the ${toLeft < 0 ? 'left' : 'right'} line`, warn: true };
     }
-    const side = lateral > 0 ? 'left' : 'right';
-    const distance = lateral > 0 ? toLeft : toRight;
+    const side = lateral !== null && lateral > 0 ? 'left' : 'right';
+    const distance = side === 'left' ? toLeft : toRight;
     const tlc = lateral && Math.abs(lateral) > 1e-3 ? distance / Math.abs(lateral) : Infinity;
     const text = `in lane · ${toLeft.toFixed(2)} m to the left line, ${toRight.toFixed(2)} m to the right`
       + (Number.isFinite(tlc) && tlc < 10 ? ` · ${tlc.toFixed(1)} s to the ${side} line` : '');

@@ -1,9 +1,17 @@
+// @ts-check
 // What the teaching panel says about each tracker: the paper's idea in a few sentences with its
 // equations, and the parameters the paper names, as sliders. A parameter's `path` is its option
 // name, with `.k` for element k of an array option; its default comes from trackerDefaults().
 
 const PARTICLES = { path: 'particles', label: 'particles N', min: 20, max: 2000, step: 10 };
 
+/**
+ * A slider (`min`, `max`, `step`) or, with `kind: 'bool'`, a checkbox for the option at `path`.
+ * @typedef {{ path: string, label: string, min?: number, max?: number, step?: number, kind?: 'bool' }} Param
+ */
+/** @typedef {{ title: string, text: string[], params: Param[] }} TrackerText */
+
+/** @type {Record<string, TrackerText>} */
 export const TRACKERS = {
   'liu-ppf': {
     title: 'Liu, Wörgötter & Markelić 2013: partitioned particle filter, kernel-density measurements',
@@ -53,7 +61,6 @@ export const TRACKERS = {
       { path: 'edge_threshold', label: 'edge threshold', min: 10, max: 300, step: 5 },
     ],
   },
-  'danescu-mono': null,
   'danescu-stereo': {
     title: 'Danescu & Nedevschi 2011: particle filter on an 11-parameter 3-D lane',
     text: [
@@ -83,16 +90,28 @@ TRACKERS['liu-ppf-nokernel'] = {
 };
 
 /** Value at `path` of an options object. */
+/**
+ * @param {Record<string, unknown>} options
+ * @param {string} path
+ */
 export function getPath(options, path) {
   const [key, index] = path.split('.');
-  return index === undefined ? options[key] : options[key]?.[Number(index)];
+  const value = options[key];
+  if (index === undefined) return value;
+  return Array.isArray(value) ? value[Number(index)] : undefined;
 }
 
 /** `options` with `path` set to `value` (arrays copied, not shared). */
+/**
+ * @param {Record<string, unknown>} options
+ * @param {string} path
+ * @param {unknown} value
+ * @returns {Record<string, unknown>}
+ */
 export function setPath(options, path, value) {
   const [key, index] = path.split('.');
   if (index === undefined) return { ...options, [key]: value };
-  const array = [...options[key]];
+  const array = [.../** @type {unknown[]} */ (options[key])];
   array[Number(index)] = value;
   return { ...options, [key]: array };
 }

@@ -1,3 +1,4 @@
+// @ts-check
 // The demo page: wires a frame source, the tracking worker, the renderer and the controls.
 // One frame at a time: take the next frame from the source, send its pixels to the worker
 // (transferred, not copied), draw what comes back. Every action runs in one queue, so clicks
@@ -22,38 +23,97 @@ import { ParamsPanel } from './params-panel.js';
 import { Pacer } from './pacer.js';
 import { showWeighing } from './weighing-view.js';
 import { resampleText, frameResampling } from './resampling.js';
+import { byId, context2d } from './dom.js';
+
+/** @typedef {import('../pkg/web/lanepf.js').LaneEstimate} LaneEstimate */
+/** @typedef {import('../pkg/web/lanepf.js').CameraConfig} CameraConfig */
+/** @typedef {import('../pkg/web/lanepf.js').ResampleDecision} ResampleDecision */
+/** @typedef {import('../pkg/web/lanepf.js').TrackerId} TrackerId */
+/** @typedef {import('../pkg/worker/index.js').TrackerWorker} TrackerWorker */
+/**
+ * A frame from a source: its pixels (handed to the worker and back), size, name and index, and
+ * from the simulator its ground truth and the car's motion; a stereo frame's right image.
+ * @typedef {{ rgba: Uint8ClampedArray<ArrayBuffer>, right?: Uint8ClampedArray<ArrayBuffer> | null, width: number,
+ *   height: number, name: string, index: number, t?: number, ms?: number, truth?: LaneEstimate | null,
+ *   motion?: import('../pkg/web/lanepf.js').EgoMotion | null }} Frame
+ */
+/**
+ * A source of frames (source.js, media-source.js, webcodecs-source.js): `size` once open for
+ * media (the simulator's sources have none), `progress` in [0, 1] (null: no end).
+ * @typedef {{ label: string, progress?: number | null, size?: { width: number, height: number } | null,
+ *   fps?: number | null, camera?: CameraConfig | null, open(): Promise<unknown>, next(): Promise<Frame | null>,
+ *   restart(): void, close(): void }} Source
+ */
+/**
+ * What the demo's worker answers for a frame (worker.js: `trackFrame`, `beginStepping`,
+ * `stepStage`, `topView`): the frame's pixels back, and what the page draws.
+ * @typedef {{ frame: { data: Uint8ClampedArray<ArrayBuffer>, width: number, height: number },
+ *   estimate?: LaneEstimate | null, trackMs: number, done?: number, nextStep?: number | null,
+ *   hypotheses?: import('../pkg/web/lanepf.js').Hypothesis[] | null, layers?: import('../pkg/web/lanepf.js').Layer[] | null,
+ *   particles?: { data: Float32Array, stride: number } | null, top?: Parameters<typeof drawTopView>[1] | null,
+ *   weighing?: { weights: Float32Array, count: number, ess: number, group: number | null },
+ *   resamplings?: ResampleDecision[], compare?: CompareAnswer | null, calibration?: CalibrationAnswer | null }} FrameAnswer
+ */
+/**
+ * The second tracker's whole frame (compare mode; worker.js `stepCompare`).
+ * @typedef {{ trackerId: string, estimate: LaneEstimate, trackMs: number,
+ *   hypotheses: import('../pkg/web/lanepf.js').Hypothesis[] | null, particles: { data: Float32Array, stride: number } | null,
+ *   layers: null, weighing: NonNullable<FrameAnswer['weighing']>, resamplings: ResampleDecision[] }} CompareAnswer
+ */
+/**
+ * The auto-calibrator's verdict on a frame and its estimate so far (worker.js `calibrate`).
+ * @typedef {{ status: import('../pkg/web/lanepf.js').CalibrationStatus,
+ *   estimate: import('../pkg/web/lanepf.js').CalibrationEstimate | null,
+ *   observation: import('../pkg/web/lanepf.js').CalibrationObservation | null }} CalibrationAnswer
+ */
+
+/** @param {string} id */
+const el = (id) => byId(id, HTMLElement);
 
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
 
 const controls = new Controls();
-const ctx = document.getElementById('view').getContext('2d');
-const topCtx = document.getElementById('top').getContext('2d');
-const cues = document.getElementById('cues').getContext('2d');
-const ctx2 = document.getElementById('view2').getContext('2d');
+const ctx = context2d('view');
+const topCtx = context2d('top');
+const cues = context2d('cues');
+const ctx2 = context2d('view2');
 // The worker (a TrackerWorker of lanepf/worker, connected to the demo's worker.js), from main().
-let client = null;
-const plots = new Plots(document.getElementById('plots'));
-const legend = new Legend(document.getElementById('legend'));
+/** @type {TrackerWorker} */
+let client;
+const plots = new Plots(byId('plots', HTMLCanvasElement));
+const legend = new Legend(el('legend'));
 const departure = new Departure();
 const panel = new ParamsPanel();
 const auto = new AutoCalibration();
-const autoText = document.getElementById('auto-calibration');
-const autoToggle = document.getElementById('auto-calibrate');
-const showCalibration = document.getElementById('show-calibration');
+const autoText = el('auto-calibration');
+const autoToggle = byId('auto-calibrate', HTMLInputElement);
+const showCalibration = byId('show-calibration', HTMLInputElement);
 const pacer = new Pacer();
-const paceText = document.getElementById('pace');
-const whyLink = document.getElementById('why-link');
+const paceText = el('pace');
+const whyLink = el('why-link');
 whyLink.addEventListener('click', () => {
-  document.getElementById('why-resample').open = true;
+  byId('why-resample', HTMLDetailsElement).open = true;
 });
-// Read by the end-to-end tests and handy in the console.
+// Read by the end-to-end tests and handy in the console (the `last*` of the frame drawn last).
+/**
+ * @type {{ frames: number, lastTruth: LaneEstimate | null, lastFrame: object | null, lastEstimate: LaneEstimate | null,
+ *   lastLayer: object | null, lastHypotheses: object[] | null, lastRgba: Uint8ClampedArray | null, results: Record<string, unknown>[],
+ *   droppedResults: number, offsetErrors: number[], ended: boolean, source: string | null, pending: number,
+ *   auto: AutoCalibration, camera: CameraConfig | null, [more: string]: unknown }}
+ */
 const demo = (window.lanepfDemo = {
   frames: 0, lastTruth: null, lastFrame: null, lastEstimate: null, lastLayer: null,
   lastHypotheses: null, lastRgba: null, results: [], droppedResults: 0, offsetErrors: [], ended: false, source: null, pending: 0,
   auto, camera: null,
 });
 
+/**
+ * @type {{ source: Source | null, sourceName: string, sourceStatus?: string, trackerId: string, compareId: string,
+ *   hasTruth: boolean, camera: CameraConfig | null, importedCamera: CameraConfig | null, inFrame: Frame | null,
+ *   inFrameResamplings: ResampleDecision[], inFrameMs: number, inFrameCompare?: CompareAnswer | null,
+ *   lastFrame: Frame | null, lastResult: Partial<FrameAnswer> | null }}
+ */
 const state = {
   source: null,
   sourceName: '',
@@ -70,6 +130,8 @@ const state = {
   lastFrame: null, // the frame on the canvas and what the worker said about it
   lastResult: null,
 };
+/** The camera panel (from main(), once the presets are loaded). */
+/** @type {Calibration | null} */
 let calibration = null;
 
 // Before the WebAssembly module loads: the menus, the teaching text and the canvases as they
@@ -83,20 +145,20 @@ controls.tracker.value = state.trackerId;
 controls.compare.value = state.compareId;
 // The simulator's scenes and the test road are 640x480; the bundled clip 640x360 (index.html).
 if (!['clip', 'webcam', 'file'].includes(firstSource)) {
-  for (const id of ['view', 'view2']) document.getElementById(id).height = 480;
+  for (const id of ['view', 'view2']) byId(id, HTMLCanvasElement).height = 480;
 }
 panel.show(state.trackerId, null);
 showNames();
 // A tracker chosen while the module loads is the one opened (main() then takes over these).
-controls.onTracker = (id) => { state.trackerId = id; };
-controls.onCompare = (id) => { state.compareId = id; };
+controls.onTracker = (/** @type {string} */ id) => { state.trackerId = id; };
+controls.onCompare = (/** @type {string} */ id) => { state.compareId = id; };
 
 /** Names the tracker each view shows, on the view itself. */
 function showNames() {
-  const name = document.getElementById('view-name');
+  const name = el('view-name');
   name.textContent = state.trackerId || 'no tracker';
   name.hidden = false;
-  document.getElementById('compare-name').textContent = state.compareId;
+  el('compare-name').textContent = state.compareId;
 }
 
 /**
@@ -104,6 +166,7 @@ function showNames() {
  * README) and the page's own state: the page calls the trackers correctly, so a state error
  * of a stereo tracker is its missing right image, and a configuration error of one on a camera
  * without a baseline is that baseline.
+ * @param {{ name?: string }} err
  */
 function hint(err) {
   if (![state.trackerId, state.compareId].includes('danescu-stereo')) return '';
@@ -118,6 +181,7 @@ function hint(err) {
 
 let queue = Promise.resolve();
 /** Runs `fn` after everything queued before it; errors pause the page and are shown. */
+/** @param {() => void | Promise<void>} fn */
 function run(fn) {
   demo.pending += 1;
   queue = queue.then(fn).catch((err) => {
@@ -138,9 +202,14 @@ const want = () => ({
 });
 
 /** Draws the frame and everything on it; `redraw`: the same frame again (no bookkeeping). */
+/**
+ * @param {Frame} frame
+ * @param {Partial<FrameAnswer> | null} result
+ * @param {boolean} [redraw]
+ */
 function draw(frame, result, redraw = false) {
   // Frames flow again after an error: back to the source's description.
-  if (!redraw && document.body.dataset.state === 'error') controls.say(state.source.label);
+  if (!redraw && document.body.dataset.state === 'error' && state.source) controls.say(state.source.label);
   state.lastFrame = frame;
   state.lastResult = result;
   drawFrame(ctx, frame.rgba, frame.width, frame.height);
@@ -152,22 +221,22 @@ function draw(frame, result, redraw = false) {
   // The truth over the estimate: thin dashes on a thick line where they agree.
   if (estimate) drawEstimate(ctx, estimate);
   if (truth) drawTruth(ctx, truth.boundaries);
-  showBadge(document.getElementById('view-badge'), estimate);
+  showBadge(el('view-badge'), estimate);
   const seen = result?.calibration?.observation;
   if (seen && (showCalibration.checked || auto.looking())) drawCalibrationLines(ctx, seen);
   calibration?.draw(ctx, estimate);
   const top = controls.showTop.checked ? result?.top : null;
-  document.getElementById('top-figure').hidden = !top;
+  el('top-figure').hidden = !top;
   if (top) drawTopView(topCtx, top, { truth, estimate, hypotheses, byGroup });
   drawCompare(frame, result?.compare ?? null, truth, byGroup);
   const layers = controls.showCues.checked ? result?.layers : null;
   const layer = layers?.[controls.setLayers(layers)];
-  document.getElementById('cues-figure').hidden = !layer;
+  el('cues-figure').hidden = !layer;
   if (layer) {
     const st = estimate?.state ?? {};
     const probabilities = 'adachi.p1' in st ? [1, 2, 3, 4].map((r) => st[`adachi.p${r}`]) : null;
     drawLayer(cues, layer, { hypotheses: result?.hypotheses, probabilities });
-    document.getElementById('cues-caption').textContent = layer.name;
+    el('cues-caption').textContent = layer.name;
   }
   drawWeighing(result, estimate);
   if (redraw) return;
@@ -184,7 +253,7 @@ function draw(frame, result, redraw = false) {
   let text = `frame ${frame.name}`;
   if (frame.ms) text += ` · render ${frame.ms.toFixed(1)} ms`;
   if (estimate) {
-    text += ` · track ${result.trackMs.toFixed(1)} ms`;
+    text += ` · track ${(result?.trackMs ?? 0).toFixed(1)} ms`;
     if (!estimate.valid) text += ' · not valid';
     if (frame.truth) {
       const err = Math.abs(estimate.lateral_offset_m - frame.truth.lateral_offset_m);
@@ -200,10 +269,14 @@ function draw(frame, result, redraw = false) {
  * tracker's too, in compare mode), and how many particles the view draws of the tracker's
  * total (in the legend).
  */
+/**
+ * @param {Partial<FrameAnswer> | null} result
+ * @param {LaneEstimate | null} estimate
+ */
 function drawWeighing(result, estimate) {
   const weighing = result?.weighing ?? null;
   const drawn = controls.showParticles.checked ? (result?.hypotheses?.length ?? 0) : 0;
-  showCount(document.getElementById('view-count'), drawn, weighing?.count ?? 0);
+  showCount(el('view-count'), drawn, weighing?.count ?? 0);
   const step = result?.done !== undefined && result?.done !== null ? controls.stepNames[result.done] : null;
   let label = step ? `after “${step}”` : 'after the whole frame';
   if (!step && !estimate && state.inFrame) label = 'at the start of the frame';
@@ -214,14 +287,20 @@ function drawWeighing(result, estimate) {
   // The second tracker takes whole frames, also while the first is stepped through.
   const compared = result?.compare ?? null;
   const other = showWeighing({ weights: 'compare-weights', belief: 'compare-belief', named: true },
-    compared?.trackerId, compared, compared?.estimate ?? null, 'after the whole frame', shown);
+    compared?.trackerId ?? '', compared, compared?.estimate ?? null, 'after the whole frame', shown);
   demo.lastCompareWeighing = other.weighing;
   demo.lastCompareBelief = other.belief;
 }
 
 /** The second tracker's view: the same frame with its boundaries and particles. */
+/**
+ * @param {Frame} frame
+ * @param {CompareAnswer | null} compared
+ * @param {LaneEstimate | null | undefined} truth
+ * @param {boolean} byGroup
+ */
 function drawCompare(frame, compared, truth, byGroup) {
-  document.getElementById('compare-figure').hidden = !compared;
+  el('compare-figure').hidden = !compared;
   // Side by side on a wide screen (style.css), the teaching panel then below them.
   document.body.classList.toggle('comparing', !!compared);
   if (!compared) return;
@@ -229,21 +308,26 @@ function drawCompare(frame, compared, truth, byGroup) {
   drawHypotheses(ctx2, compared.hypotheses, null, byGroup);
   if (compared.estimate) drawEstimate(ctx2, compared.estimate);
   if (truth) drawTruth(ctx2, truth.boundaries);
-  showBadge(document.getElementById('compare-badge'), compared.estimate);
+  showBadge(el('compare-badge'), compared.estimate);
   let text = `${compared.trackerId} · track ${compared.trackMs.toFixed(1)} ms`;
   if (compared.estimate && !compared.estimate.valid) text += ' · not valid';
   if (compared.estimate && frame.truth) {
     const err = Math.abs(compared.estimate.lateral_offset_m - frame.truth.lateral_offset_m);
     text += ` · offset error ${(100 * err).toFixed(0)} cm`;
   }
-  document.getElementById('compare-caption').textContent = text;
+  el('compare-caption').textContent = text;
 }
 
 /** A frame's end: its estimate into the plots (with the resampling `decisions` it reported), the log and the status. */
+/**
+ * @param {Frame} frame
+ * @param {Partial<FrameAnswer> & { trackMs: number }} result
+ * @param {ResampleDecision[] | undefined} decisions
+ */
 function record(frame, result, decisions) {
   if (!result?.estimate) return;
   plots.push(result.estimate, frame.truth, result, result.compare ?? null, frameResampling(decisions));
-  document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+  el('plots-figure').hidden = !controls.showPlots.checked;
   const t = frame.motion?.t_s ?? frame.t ?? null;
   const status = departure.update(result.estimate, t, frame.motion?.speed_mps ?? null);
   controls.departure.textContent = status?.text ?? '';
@@ -259,18 +343,26 @@ function record(frame, result, decisions) {
  * Sends a frame's pixels to the demo's op `op` in the worker (transferred); the pixels come back
  * with the answer, or on the Error (`err.frame`).
  */
+/**
+ * @param {string} op
+ * @param {Frame} frame
+ * @param {{ motion?: Frame['motion'], right?: Frame['right'] }} [extra]
+ * @returns {Promise<FrameAnswer>}
+ */
 async function toWorker(op, frame, extra = {}) {
   const args = { frame: { data: frame.rgba, width: frame.width, height: frame.height }, want: want(), ...extra };
   // A stereo frame's right image goes along once (it is not needed back).
   const transfer = [frame.rgba.buffer];
   if (extra.right) transfer.push(extra.right.buffer);
   try {
-    const result = await client.request(op, args, transfer);
+    const result = /** @type {FrameAnswer} */ (await client.request(op, args, transfer));
     frame.rgba = result.frame.data;
     return result;
   } catch (err) {
-    if (err.frame?.data) {
-      frame.rgba = err.frame.data;
+    // (The request's frame comes back on the Error.)
+    const back = /** @type {{ frame?: FrameAnswer['frame'] }} */ (err)?.frame;
+    if (back?.data) {
+      frame.rgba = back.data;
       draw(frame, null);
     }
     throw err;
@@ -288,12 +380,14 @@ async function refreshTopView() {
 
 /** The next frame, or null at the end of the source (which pauses the page). */
 async function nextFrame() {
-  const frame = await state.source.next();
+  const source = state.source;
+  if (!source) throw new Error('no source is open');
+  const frame = await source.next();
   if (!frame) {
     demo.ended = true;
     controls.setPaused(true);
     controls.setProgress(1);
-    controls.say(`End of ${state.source.label}: ${demo.results.length} frames tracked. Restart to run it again.`);
+    controls.say(`End of ${source.label}: ${demo.results.length} frames tracked. Restart to run it again.`);
   }
   return frame;
 }
@@ -317,7 +411,11 @@ async function stepFrame() {
   await autoCalibrate(result.calibration);
 }
 
-/** Shows what the auto-calibrator knows and applies its camera when it is time. */
+/**
+ * Shows what the auto-calibrator knows and applies its camera when it is time.
+ * @param {CalibrationAnswer | null | undefined} calibrationResult
+ * @param {boolean} [canApply]
+ */
 async function autoCalibrate(calibrationResult, canApply = true) {
   const reason = auto.update(calibrationResult);
   if (reason && canApply) await applyAuto(reason);
@@ -329,12 +427,16 @@ function showAuto() {
   autoText.hidden = auto.mode === 'off' && !auto.error;
 }
 
-/** The tracker gets the auto-calibrated camera (rebuilt with it; the run log is kept). */
+/**
+ * The tracker gets the auto-calibrated camera (rebuilt with it; the run log is kept).
+ * @param {import('./auto-calibration.js').Reason} reason
+ */
 async function applyAuto(reason) {
+  if (!auto.estimate) return; // (called with an estimate to apply)
   const camera = auto.estimate.camera;
   state.camera = camera;
   demo.camera = camera;
-  calibration.show(camera, state.sourceName);
+  calibration?.show(camera, state.sourceName);
   await openTracker({ keepLog: true });
   auto.markApplied(camera, reason);
 }
@@ -354,14 +456,15 @@ async function stepStage() {
     showStageInPlots('start of the frame: image cues', result);
     // Not in the middle of a stepped frame: the camera changes on the next whole frame.
     await autoCalibrate(result.calibration, false);
-    controls.updateStageButton(result.nextStep);
+    controls.updateStageButton(result.nextStep ?? null);
     return;
   }
   const result = await toWorker('stepStage', frame);
   // The second tracker took the whole frame at its start: its views stay while this one steps.
   result.compare = state.inFrameCompare;
-  const step = controls.stepNames[result.done];
-  state.inFrameResamplings.push(...result.resamplings);
+  const step = result.done === undefined ? '' : controls.stepNames[result.done];
+  const decisions = result.resamplings ?? [];
+  state.inFrameResamplings.push(...decisions);
   state.inFrameMs += result.trackMs;
   draw(frame, result);
   if (result.estimate) {
@@ -371,29 +474,33 @@ async function stepStage() {
     controls.updateStageButton(null);
   } else {
     showStageInPlots(step, result);
-    controls.updateStageButton(result.nextStep);
+    controls.updateStageButton(result.nextStep ?? null);
   }
   // What the tracker reported of its resampling in this step, with its numbers.
-  const said = resampleText(result.resamplings);
+  const said = resampleText(decisions);
   let text = `${state.trackerId}: ran “${step}”`;
   if (said) text += ` · ${said}`;
   else if (/resampl/i.test(step)) text += ' · the tracker reported no resampling in this step';
   controls.say(text);
   whyLink.hidden = !said;
-  demo.lastResampling = result.resamplings.at(-1) ?? null;
-  demo.lastResamplings = result.resamplings;
+  demo.lastResampling = decisions.at(-1) ?? null;
+  demo.lastResamplings = decisions;
 }
 
 /**
  * The plots follow the stages of a frame stepped through: the frame in progress is their newest
  * point (the ESS of the weights now, the time so far, the resampling reported so far).
  */
+/**
+ * @param {string} label
+ * @param {FrameAnswer} result
+ */
 function showStageInPlots(label, result) {
   plots.stage({
     label, ess: result.weighing?.ess ?? null, trackMs: state.inFrameMs,
     ...frameResampling(state.inFrameResamplings),
   });
-  document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+  el('plots-figure').hidden = !controls.showPlots.checked;
   demo.plotsStage = plots.live;
 }
 
@@ -408,20 +515,24 @@ async function finishStepping() {
 async function openTracker({ keepLog = false } = {}) {
   state.inFrame = null;
   const trackerId = state.trackerId;
-  const defaults = trackerId ? await client.request('defaults', { trackerId }) : null;
+  // (The worker's trackerDefaults(id).)
+  const defaults = trackerId ? /** @type {Record<string, unknown>} */ (await client.request('defaults', { trackerId })) : null;
   panel.show(trackerId, defaults);
   const options = { ...panel.changedOptions(), seed: panel.seedValue() };
+  const camera = state.camera;
+  if (!camera) throw new Error('No camera yet: open a source first.');
   // The top view follows the camera, the tracker or none.
-  await client.request('openTopView', { camera: state.camera });
-  if (trackerId) await client.open(trackerId, withCamera(options, state.camera));
+  await client.request('openTopView', { camera });
+  // (An id from the menu or the URL: the tracker refuses an unknown one with a LanepfConfigError.)
+  if (trackerId) await client.open(/** @type {TrackerId} */ (trackerId), withCamera(options, camera));
   else await client.close();
   // The comparison tracker: its own defaults, the same camera and seed.
   await client.request('openCompare', {
-    trackerId: trackerId ? state.compareId : '', config: withCamera({ seed: options.seed }, state.camera),
+    trackerId: trackerId ? state.compareId : '', config: withCamera({ seed: options.seed }, camera),
   });
   controls.setStepNames(trackerId ? client.stepNames : []);
   showNames();
-  document.getElementById('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length,
+  el('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length,
     trackerId ? state.compareId : '');
   pacer.reset();
   demo.camera = state.camera;
@@ -436,7 +547,9 @@ async function openTracker({ keepLog = false } = {}) {
 }
 
 /** The camera for media without one: an imported file (rescaled), else the clip's, rescaled. */
+/** @param {Source} source */
 async function cameraFor(source) {
+  if (!source.size) throw new Error(`${source.label}: no picture size`);
   const { width, height } = source.size;
   if (source.camera) return { camera: scaleCamera(source.camera, width, height), note: '' };
   if (state.importedCamera) {
@@ -454,6 +567,10 @@ async function cameraFor(source) {
  * source's own camera (the bundled clip) or an imported camera file, scaled; else the
  * calibrator's field-of-view default. It applies its camera unless the user chose one.
  */
+/**
+ * @param {Source} source
+ * @param {CameraConfig | null} userCamera
+ */
 async function startAuto(source, userCamera) {
   if (!source.size) {
     await client.request('openCalibrator', {});
@@ -467,10 +584,14 @@ async function startAuto(source, userCamera) {
     await client.request('openCalibrator', { width, height, intrinsics: own ?? imported });
     auto.start(own || userCamera || imported ? 'manual' : 'auto', { known: own });
   } catch (err) {
-    auto.start('off', { error: err.message });
+    auto.start('off', { error: err instanceof Error ? err.message : String(err) });
   }
 }
 
+/**
+ * @param {Source | VideoFile} next
+ * @param {string} name
+ */
 async function openSource(next, name) {
   // A video picks its reader as it opens: WebCodecs where it can, else seeking (video-select.js).
   if (next instanceof VideoFile) next = await next.pick();
@@ -486,9 +607,10 @@ async function openSource(next, name) {
     ({ camera: state.camera, note } = await cameraFor(next));
     await client.request('dropRight');
   } else {
-    state.camera = next.camera;
+    state.camera = next.camera ?? null;
   }
-  const saved = calibration.saved(name, state.camera.width, state.camera.height);
+  if (!state.camera) throw new Error(`${next.label}: no camera`);
+  const saved = calibration?.saved(name, state.camera.width, state.camera.height) ?? null;
   if (saved) {
     state.camera = saved;
     note = ' · camera: as you calibrated it for this source';
@@ -497,7 +619,7 @@ async function openSource(next, name) {
   autoToggle.checked = auto.mode === 'auto';
   autoToggle.disabled = auto.mode === 'off';
   showAuto();
-  calibration.show(state.camera, name);
+  calibration?.show(state.camera, name);
   pacer.start(next.fps ?? null, { live: next instanceof WebcamSource });
   await openTracker();
   state.sourceStatus = next.label + note;
@@ -505,6 +627,10 @@ async function openSource(next, name) {
   controls.setProgress(next.progress ?? null);
 }
 
+/**
+ * @param {string} value
+ * @param {import('../pkg/web/lanepf.js').ScenarioInfo[]} scenarios
+ */
 async function sourceFor(value, scenarios) {
   if (value === 'clip') {
     return new VideoFile({ url: CLIP.url, name: CLIP.name, fps: CLIP.fps, camera: await loadClipCamera() });
@@ -516,6 +642,7 @@ async function sourceFor(value, scenarios) {
   return new SceneSource(client, scene.name, scene.description);
 }
 
+/** @param {File[]} files */
 function filesSource(files) {
   const stereo = controls.stereo.checked;
   const videos = files.filter((f) => f.type.startsWith('video/') || /\.(mp4|webm|mov|mkv|ogv)$/i.test(f.name));
@@ -531,11 +658,12 @@ function filesSource(files) {
  * Ground truth exists for the simulator's sources only: elsewhere (the clip, your media, the
  * webcam) its control, caption and legend entry are hidden.
  */
+/** @param {boolean} hasTruth */
 function showTruthControls(hasTruth) {
   state.hasTruth = hasTruth;
   controls.setHasTruth(hasTruth);
   legend.update({ hasTruth, byGroup: controls.colourGroups.checked });
-  document.getElementById('caption').textContent = hasTruth
+  el('caption').textContent = hasTruth
     ? 'Camera view: the estimate, the ground truth and the particles (colours below). Drop a video or images here.'
     : 'Camera view: the estimate and the particles (colours below). Drop a video or images here.';
 }
@@ -567,22 +695,25 @@ function redrawLast() {
 
 async function main() {
   client = await connectWorker();
-  const { version, trackers, scenarios } = await client.request('hello');
-  calibration = new Calibration(document, document.getElementById('view'), await loadPresets());
-  demo.calibration = calibration;
-  calibration.onRedraw = () => {
+  const hello = /** @type {{ version: string, trackers: TrackerId[], scenarios: import('../pkg/web/lanepf.js').ScenarioInfo[] }} */ (
+    await client.request('hello'));
+  const { version, trackers, scenarios } = hello;
+  const cameraPanel = new Calibration(document, byId('view', HTMLCanvasElement), await loadPresets());
+  calibration = cameraPanel;
+  demo.calibration = cameraPanel;
+  cameraPanel.onRedraw = () => {
     if (state.lastFrame?.rgba?.length) draw(state.lastFrame, state.lastResult, true);
   };
-  calibration.onApply = (camera) => run(async () => {
+  cameraPanel.onApply = (camera) => run(async () => {
     // A camera applied by hand wins over the auto-calibrated one.
     auto.setMode('manual');
     autoToggle.checked = false;
     showAuto();
     state.camera = camera;
     await openTracker();
-    calibration.save(camera);
+    cameraPanel.save(camera);
     await refreshTopView();
-    controls.say(`Camera applied: pitch ${camera.pitch_deg.toFixed(2)}°, yaw ${camera.yaw_deg.toFixed(2)}°, `
+    controls.say(`Camera applied: pitch ${camera.pitch_deg.toFixed(2)}°, yaw ${(camera.yaw_deg ?? 0).toFixed(2)}°, `
       + `height ${camera.height_m.toFixed(2)} m (remembered for this source).`);
   });
   controls.version.textContent = `lanepf ${version}`;
@@ -607,7 +738,7 @@ async function main() {
       autoToggle.checked = false;
       showAuto();
       state.camera = scaleCamera(state.importedCamera, state.source.size.width, state.source.size.height);
-      calibration.show(state.camera, state.sourceName);
+      cameraPanel.show(state.camera, state.sourceName);
       await openTracker();
     }
     controls.say(`Camera “${file.name}” will be used for your videos, images and the webcam.`);
@@ -634,7 +765,9 @@ async function main() {
   controls.onStep = () => run(stepFrame);
   controls.onStepStage = () => run(stepStage);
   controls.onRestart = () => run(async () => {
-    state.source.restart();
+    const source = state.source;
+    if (!source) throw new Error('no source is open');
+    source.restart();
     await client.request('resetTrackers');
     pacer.reset();
     state.inFrame = null;
@@ -646,7 +779,7 @@ async function main() {
     departure.reset();
     controls.setExportable(false);
     controls.updateStageButton(null);
-    controls.say(state.source.label);
+    controls.say(source.label);
   });
   controls.onExport = (format) => {
     const base = `lanepf-${state.trackerId || 'frames'}-${state.sourceName.replace(/[^\w.-]+/g, '_')}`;
@@ -663,7 +796,7 @@ async function main() {
     redrawLast();
   });
   controls.showPlots.addEventListener('change', () => {
-    document.getElementById('plots-figure').hidden = !controls.showPlots.checked;
+    el('plots-figure').hidden = !controls.showPlots.checked;
   });
   if (document.body.dataset.state !== 'error') document.body.dataset.state = 'running';
 

@@ -1,3 +1,4 @@
+// @ts-check
 // Frame sources from media the browser decodes: a video (the bundled clip or a file of the
 // user's), still images, the webcam. Each yields frames { rgba, width, height, name } in order,
 // and null at the end. Frames are read from a canvas the size the tracker works at.
@@ -5,6 +6,10 @@
 /** Largest frame width handed to a tracker; wider media are scaled down (aspect kept). */
 export const MAX_WIDTH = 960;
 
+/**
+ * @param {number} width
+ * @param {number} height
+ */
 function workSize(width, height) {
   if (!(width > 0 && height > 0)) throw new Error('the media reports no picture size');
   const s = Math.min(1, MAX_WIDTH / width);
@@ -17,14 +22,22 @@ function workSize(width, height) {
  * half; `grab` then returns both.
  */
 export class Grabber {
+  /**
+   * @param {number} width
+   * @param {number} height
+   * @param {boolean} [sideBySide]
+   */
   constructor(width, height, sideBySide = false) {
     this.canvas = new OffscreenCanvas(sideBySide ? 2 * width : width, height);
-    this.ctx = this.canvas.getContext('2d', { willReadFrequently: true });
+    const ctx = this.canvas.getContext('2d', { willReadFrequently: true });
+    if (!ctx) throw new Error('this browser gives no 2-D context on an OffscreenCanvas');
+    this.ctx = ctx;
     this.width = width;
     this.height = height;
     this.sideBySide = sideBySide;
   }
 
+  /** @param {CanvasImageSource} image */
   grab(image) {
     this.ctx.drawImage(image, 0, 0, this.canvas.width, this.height);
     const rgba = this.ctx.getImageData(0, 0, this.width, this.height).data;
@@ -33,18 +46,36 @@ export class Grabber {
   }
 }
 
-/** The frame size of a picture, halved across for side-by-side stereo. */
+/**
+ * The frame size of a picture, halved across for side-by-side stereo.
+ * @param {number} width
+ * @param {number} height
+ * @param {boolean} sideBySide
+ */
 export function frameSize(width, height, sideBySide) {
   return workSize(sideBySide ? width / 2 : width, height);
 }
 
-/** The label's note on the frame size the tracker gets, when it is not the picture's own. */
+/**
+ * The label's note on the frame size the tracker gets, when it is not the picture's own.
+ * @param {{ width: number, height: number }} size
+ * @param {number} width
+ * @param {boolean} sideBySide
+ */
 export function sizeNote(size, width, sideBySide) {
   if (sideBySide) return `, side-by-side stereo of ${size.width}x${size.height}`;
   return size.width !== width ? `, tracked at ${size.width}x${size.height}` : '';
 }
 
-/** Waits for `ok` on `target`; rejects on `bad` or after `ms` milliseconds. */
+/**
+ * Waits for `ok` on `target`; rejects on `bad` or after `ms` milliseconds.
+ * @param {EventTarget} target
+ * @param {string} ok
+ * @param {string | null} bad
+ * @param {number} ms
+ * @param {string} what
+ * @returns {Promise<void>}
+ */
 function once(target, ok, bad, ms, what) {
   return new Promise((resolve, reject) => {
     const timer = setTimeout(() => { done(); reject(new Error(`${what}: timed out`)); }, ms);
@@ -67,10 +98,14 @@ function once(target, ok, bad, ms, what) {
  * showed every 4th, and the rate read as 6.25 instead of 25.) Null when the browser lacks that
  * callback or the video does not play.
  */
+/** @param {HTMLVideoElement} video */
 async function measureFps(video) {
   if (!('requestVideoFrameCallback' in video)) return null;
+  /** @type {number[]} */
   const times = [];
+  /** @type {Promise<void>} */
   const measured = new Promise((resolve) => {
+    /** @type {VideoFrameRequestCallback} */
     const onFrame = (_, meta) => {
       times.push(meta.mediaTime);
       if (times.length < 8) video.requestVideoFrameCallback(onFrame);
@@ -97,7 +132,10 @@ async function measureFps(video) {
   return Number.isFinite(best) ? Math.round(100 / best) / 100 : null;
 }
 
-/** A MediaRecorder file reports an infinite duration until the browser has seen its end. */
+/**
+ * A MediaRecorder file reports an infinite duration until the browser has seen its end.
+ * @param {HTMLVideoElement} video
+ */
 async function knownDuration(video) {
   if (Number.isFinite(video.duration)) return video.duration;
   const changed = once(video, 'durationchange', 'error', 10000, 'the video has no known duration');
@@ -107,6 +145,7 @@ async function knownDuration(video) {
   return video.duration;
 }
 
+/** @type {Record<number, string>} */
 const MEDIA_ERRORS = {
   1: 'loading was aborted',
   2: 'a network error stopped the download',
@@ -120,10 +159,15 @@ const MEDIA_ERRORS = {
  * the stepping rate: the video's own, given or measured.
  */
 export class VideoSource {
+  /**
+   * @param {{ url?: string, file?: File | null, name: string, fps?: number | null, camera?: import('../pkg/web/lanepf.js').CameraConfig | null,
+   *   sideBySide?: boolean }} source a URL (the bundled clip) or a file of the user's
+   */
   constructor({ url, file = null, name, fps = null, camera = null, sideBySide = false }) {
     this.file = file;
     this.sideBySide = sideBySide;
-    this.url = url ?? URL.createObjectURL(file);
+    // (One of the two is given.)
+    this.url = url ?? URL.createObjectURL(/** @type {File} */ (file));
     this.name = name;
     this.fps = fps;
     this.camera = camera;
@@ -141,8 +185,8 @@ export class VideoSource {
     try {
       await once(video, 'loadeddata', 'error', 15000, 'the video did not load');
     } catch (err) {
-      const why = MEDIA_ERRORS[video.error?.code] ?? err.message;
-      throw new Error(`Cannot open “${this.name}”: ${why}. Try an H.264 MP4 or a VP9 WebM.`);
+      const why = (video.error ? MEDIA_ERRORS[video.error.code] : undefined) ?? (err instanceof Error ? err.message : String(err));
+      throw new Error(`Cannot open “${this.name}”: ${why}. Try an H.264 MP4 or a VP9 WebM.`, { cause: err });
     }
     const duration = await knownDuration(video).catch(() => NaN);
     if (!(duration > 0) || !Number.isFinite(duration)) {
@@ -150,17 +194,19 @@ export class VideoSource {
     }
     // Unknown rate: measure it; failing that, read 30 frames per second (and say so).
     this.fpsNote = '';
-    if (!this.fps) {
+    let fps = this.fps;
+    if (!fps) {
       const measured = await measureFps(video);
-      this.fps = measured ?? 30;
+      fps = measured ?? 30;
+      this.fps = fps;
       this.fpsNote = measured ? ' (measured)' : ' (assumed: the browser did not report its frames)';
     }
     this.video = video;
     this.size = frameSize(video.videoWidth, video.videoHeight, this.sideBySide);
     this.grabber = new Grabber(this.size.width, this.size.height, this.sideBySide);
-    this.frames = Math.max(1, Math.floor(video.duration * this.fps));
+    this.frames = Math.max(1, Math.floor(video.duration * fps));
     this.label = `Video “${this.name}”: ${video.videoWidth}x${video.videoHeight}, `
-      + `${video.duration.toFixed(1)} s, read at ${this.fps} frames/s${this.fpsNote}`
+      + `${video.duration.toFixed(1)} s, read at ${fps} frames/s${this.fpsNote}`
       + sizeNote(this.size, video.videoWidth, this.sideBySide);
   }
 
@@ -170,19 +216,20 @@ export class VideoSource {
   }
 
   async next() {
-    if (this.index >= this.frames) return null;
-    const video = this.video;
+    const { video, grabber, size, fps, frames } = this;
+    if (!video || !grabber || !size || !fps || frames === undefined) throw new Error(`“${this.name}” is not open`);
+    if (this.index >= frames) return null;
     // The middle of frame `index`, so rounding never lands on its neighbour.
-    const t = Math.min((this.index + 0.5) / this.fps, video.duration - 1e-3);
+    const t = Math.min((this.index + 0.5) / fps, video.duration - 1e-3);
     if (Math.abs(video.currentTime - t) > 1e-6) {
       const seeked = once(video, 'seeked', 'error', 10000, `cannot decode “${this.name}” at ${t.toFixed(2)} s`);
       video.currentTime = t;
       await seeked;
     }
-    const { rgba, right } = this.grabber.grab(video);
+    const { rgba, right } = grabber.grab(video);
     const index = this.index++;
-    this.progress = this.index / this.frames;
-    return { rgba, right, width: this.size.width, height: this.size.height, name: `${index}`, index, t };
+    this.progress = this.index / frames;
+    return { rgba, right, width: size.width, height: size.height, name: `${index}`, index, t };
   }
 
   close() {
@@ -193,9 +240,13 @@ export class VideoSource {
 }
 
 /** The name with its camera token (`left`/`right`, or `l`/`r` between separators) as `*`. */
-const cameraless = (name) => name.replace(/left|right/i, '*').replace(/(^|[_.\-])[lr](?=[_.\-])/i, '$1*');
+/** @param {string} name */
+const cameraless = (name) => name.replace(/left|right/i, '*').replace(/(^|[_.-])[lr](?=[_.-])/i, '$1*');
 
-/** Whether sorted `files` are left/right pairs: names that differ only in their camera token. */
+/**
+ * Whether sorted `files` are left/right pairs: names that differ only in their camera token.
+ * @param {string[]} names
+ */
 export function arePairs(names) {
   if (names.length % 2 !== 0) return false;
   for (let k = 0; k < names.length; k += 2) {
@@ -211,6 +262,10 @@ export function arePairs(names) {
  * pairs; otherwise every image is a side-by-side picture.
  */
 export class ImageSource {
+  /**
+   * @param {Iterable<File>} files
+   * @param {{ camera?: import('../pkg/web/lanepf.js').CameraConfig | null, stereo?: boolean }} [options]
+   */
   constructor(files, { camera = null, stereo = false } = {}) {
     this.files = [...files].sort((a, b) => a.name.localeCompare(b.name, undefined, { numeric: true }));
     this.camera = camera;
@@ -225,6 +280,7 @@ export class ImageSource {
     this.label = this.label[0].toUpperCase() + this.label.slice(1);
   }
 
+  /** @param {File} file */
   async decode(file) {
     try {
       return await createImageBitmap(file);
@@ -245,16 +301,21 @@ export class ImageSource {
     this.progress = 0;
   }
 
-  /** Reads image `k`, which must have the first image's size. */
+  /**
+   * Reads image `k`, which must have the first image's size.
+   * @param {number} k
+   */
   async read(k) {
+    const { size, grabber } = this;
+    if (!size || !grabber) throw new Error('the images are not open');
     const file = this.files[k];
     const bitmap = k === 0 && this.first ? this.first : await this.decode(file);
     const expected = frameSize(bitmap.width, bitmap.height, this.sideBySide);
-    if (expected.width !== this.size.width || expected.height !== this.size.height) {
+    if (expected.width !== size.width || expected.height !== size.height) {
       throw new Error(`“${file.name}” is ${bitmap.width}x${bitmap.height}; a sequence must keep `
         + `the size of its first image (${this.files[0].name})`);
     }
-    const out = this.grabber.grab(bitmap);
+    const out = grabber.grab(bitmap);
     if (bitmap !== this.first) bitmap.close();
     return out;
   }
@@ -263,7 +324,8 @@ export class ImageSource {
     if (this.index >= this.files.length) return null;
     const k = this.index;
     const { rgba, right } = await this.read(k);
-    const frame = { rgba, right, width: this.size.width, height: this.size.height, name: this.files[k].name };
+    const { width, height } = /** @type {{ width: number, height: number }} */ (this.size);
+    const frame = { rgba, right, width, height, name: this.files[k].name };
     if (this.pairs) frame.right = (await this.read(k + 1)).rgba;
     this.index += this.step;
     this.progress = this.index / this.files.length;
@@ -293,24 +355,27 @@ export class WebcamSource {
         video: { width: { ideal: 640 }, height: { ideal: 480 } }, audio: false,
       });
     } catch (err) {
-      if (err.name === 'NotAllowedError' || err.name === 'SecurityError') {
-        throw new Error('Camera permission was refused. Allow the camera for this page and choose Webcam again.');
+      const name = err instanceof Error ? err.name : '';
+      if (name === 'NotAllowedError' || name === 'SecurityError') {
+        throw new Error('Camera permission was refused. Allow the camera for this page and choose Webcam again.', { cause: err });
       }
-      if (err.name === 'NotFoundError' || err.name === 'OverconstrainedError') {
-        throw new Error('No camera was found on this device.');
+      if (name === 'NotFoundError' || name === 'OverconstrainedError') {
+        throw new Error('No camera was found on this device.', { cause: err });
       }
-      throw new Error(`The camera could not be started: ${err.message}`);
+      throw new Error(`The camera could not be started: ${err instanceof Error ? err.message : err}`, { cause: err });
     }
     const video = document.createElement('video');
     video.muted = true;
     video.playsInline = true;
-    video.srcObject = this.stream;
+    const stream = this.stream;
+    video.srcObject = stream;
     await video.play();
     if (!video.videoWidth) await once(video, 'resize', null, 5000, 'the camera sent no picture');
     this.video = video;
-    this.size = frameSize(video.videoWidth, video.videoHeight, this.sideBySide);
-    this.grabber = new Grabber(this.size.width, this.size.height, this.sideBySide);
-    const track = this.stream.getVideoTracks()[0];
+    // (A webcam is one camera: never side by side.)
+    this.size = frameSize(video.videoWidth, video.videoHeight, false);
+    this.grabber = new Grabber(this.size.width, this.size.height);
+    const track = stream.getVideoTracks()[0];
     this.label = `Webcam “${track?.label || 'camera'}”: ${video.videoWidth}x${video.videoHeight}`;
   }
 
@@ -319,10 +384,12 @@ export class WebcamSource {
   }
 
   async next() {
-    const { rgba } = this.grabber.grab(this.video);
+    const { video, grabber, size } = this;
+    if (!video || !grabber || !size) throw new Error('the webcam is not open');
+    const { rgba } = grabber.grab(video);
     const index = this.index++;
     const t = performance.now() / 1000;
-    return { rgba, width: this.size.width, height: this.size.height, name: `${index}`, index, t };
+    return { rgba, width: size.width, height: size.height, name: `${index}`, index, t };
   }
 
   close() {

@@ -1,3 +1,4 @@
+// @ts-check
 // Playback at the source's own frame rate. A frame starts when it is due: one frame interval
 // (1 / the source's frames per second) after the one before, on a schedule anchored at the
 // first frame, so the rate is exact on average even though a timer wakes a little late.
@@ -13,15 +14,30 @@ const KEEP_UP = 0.9;
 
 export class Pacer {
   constructor() {
+    /** Frames per second of the source (null: not paced). */
+    /** @type {number | null} */
+    this.fps = null;
+    this.live = false;
+    /** When the next frame is due (performance.now()), null: at once. */
+    /** @type {number | null} */
+    this.due = null;
+    /** When the frames of the last WINDOW_MS started. */
+    /** @type {number[]} */
+    this.starts = [];
+    /** The time the last frames took from start to drawing (ms). */
+    /** @type {number[]} */
+    this.work = [];
     this.start(null);
   }
 
   /**
    * A new schedule for a source of `fps` frames per second (null: not paced, e.g. images);
    * `live`: frames come from a camera as they are taken.
+   * @param {number | null | undefined} fps
+   * @param {{ live?: boolean }} [options]
    */
   start(fps, { live = false } = {}) {
-    this.fps = Number.isFinite(fps) && fps > 0 ? fps : null;
+    this.fps = typeof fps === 'number' && Number.isFinite(fps) && fps > 0 ? fps : null;
     this.live = live;
     this.reset();
   }
@@ -37,12 +53,18 @@ export class Pacer {
     return this.fps ? 1000 / this.fps : null;
   }
 
-  /** Milliseconds from `now` (performance.now()) until the next frame is due; 0: start it now. */
+  /**
+   * Milliseconds from `now` (performance.now()) until the next frame is due; 0: start it now.
+   * @param {number} now
+   */
   wait(now) {
     return !this.interval || this.due === null ? 0 : Math.max(0, this.due - now);
   }
 
-  /** A frame starts at `now`: the next one is due an interval later. */
+  /**
+   * A frame starts at `now`: the next one is due an interval later.
+   * @param {number} now
+   */
   begin(now) {
     const interval = this.interval;
     if (interval) {
@@ -53,7 +75,10 @@ export class Pacer {
     while (this.starts.length > 2 && now - this.starts[0] > WINDOW_MS) this.starts.shift();
   }
 
-  /** The frame started last took `ms` from its start to its drawing. */
+  /**
+   * The frame started last took `ms` from its start to its drawing.
+   * @param {number} ms
+   */
   end(ms) {
     this.work.push(ms);
     if (this.work.length > 30) this.work.shift();
@@ -76,7 +101,8 @@ export class Pacer {
   /** Whether playback is measurably slower than the source's rate. */
   behind() {
     const rate = this.rate();
-    return !!(this.fps && rate !== null && this.starts.at(-1) - this.starts[0] >= 1000 && rate < KEEP_UP * this.fps);
+    const n = this.starts.length;
+    return !!(this.fps && rate !== null && this.starts[n - 1] - this.starts[0] >= 1000 && rate < KEEP_UP * this.fps);
   }
 
   /** One line for the page: the rate played at, and why it is slower than the source's. */
@@ -84,8 +110,8 @@ export class Pacer {
     const rate = this.rate();
     const played = rate === null ? '' : `${rate.toFixed(1)} frames/s`;
     if (this.live) return played ? `Live: ${played}` : '';
-    if (!this.fps) return played ? `Playing as fast as the tracker goes: ${played} (${what} has no frame rate)` : '';
-    if (!played) return `Playing at ${what}’s ${this.fps} frames/s`;
+    if (!this.fps || !this.interval) return played ? `Playing as fast as the tracker goes: ${played} (${what} has no frame rate)` : '';
+    if (rate === null) return `Playing at ${what}’s ${this.fps} frames/s`;
     if (!this.behind()) return `Playing at ${played}: ${what}’s rate is ${this.fps}`;
     const work = this.workMs();
     const why = work === null ? '' : `: a frame takes ${work.toFixed(0)} ms here, ${what} shows one every ${this.interval.toFixed(0)} ms`;

@@ -1,19 +1,29 @@
+// @ts-check
 // The teaching panel: the chosen tracker's paper in a few sentences, sliders for the parameters
 // the paper names, the seed, and a button back to the defaults. It calls `onChange(options,
 // seed)` when the person lets go of a slider.
+import { byId } from './dom.js';
 import { TRACKERS, getPath, setPath } from './explain.js';
 
 export class ParamsPanel {
   constructor(doc = document) {
     this.doc = doc;
-    this.section = doc.getElementById('teach');
-    this.title = doc.getElementById('teach-title');
-    this.text = doc.getElementById('teach-text');
-    this.form = doc.getElementById('params');
-    this.seed = doc.getElementById('seed');
-    this.reset = doc.getElementById('params-reset');
+    this.section = byId('teach', HTMLElement, doc);
+    this.title = byId('teach-title', HTMLElement, doc);
+    this.text = byId('teach-text', HTMLElement, doc);
+    this.form = byId('params', HTMLFormElement, doc);
+    this.seed = byId('seed', HTMLInputElement, doc);
+    this.reset = byId('params-reset', HTMLButtonElement, doc);
+    /** @type {(options: Record<string, unknown>, seed: number) => void} */
     this.onChange = () => {};
+    /** The tracker shown (null: none) and the one whose options are kept. */
+    /** @type {string | null} */
+    this.id = null;
+    /** @type {string | null} */
+    this.defaultsId = null;
+    /** @type {Record<string, unknown> | null} */
     this.defaults = {};
+    /** @type {Record<string, unknown>} */
     this.options = {};
     this.form.addEventListener('submit', (e) => e.preventDefault());
     this.seed.addEventListener('change', () => this.changed());
@@ -42,6 +52,8 @@ export class ParamsPanel {
    * Shows tracker `id` (null: none) with its `defaults` (trackerDefaults(id)); with no defaults
    * yet (the module still loading) the sliders are there but disabled, so the page does not move
    * when they come.
+   * @param {string | null} id
+   * @param {Record<string, unknown> | null} defaults
    */
   show(id, defaults) {
     this.id = id;
@@ -59,6 +71,11 @@ export class ParamsPanel {
     this.form.replaceChildren(...info.params.map((p) => this.control(p, current)));
   }
 
+  /**
+   * A slider or checkbox for parameter `p`, at its value in `current` (null: disabled).
+   * @param {import('./explain.js').Param} p
+   * @param {Record<string, unknown> | null} current
+   */
   control(p, current) {
     const label = this.doc.createElement('label');
     const name = this.doc.createElement('span');
@@ -81,7 +98,7 @@ export class ParamsPanel {
     }
     input.type = 'range';
     Object.assign(input, { min: p.min, max: p.max, step: p.step });
-    input.value = value;
+    input.value = `${value}`;
     out.textContent = current ? `${value}` : '…';
     input.addEventListener('input', () => { out.textContent = input.value; });
     input.addEventListener('change', () => {
@@ -92,11 +109,15 @@ export class ParamsPanel {
     return label;
   }
 
-  /** Keeps only the top-level options that differ from the defaults. */
+  /**
+   * Keeps only the top-level options that differ from the defaults.
+   * @param {Record<string, unknown>} options
+   */
   trim(options) {
+    /** @type {Record<string, unknown>} */
     const out = {};
     for (const [k, v] of Object.entries(options)) {
-      if (JSON.stringify(v) !== JSON.stringify(this.defaults[k])) out[k] = v;
+      if (JSON.stringify(v) !== JSON.stringify(this.defaults?.[k])) out[k] = v;
     }
     return out;
   }

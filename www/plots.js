@@ -1,3 +1,4 @@
+// @ts-check
 // Live plots of the estimate over the last frames: one strip per quantity, the estimate as a
 // line, the second tracker's (compare mode) in pink, the ground truth (when the source has one)
 // dashed, lee-cpf's raw particle-filter output before its Kalman smoother in orange, the latest
@@ -9,14 +10,37 @@ const RAD_TO_DEG = 180 / Math.PI;
 // lee-cpf: stage 1's ESS, the one its resampling tests against N_thr.
 const ESS_KEYS = ['lee.ess1', 'danescu.ess', 'adachi.ess', 'liu.ess', 'lee.ess2'];
 
+/** @typedef {import('../pkg/web/lanepf.js').LaneEstimate} LaneEstimate */
+/**
+ * A quantity plotted: its value `of` an estimate (or the truth) and the frame's result, lee-cpf's
+ * `raw` value before its Kalman smoother, `truth: false` when the truth has none.
+ * @typedef {{ name: string, unit: string, of: (e: LaneEstimate, r?: { trackMs?: number } | null) => number | undefined,
+ *   raw?: (e: LaneEstimate) => number, truth?: false }} Series
+ */
+/**
+ * The frame in progress, stepped through stage by stage (see `Plots.stage`).
+ * @typedef {{ label?: string, ess?: number | null, trackMs?: number, resampled?: boolean, threshold?: number | null }} Live
+ */
+
+/**
+ * `v` when it is a finite number, else null (a gap in the plot).
+ * @param {unknown} v
+ * @returns {number | null}
+ */
+const finite = (v) => (typeof v === 'number' && Number.isFinite(v) ? v : null);
+
 /** The quantities plotted: name, unit, value of an estimate (or truth), and of a result. */
+/** @type {Series[]} */
 export const SERIES = [
   // lee-cpf: the raw cascade filter's output next to the Kalman-smoothed one.
   { name: 'lateral offset', unit: 'm', of: (e) => e.lateral_offset_m, raw: (e) => -e.state?.['lee.raw.y0'] },
   { name: 'heading', unit: 'deg', of: (e) => e.heading_rad * RAD_TO_DEG, raw: (e) => e.state?.['lee.raw.psi'] * RAD_TO_DEG },
   { name: 'curvature', unit: '1/km', of: (e) => e.curvature_per_m * 1000 },
   { name: 'lane width', unit: 'm', of: (e) => e.lane_width_m },
-  { name: 'ESS', unit: 'particles', of: (e) => e.state?.[ESS_KEYS.find((k) => k in (e.state ?? {}))], truth: false },
+  { name: 'ESS', unit: 'particles', of: (e) => {
+    const key = ESS_KEYS.find((k) => k in (e.state ?? {}));
+    return key === undefined ? undefined : e.state?.[key];
+  }, truth: false },
   { name: 'time', unit: 'ms/frame', of: (e, r) => r?.trackMs, truth: false },
 ];
 
@@ -34,6 +58,10 @@ export const COMPARE_COLOUR = '#f48fb1';
  * The plots' caption: whose estimate is plotted (`trackerId`, '' for none), the second
  * tracker's (`compareId`, '' for none), the ground truth only for a source that has one,
  * lee-cpf's raw filter only for lee-cpf.
+ * @param {string} trackerId
+ * @param {boolean} hasTruth
+ * @param {number} [length]
+ * @param {string} [compareId]
  */
 export function plotsCaption(trackerId, hasTruth, length = 300, compareId = '') {
   if (!trackerId) return 'No tracker: nothing to plot (choose one under Tracker)';
@@ -50,10 +78,31 @@ export function plotsCaption(trackerId, hasTruth, length = 300, compareId = '') 
 }
 
 export class Plots {
+  /**
+   * @param {HTMLCanvasElement} canvas
+   * @param {number} [length] frames shown
+   */
   constructor(canvas, length = 300) {
     this.canvas = canvas;
-    this.ctx = canvas.getContext('2d');
+    const ctx = canvas.getContext('2d');
+    if (!ctx) throw new Error('the plots canvas has no 2-D context');
+    this.ctx = ctx;
     this.length = length;
+    /** @type {Live | null} */
+    this.live = null;
+    /** @type {(number | null)[]} */
+    this.threshold = [];
+    /** @type {boolean[]} */
+    this.resampled = [];
+    // Per series: the estimate's values, the truth's, lee-cpf's raw ones, the second tracker's.
+    /** @type {(number | null)[][]} */
+    this.points = [];
+    /** @type {(number | null)[][]} */
+    this.truth = [];
+    /** @type {(number | null)[][]} */
+    this.raw = [];
+    /** @type {(number | null)[][]} */
+    this.other = [];
     this.clear();
   }
 
@@ -75,11 +124,16 @@ export class Plots {
    * { estimate, trackMs }, in compare mode; `resampling`, what the tracker reported of the
    * frame's resampling: { resampled, threshold }, resampling.js's `frameResampling`). Ends the
    * frame in progress, if one was being stepped through.
+   * @param {LaneEstimate | null} estimate
+   * @param {LaneEstimate | null | undefined} truth
+   * @param {{ trackMs?: number } | null} result
+   * @param {{ estimate: LaneEstimate | null, trackMs?: number } | null} [compare]
+   * @param {{ resampled: boolean, threshold: number | null } | null} [resampling]
    */
   push(estimate, truth, result, compare = null, resampling = null) {
     this.live = null;
     const r = resampling;
-    this.threshold.push(Number.isFinite(r?.threshold) ? r.threshold : null);
+    this.threshold.push(finite(r?.threshold));
     this.resampled.push(!!r?.resampled);
     if (this.threshold.length > this.length) {
       this.threshold.shift();
@@ -90,10 +144,10 @@ export class Plots {
       const t = truth && s.truth !== false ? s.of(truth) : null;
       const raw = estimate && s.raw ? s.raw(estimate) : null;
       const o = compare?.estimate ? s.of(compare.estimate, compare) : null;
-      this.points[k].push(Number.isFinite(v) ? v : null);
-      this.truth[k].push(Number.isFinite(t) ? t : null);
-      this.raw[k].push(Number.isFinite(raw) ? raw : null);
-      this.other[k].push(Number.isFinite(o) ? o : null);
+      this.points[k].push(finite(v));
+      this.truth[k].push(finite(t));
+      this.raw[k].push(finite(raw));
+      this.other[k].push(finite(o));
       if (this.points[k].length > this.length) {
         for (const series of [this.points, this.truth, this.raw, this.other]) series[k].shift();
       }
@@ -106,13 +160,20 @@ export class Plots {
    * (`push`): `{ label, ess, trackMs, resampled, threshold }`: the step just run, the ESS of
    * the weights now, the frame's time so far, whether the tracker reported a resampling in the
    * frame so far and the threshold it tested. The other quantities are known at the frame's end.
+   * @param {Live} live
    */
   stage(live) {
     this.live = live;
     this.draw();
   }
 
-  /** Series `k` with the frame in progress (if any) as its newest point, at most `length`. */
+  /**
+   * Series `k` with the frame in progress (if any) as its newest point, at most `length`.
+   * @template T
+   * @param {T[]} series
+   * @param {T} value
+   * @returns {T[]}
+   */
   withLive(series, value) {
     if (!this.live) return series;
     return [...series, value].slice(-this.length);
@@ -121,8 +182,9 @@ export class Plots {
   draw() {
     const { ctx, canvas } = this;
     const live = this.live;
+    /** @param {Series} s */
     const liveValue = (s) => (!live ? null : s.name === 'ESS' ? live.ess : s.name === 'time' ? live.trackMs : null);
-    const threshold = this.withLive(this.threshold, Number.isFinite(live?.threshold) ? live.threshold : null);
+    const threshold = this.withLive(this.threshold, finite(live?.threshold));
     const resampled = this.withLive(this.resampled, !!live?.resampled);
     const strip = canvas.height / SERIES.length;
     const left = 150;
@@ -134,7 +196,7 @@ export class Plots {
       const top = k * strip;
       const ess = s.name === 'ESS';
       const v = liveValue(s);
-      const points = this.withLive(this.points[k], Number.isFinite(v) ? v : null);
+      const points = this.withLive(this.points[k], finite(v));
       const [truth, raw, other] = [this.truth[k], this.raw[k], this.other[k]].map((series) => this.withLive(series, null));
       const values = [...points, ...truth, ...raw, ...other,
         ...(ess ? threshold : [])].filter((x) => x !== null);
@@ -145,13 +207,20 @@ export class Plots {
       const pad = 0.1 * (hi - lo);
       // Counts and times never go below zero: no padding under a zero floor.
       [lo, hi] = [lo >= 0 && lo - pad < 0 ? 0 : lo - pad, hi + pad];
+      /** @param {number} v */
       const y = (v) => top + strip - 4 - ((v - lo) / (hi - lo)) * (strip - 8);
+      /** @param {number} i */
       const x = (i) => left + (i / Math.max(1, this.length - 1)) * w;
       ctx.strokeStyle = '#222a31';
       ctx.beginPath();
       ctx.moveTo(0, top + strip - 0.5);
       ctx.lineTo(canvas.width, top + strip - 0.5);
       ctx.stroke();
+      /**
+       * @param {(number | null)[]} series
+       * @param {string} colour
+       * @param {number[]} dash
+       */
       const line = (series, colour, dash) => {
         ctx.strokeStyle = colour;
         ctx.setLineDash(dash);
@@ -174,10 +243,11 @@ export class Plots {
       line(other, COMPARE_COLOUR, []);
       line(points, '#4fc3f7', []);
       // The frame in progress: its point ringed, so that each stage's change shows.
-      if (live && points.at(-1) !== null) {
+      const newest = points.at(-1);
+      if (live && newest !== null && newest !== undefined) {
         ctx.strokeStyle = LIVE_COLOUR;
         ctx.beginPath();
-        ctx.arc(x(points.length - 1), y(points.at(-1)), 4, 0, 2 * Math.PI);
+        ctx.arc(x(points.length - 1), y(newest), 4, 0, 2 * Math.PI);
         ctx.stroke();
       }
       if (ess) {
@@ -205,6 +275,7 @@ export class Plots {
           if (done) ctx.fillRect(Math.round(x(i)) - 1, top + strip - 7, 2, 6);
         });
       }
+      /** @param {(number | null)[]} series */
       const latest = (series) => {
         const last = series.filter((v) => v !== null).at(-1);
         return last === undefined ? '–' : last.toFixed(Math.abs(last) < 10 ? 3 : 1);

@@ -1,3 +1,4 @@
+// @ts-check
 // Drawing on the canvas: frames, lane boundaries (one colour per role), the particle cloud,
 // the top view and the trackers' cue layers. How things look is decided here, once, and the
 // legend (legend.js) draws its samples with these same functions:
@@ -8,6 +9,20 @@
 //                          over the estimate (dashes on a thick line where they agree);
 //   particles:             thin lines, opacity by weight, in their role's (or group's) colour.
 
+/** @typedef {import('../pkg/web/lanepf.js').Boundary} Boundary */
+/** @typedef {import('../pkg/web/lanepf.js').Delimiter} Delimiter */
+/** @typedef {import('../pkg/web/lanepf.js').Hypothesis} Hypothesis */
+/** @typedef {import('../pkg/web/lanepf.js').LaneEstimate} LaneEstimate */
+/** @typedef {import('../pkg/web/lanepf.js').Layer} Layer */
+/** @typedef {import('../pkg/web/lanepf.js').CalibrationObservation} CalibrationObservation */
+/** A point on the canvas or the road: [x, y]. */
+/** @typedef {[number, number]} Point */
+/** Road point [x ahead, y left] -> canvas point, for the top view. */
+/** @typedef {(p: Point) => Point} RoadMap */
+/** A boundary drawn as a polyline: its role and canvas points. */
+/** @typedef {{ role: string, points: Point[] }} Polyline */
+
+/** @type {Record<string, string>} */
 export const ROLE_COLOURS = {
   'ego-left': '#ffd54f',
   'ego-right': '#4fc3f7',
@@ -22,7 +37,13 @@ export const TRUTH_DASH = [10, 8];
 export const INVALID_ALPHA = 0.4;
 export const INVALID_DASH = [8, 8];
 
-/** Draws an RGBA frame (Uint8ClampedArray, width*height*4) scaled to the canvas. */
+/**
+ * Draws an RGBA frame (Uint8ClampedArray, width*height*4) scaled to the canvas.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Uint8ClampedArray<ArrayBuffer>} rgba
+ * @param {number} width
+ * @param {number} height
+ */
 export function drawFrame(ctx, rgba, width, height) {
   const canvas = ctx.canvas;
   if (canvas.width !== width || canvas.height !== height) {
@@ -35,6 +56,9 @@ export function drawFrame(ctx, rgba, width, height) {
 /**
  * Draws boundaries [{ role, points: [[x, y], ...] }] as polylines in their role's colour (or
  * `colour` for all), with the dash pattern `dash` (none: solid) and opacity `alpha`.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Polyline[]} boundaries
+ * @param {{ dash?: number[], width?: number, colour?: string | null, alpha?: number }} [style]
  */
 export function drawBoundaries(ctx, boundaries, { dash = [], width = 3, colour = null, alpha = 1 } = {}) {
   ctx.save();
@@ -53,7 +77,12 @@ export function drawBoundaries(ctx, boundaries, { dash = [], width = 3, colour =
   ctx.restore();
 }
 
-/** Draws the ground truth's boundaries: dashed, in TRUTH_COLOUR. */
+/**
+ * Draws the ground truth's boundaries: dashed, in TRUTH_COLOUR.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Polyline[]} boundaries
+ * @param {number} [width]
+ */
 export function drawTruth(ctx, boundaries, width = 2) {
   drawBoundaries(ctx, boundaries, { dash: TRUTH_DASH, width, colour: TRUTH_COLOUR });
 }
@@ -63,9 +92,12 @@ export function drawTruth(ctx, boundaries, width = 2) {
  * (danescu-*) the markings' bands under thin centre lines. A valid estimate solid and opaque;
  * one that is not valid faded (INVALID_ALPHA) and dashed (INVALID_DASH). Image polylines, or
  * the road polylines through `map` (road point -> canvas point) for the top view.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Pick<LaneEstimate, 'valid' | 'boundaries' | 'delimiters'>} estimate
+ * @param {RoadMap | null} [map]
  */
 export function drawEstimate(ctx, estimate, map = null) {
-  const banded = estimate.delimiters?.length > 0;
+  const banded = (estimate.delimiters?.length ?? 0) > 0;
   const boundaries = map
     ? estimate.boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }))
     : estimate.boundaries;
@@ -82,10 +114,15 @@ export function drawEstimate(ctx, estimate, map = null) {
  * marking's inner and outer edge, the edges as thin lines. Image polylines, or the road
  * polylines through `map` (road point -> canvas point) for the top view; `alpha` fades it all
  * (an estimate that is not valid).
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Delimiter[] | undefined} delimiters
+ * @param {RoadMap | null} [map]
+ * @param {number} [alpha]
  */
 export function drawDelimiters(ctx, delimiters, map = null, alpha = 1) {
   if (!delimiters?.length) return;
-  const pts = (d) => (map ? d.road_points.map(map) : d.points);
+  /** @param {Delimiter} d */
+  const pts = (d) => (map ? (d.road_points ?? []).map(map) : d.points);
   ctx.save();
   for (const role of new Set(delimiters.map((d) => d.role))) {
     const inner = delimiters.find((d) => d.role === role && d.side === 'inner');
@@ -118,11 +155,13 @@ export function drawDelimiters(ctx, delimiters, map = null, alpha = 1) {
 
 /** Colours of particle groups (Adachi's models, Lee's stages, Danescu's clusters; -1 grey). */
 export const GROUP_COLOURS = ['#e0e0e0', '#ff8a65', '#4dd0e1', '#aed581', '#f06292', '#ffd54f', '#9575cd'];
+/** @param {number} g */
 export const groupColour = (g) => (g < 0 ? '#757575' : GROUP_COLOURS[g % GROUP_COLOURS.length]);
 
 /**
  * Colour of a particle of weight `v` relative to the heaviest drawn (0..1): dark blue for the
  * lightest, through teal and green, to yellow for the heaviest (a viridis-like ramp).
+ * @param {number} v
  */
 export function weightColour(v) {
   const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
@@ -138,6 +177,10 @@ export function weightColour(v) {
  * coloured by its weight relative to the heaviest drawn (weightColour), or by its group with
  * `byGroup`, and more opaque when heavier: image polylines, or the road polylines through `map`
  * (road point -> canvas point) when it is given.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Hypothesis[] | null | undefined} hypotheses
+ * @param {RoadMap | null} [map]
+ * @param {boolean} [byGroup]
  */
 export function drawHypotheses(ctx, hypotheses, map = null, byGroup = false) {
   if (!hypotheses?.length) return;
@@ -147,7 +190,7 @@ export function drawHypotheses(ctx, hypotheses, map = null, byGroup = false) {
   for (const h of hypotheses) {
     ctx.globalAlpha = 0.25 + 0.6 * (h.weight / top);
     for (const b of h.boundaries) {
-      const pts = map ? b.road_points.map(map) : b.points;
+      const pts = map ? (b.road_points ?? []).map(map) : b.points;
       if (pts.length < 2) continue;
       ctx.strokeStyle = byGroup ? groupColour(h.group) : weightColour(h.weight / top);
       ctx.beginPath();
@@ -162,6 +205,11 @@ export function drawHypotheses(ctx, hypotheses, map = null, byGroup = false) {
 /**
  * Draws the top view (the worker's inverse perspective mapping of the frame: rows far to near,
  * columns left to right) with boundaries and particles on it from their road points.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {{ rgba: Uint8ClampedArray<ArrayBuffer>, rows: number, cols: number, yHalf: number, xMax: number, cell: number }} top
+ *   the worker's top view (top-view.js)
+ * @param {{ truth?: LaneEstimate | null, estimate?: LaneEstimate | null, hypotheses?: Hypothesis[] | null,
+ *   byGroup?: boolean }} [overlays]
  */
 export function drawTopView(ctx, top, { truth = null, estimate = null, hypotheses = null, byGroup = false } = {}) {
   const canvas = ctx.canvas;
@@ -171,14 +219,19 @@ export function drawTopView(ctx, top, { truth = null, estimate = null, hypothese
   }
   ctx.putImageData(new ImageData(top.rgba, top.cols, top.rows), 0, 0);
   // Road point [x ahead, y left] -> canvas [column, row].
+  /** @type {RoadMap} */
   const map = ([x, y]) => [(top.yHalf - y) / top.cell, (top.xMax - x) / top.cell];
+  /** @param {Boundary[]} boundaries */
   const asImage = (boundaries) => boundaries.map((b) => ({ ...b, points: (b.road_points ?? []).map(map) }));
   drawHypotheses(ctx, hypotheses, map, byGroup);
   if (estimate) drawEstimate(ctx, estimate, map);
   if (truth) drawTruth(ctx, asImage(truth.boundaries));
 }
 
-/** Heat colour of a value in [0, 1]: red grows linearly, then yellow and white show the top. */
+/**
+ * Heat colour of a value in [0, 1]: red grows linearly, then yellow and white show the top.
+ * @param {number} v
+ */
 function heat(v) {
   const t = Math.min(1, Math.max(0, v));
   return [255 * t, 255 * t * t, 255 * t * t * t];
@@ -189,6 +242,9 @@ function heat(v) {
  * map, far at the top and left on the left as seen from the car, or a `histogram` over a road
  * axis as bars, with the particles' boundaries as ticks and the groups' probabilities over a
  * lateral axis. Values are scaled by the layer's largest.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {Layer} layer
+ * @param {{ hypotheses?: Hypothesis[] | null, probabilities?: number[] | null }} [marks]
  */
 export function drawLayer(ctx, layer, { hypotheses = null, probabilities = null } = {}) {
   const canvas = ctx.canvas;
@@ -240,7 +296,7 @@ export function drawLayer(ctx, layer, { hypotheses = null, probabilities = null 
       ctx.globalAlpha = 0.2 + 0.8 * (h.weight / top);
       for (const b of h.boundaries) {
         const y = b.road_points?.[Math.floor(b.road_points.length / 2)]?.[1];
-        if (!Number.isFinite(y)) continue;
+        if (y === undefined || !Number.isFinite(y)) continue;
         const x = ((-y - layer.start) / layer.step) * w;
         ctx.beginPath();
         ctx.moveTo(x, 2);
@@ -265,9 +321,15 @@ export function drawLayer(ctx, layer, { hypotheses = null, probabilities = null 
  * through marking pixels (thin), the two ego boundaries it measures from (thick, up to where
  * they meet), the vanishing point and the horizon through it. Undistorted pixels: with a
  * distorting lens the lines sit slightly off the markings near the image edges.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {CalibrationObservation} observation
  */
 export function drawCalibrationLines(ctx, observation) {
   const { lines, ego, vanishing_point: vp } = observation;
+  /**
+   * @param {import('../pkg/web/lanepf.js').CalibrationLine} l
+   * @param {number} y
+   */
   const x = (l, y) => l.x_ref + l.slope * (y - l.y_ref);
   ctx.save();
   ctx.strokeStyle = 'rgba(255, 152, 0, 0.6)';

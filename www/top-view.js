@@ -1,3 +1,4 @@
+// @ts-check
 // The top view the demo draws beside the camera view: a lookup table from road cells to camera
 // pixels, built once per camera, then a plain copy of pixels per frame (in the worker).
 import { Camera } from '../pkg/web/lanepf.js';
@@ -5,7 +6,10 @@ import { Camera } from '../pkg/web/lanepf.js';
 /** Road cells 0.1 m, 2 to 42 m ahead, ±8 m. */
 export const TOP = { xMin: 2, xMax: 42, yHalf: 8, cell: 0.1 };
 
-/** The lookup table of a camera (`CameraConfig`): camera pixel index per road cell, -1 unseen. */
+/**
+ * The lookup table of a camera: camera pixel index per road cell, -1 unseen.
+ * @param {import('../pkg/web/lanepf.js').CameraConfig} cameraConfig
+ */
 export function topViewTable(cameraConfig) {
   const camera = new Camera(cameraConfig);
   const rows = Math.round((TOP.xMax - TOP.xMin) / TOP.cell);
@@ -16,7 +20,7 @@ export function topViewTable(cameraConfig) {
     const x = TOP.xMax - (r + 0.5) * TOP.cell;
     for (let c = 0; c < cols; c++) {
       const y = TOP.yHalf - (c + 0.5) * TOP.cell;
-      let uv = null;
+      let uv;
       try {
         uv = camera.projectRoad(x, y);
       } catch {
@@ -32,7 +36,13 @@ export function topViewTable(cameraConfig) {
   return { lut, rows, cols, width, height };
 }
 
-/** The top view of an RGBA frame through `table` (null when the frame's size is not its camera's). */
+/**
+ * The top view of an RGBA frame through `table` (null when the frame's size is not its camera's).
+ * @param {ReturnType<typeof topViewTable> | null} table
+ * @param {Uint8Array | Uint8ClampedArray} rgba
+ * @param {number} width
+ * @param {number} height
+ */
 export function topView(table, rgba, width, height) {
   if (!table || table.width !== width || table.height !== height) return null;
   const { lut, rows, cols } = table;

@@ -1,3 +1,4 @@
+// @ts-check
 // The first lesson's particle filter: a car on a line, a noisy position sensor, N particles.
 // One step of the filter is three stages, run one at a time so each can be looked at:
 //   predict:  every particle moves by the car's commanded speed plus motion noise;
@@ -11,7 +12,7 @@
 // Pure and seeded: no DOM, the same seed gives the same run (tested in Node and the browser).
 
 /** The stages of one step, in order. */
-export const STAGES = ['predict', 'weigh', 'resample'];
+export const STAGES = /** @type {const} */ (['predict', 'weigh', 'resample']);
 
 /** Defaults: a 100 m line, a car at 1 m per step, a sensor good to 4 m, 200 particles. */
 export const DEFAULTS = {
@@ -19,7 +20,10 @@ export const DEFAULTS = {
   essThreshold: 0.5, seed: 1,
 };
 
-/** A small seeded generator (mulberry32) and standard normal draws (Box-Muller). */
+/**
+ * A small seeded generator (mulberry32) and standard normal draws (Box-Muller).
+ * @param {number} seed
+ */
 export function rng(seed) {
   let a = seed >>> 0;
   const uniform = () => {
@@ -36,7 +40,10 @@ export function rng(seed) {
   return { uniform, normal };
 }
 
-/** Effective sample size of normalised weights: 1 / sum(w^2). */
+/**
+ * Effective sample size of normalised weights: 1 / sum(w^2).
+ * @param {number[]} weights
+ */
 export function ess(weights) {
   let s = 0;
   for (const w of weights) s += w * w;
@@ -46,9 +53,12 @@ export function ess(weights) {
 /**
  * Systematic resampling: one uniform draw u in [0, 1/N), then the N points u + k/N pick the
  * particles whose cumulative weight they fall in. Returns each child's parent index.
+ * @param {number[]} weights
+ * @param {number} u
  */
 export function systematic(weights, u) {
   const n = weights.length;
+  /** @type {number[]} */
   const parents = new Array(n);
   let cumulative = weights[0];
   let i = 0;
@@ -60,9 +70,38 @@ export function systematic(weights, u) {
   return parents;
 }
 
+/** What `resample` did: whether it resampled, on which ESS and threshold, and how many distinct parents. */
+/** @typedef {{ resampled: boolean, ess: number, threshold: number, distinct?: number }} ResampleOutcome */
+/**
+ * What a stage did (`advance`).
+ * @typedef {{ stage: 'predict', car: number, reading: number } | { stage: 'weigh', ess: number }
+ *   | ({ stage: 'resample' } & ResampleOutcome)} StageOutcome
+ */
+
 export class ToyFilter {
+  /** @param {Partial<typeof DEFAULTS>} [options] */
   constructor(options = {}) {
     this.options = { ...DEFAULTS, ...options };
+    // The state; `reset` sets it.
+    this.random = rng(this.options.seed);
+    this.car = 0;
+    /** The last sensor reading (null before the first predict). */
+    /** @type {number | null} */
+    this.reading = null;
+    this.step = 0;
+    this.next = 0;
+    /** The particles' positions and weights. */
+    /** @type {number[]} */
+    this.x = [];
+    /** @type {number[]} */
+    this.w = [];
+    /** The last resampling's parent of each particle, and the particles before it (null: none). */
+    /** @type {number[] | null} */
+    this.parents = null;
+    /** @type {number[] | null} */
+    this.before = null;
+    /** @type {ResampleOutcome | null} */
+    this.lastResample = null;
     this.reset();
   }
 
@@ -85,13 +124,18 @@ export class ToyFilter {
     return STAGES[this.next];
   }
 
-  /** Runs the next stage; returns what it did ({ stage, ... }) for the page to tell. */
+  /**
+   * Runs the next stage; returns what it did ({ stage, ... }) for the page to tell.
+   * @returns {StageOutcome}
+   */
   advance() {
     const stage = STAGES[this.next];
-    const out = this[stage]();
+    /** @type {StageOutcome} */
+    const out = stage === 'predict' ? { stage, ...this.predict() }
+      : stage === 'weigh' ? { stage, ...this.weigh() } : { stage, ...this.resample() };
     this.next = (this.next + 1) % STAGES.length;
     if (this.next === 0) this.step += 1;
-    return { stage, ...out };
+    return out;
   }
 
   /** Runs the stages left in this step (a whole step from its start). */
@@ -106,6 +150,7 @@ export class ToyFilter {
     this.parents = null;
     this.car += o.speed + o.sigmaCar * this.random.normal();
     // The line wraps: a car that drives off the end comes back at the start (and so do they).
+    /** @param {number} v */
     const wrap = (v) => ((v % o.length) + o.length) % o.length;
     this.car = wrap(this.car);
     this.x = this.x.map((v) => wrap(v + o.speed + o.sigmaMotion * this.random.normal()));
@@ -116,7 +161,9 @@ export class ToyFilter {
   weigh() {
     const o = this.options;
     const z = this.reading;
+    if (z === null) throw new Error('weigh: no reading yet (predict comes first)');
     // Distance on the wrapped line.
+    /** @param {number} v */
     const d = (v) => {
       const a = Math.abs(v - z) % o.length;
       return Math.min(a, o.length - a);
@@ -129,6 +176,7 @@ export class ToyFilter {
     return { ess: ess(this.w) };
   }
 
+  /** @returns {ResampleOutcome} */
   resample() {
     const o = this.options;
     const n = this.x.length;
@@ -140,9 +188,10 @@ export class ToyFilter {
       return this.lastResample;
     }
     const parents = systematic(this.w, this.random.uniform());
-    this.before = this.x;
+    const before = this.x;
+    this.before = before;
     this.parents = parents;
-    this.x = parents.map((p) => this.before[p]);
+    this.x = parents.map((p) => before[p]);
     this.w = new Array(n).fill(1 / n);
     this.lastResample = { resampled: true, ess: e, threshold, distinct: new Set(parents).size };
     return this.lastResample;
@@ -165,8 +214,10 @@ export class ToyFilter {
   }
 
   /** The weights summed over `bins` equal bins of the line (the weight histogram). */
+  /** @param {number} bins */
   histogram(bins) {
     const L = this.options.length;
+    /** @type {number[]} */
     const h = new Array(bins).fill(0);
     this.x.forEach((v, k) => {
       h[Math.min(bins - 1, Math.floor((v / L) * bins))] += this.w[k];

@@ -1,3 +1,4 @@
+// @ts-check
 // Drawing the first lesson (toy.html): the line with the car, the reading and the particles;
 // the weight histogram; the ESS over the steps. `t` in [0, 1] draws the resampling animation:
 // each new particle slides from its parent's place to its own, the particles left without a
@@ -11,19 +12,31 @@ const AXIS = '#8a949e';
 /** Particles are spread over this many rows, so copies at one place do not hide each other. */
 const ROWS = 12;
 
+/** @typedef {import('./toy-filter.js').ToyFilter} ToyFilter */
+
+/** @param {CanvasRenderingContext2D} ctx */
 const clear = (ctx) => {
   ctx.fillStyle = '#0b0e11';
   ctx.fillRect(0, 0, ctx.canvas.width, ctx.canvas.height);
 };
 
-/** The x axis of the line: metres to canvas pixels, with margins. */
+/**
+ * The x axis of the line: metres to canvas pixels, with margins.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {number} length
+ */
 const axis = (ctx, length) => {
   const left = 30;
   const w = ctx.canvas.width - 2 * left;
+  /** @param {number} m */
   return (m) => left + (m / length) * w;
 };
 
-/** The line, its ticks every 10 m, the car, the reading (± sigma) and the estimate. */
+/**
+ * The line, its ticks every 10 m, the car, the reading (± sigma) and the estimate.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {ToyFilter} f
+ */
 function drawScene(ctx, f) {
   const { length, sigmaSensor } = f.options;
   const X = axis(ctx, length);
@@ -73,16 +86,24 @@ function drawScene(ctx, f) {
 }
 
 /** A particle's dot: radius grows with its weight relative to 1/N. */
+/**
+ * @param {number} w
+ * @param {number} n
+ */
 const radius = (w, n) => Math.max(1.5, Math.min(9, 2.5 * Math.sqrt(w * n)));
 
 /**
  * The scene and the particles; with `anim` ({ t, before, weightsBefore, parents }) the
  * resampling animation at time t in [0, 1].
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {import('./toy-filter.js').ToyFilter} f
+ * @param {{ t: number, before: number[], weightsBefore: number[], parents: number[] } | null} [anim]
  */
 export function drawView(ctx, f, anim = null) {
   clear(ctx);
   drawScene(ctx, f);
   const X = axis(ctx, f.options.length);
+  /** @param {number} k */
   const row = (k) => ctx.canvas.height - 60 - 9 * (k % ROWS);
   const n = f.x.length;
   ctx.fillStyle = PARTICLE;
@@ -116,7 +137,12 @@ export function drawView(ctx, f, anim = null) {
   ctx.globalAlpha = 1;
 }
 
-/** The weight histogram over `bins` bins, scaled to its tallest bar, the car's place marked. */
+/**
+ * The weight histogram over `bins` bins, scaled to its tallest bar, the car's place marked.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {ToyFilter} f
+ * @param {number} [bins]
+ */
 export function drawHistogram(ctx, f, bins = 50) {
   clear(ctx);
   const h = f.histogram(bins);
@@ -140,11 +166,20 @@ export function drawHistogram(ctx, f, bins = 50) {
   ctx.fillText(`tallest bin: ${(100 * top).toFixed(0)} % of the weight`, 6, 12);
 }
 
-/** ESS after each weighing (history [{ step, ess, resampled }]), the threshold dashed. */
+/**
+ * ESS after each weighing (history [{ step, ess, resampled }]), the threshold dashed.
+ * @param {CanvasRenderingContext2D} ctx
+ * @param {{ step: number, ess: number, resampled: boolean }[]} history
+ * @param {number} n particles
+ * @param {number} threshold share of N
+ * @param {number} [span] steps shown
+ */
 export function drawEss(ctx, history, n, threshold, span = 60) {
   clear(ctx);
   const base = ctx.canvas.height - 14;
+  /** @param {number} v */
   const y = (v) => base - (base - 8) * (v / n);
+  /** @param {number} i */
   const X = (i) => 40 + (i / (span - 1)) * (ctx.canvas.width - 50);
   const shown = history.slice(-span);
   ctx.fillStyle = AXIS;

@@ -1,7 +1,9 @@
+// @ts-check
 // The first lesson (toy.html): a 1-D particle filter (toy-filter.js) with the demo's step
 // controls: play, a whole step, one stage, restart, and the same keys (space, `.`, `,`). Each
 // stage is told in the status line ("resample: skipped: ESS 150 > 100"); the weight histogram
 // and the ESS plot follow every stage; a resampling that happens is animated.
+import { byId, context2d } from './dom.js';
 import { ToyFilter, DEFAULTS } from './toy-filter.js';
 import { drawView, drawHistogram, drawEss } from './toy-render.js';
 
@@ -9,21 +11,30 @@ import { drawView, drawHistogram, drawEss } from './toy-render.js';
 const ANIMATION_MS = 700;
 const PLAY_STAGE_MS = 350;
 
-const $ = (id) => document.getElementById(id);
-const view = $('toy-view').getContext('2d');
-const hist = $('toy-hist').getContext('2d');
-const essCtx = $('toy-ess').getContext('2d');
-const form = $('toy-params');
+/** @param {string} id */
+const $ = (id) => byId(id, HTMLElement);
+const view = context2d('toy-view');
+const hist = context2d('toy-hist');
+const essCtx = context2d('toy-ess');
+const form = byId('toy-params', HTMLFormElement);
 
 let filter = new ToyFilter(readOptions());
+/** ESS after each weighing, and whether the step resampled (the ESS plot). */
+/** @type {{ step: number, ess: number, resampled: boolean }[]} */
 let history = [];
+/** The resampling being animated (null: none). */
+/** @type {{ before: number[], weightsBefore: number[], parents: number[] } | null} */
 let animation = null;
 let playing = false;
-let timer = null;
-// Read by the end-to-end test and handy in the console.
-const lesson = (window.toyLesson = { filter, history, animating: false, animationFrames: 0, stages: 0 });
+/** @type {ReturnType<typeof setTimeout> | undefined} */
+let timer;
+// Read by the end-to-end test and handy in the console (`last`: what the last stage did).
+/** @type {{ filter: ToyFilter, history: typeof history, animating: boolean, animationFrames: number, stages: number, last?: object | null }} */
+const lesson = { filter, history, animating: false, animationFrames: 0, stages: 0 };
+window.toyLesson = lesson;
 
 function readOptions() {
+  /** @type {Record<string, number>} */
   const o = { ...DEFAULTS };
   for (const input of form.querySelectorAll('input')) o[input.name] = Number(input.value);
   return o;
@@ -36,7 +47,10 @@ function drawAll() {
   $('toy-next').textContent = `next: ${filter.nextStage}`;
 }
 
-/** What a stage did, in a sentence. */
+/**
+ * What a stage did, in a sentence.
+ * @param {import('./toy-filter.js').StageOutcome} out
+ */
 function tell(out) {
   const step = `step ${filter.step + (out.stage === 'resample' ? 0 : 1)}`;
   if (out.stage === 'predict') {
@@ -51,15 +65,23 @@ function tell(out) {
   return `${step} · resample: ESS ${out.ess.toFixed(0)} < ${out.threshold.toFixed(0)}: ${out.distinct} of ${filter.x.length} particles were copied, the rest dropped; all weights now 1/${filter.x.length}`;
 }
 
-/** Animates the resampling just done; resolves when it has finished. */
+/**
+ * Animates the resampling just done; resolves when it has finished.
+ * @param {number[]} before
+ * @param {number[]} weightsBefore
+ * @param {number[]} parents
+ * @returns {Promise<void>}
+ */
 function animate(before, weightsBefore, parents) {
   return new Promise((resolve) => {
     const t0 = performance.now();
-    animation = { before, weightsBefore, parents };
+    const shown = { before, weightsBefore, parents };
+    animation = shown;
     lesson.animating = true;
+    /** @param {number} now */
     const frame = (now) => {
       const t = Math.min(1, (now - t0) / ANIMATION_MS);
-      drawView(view, filter, { t, ...animation });
+      drawView(view, filter, { t, ...shown });
       lesson.animationFrames += 1;
       if (t < 1) {
         requestAnimationFrame(frame);
@@ -82,11 +104,14 @@ function stage() {
     const out = filter.advance();
     lesson.stages += 1;
     if (out.stage === 'weigh') history.push({ step: filter.step, ess: out.ess, resampled: false });
-    if (out.stage === 'resample' && out.resampled && history.length) history.at(-1).resampled = true;
+    const last = history.at(-1);
+    if (out.stage === 'resample' && out.resampled && last) last.resampled = true;
     $('toy-status').textContent = tell(out);
     lesson.last = out;
     drawAll();
-    if (out.stage === 'resample' && out.resampled) await animate(filter.before, weightsBefore, filter.parents);
+    if (out.stage === 'resample' && out.resampled && filter.before && filter.parents) {
+      await animate(filter.before, weightsBefore, filter.parents);
+    }
   });
   return busy;
 }
@@ -96,6 +121,7 @@ async function step() {
   do await stage(); while (filter.next !== 0);
 }
 
+/** @param {boolean} on */
 function setPlaying(on) {
   playing = on;
   $('toy-play').textContent = on ? 'Pause' : 'Play';
@@ -125,11 +151,14 @@ $('toy-step').addEventListener('click', () => step());
 $('toy-stage').addEventListener('click', () => stage());
 $('toy-restart').addEventListener('click', restart);
 for (const input of form.querySelectorAll('input')) {
-  input.addEventListener('input', () => { input.nextElementSibling.textContent = input.value; });
+  input.addEventListener('input', () => {
+    const out = input.nextElementSibling;
+    if (out) out.textContent = input.value;
+  });
   input.addEventListener('change', restart);
 }
 document.addEventListener('keydown', (e) => {
-  if (e.target.closest?.('input, select, textarea, button') || e.ctrlKey || e.metaKey || e.altKey) return;
+  if ((e.target instanceof Element && e.target.closest('input, select, textarea, button')) || e.ctrlKey || e.metaKey || e.altKey) return;
   if (e.key === ' ') {
     e.preventDefault();
     setPlaying(!playing);

@@ -1,3 +1,4 @@
+// @ts-check
 // Pitch and yaw from the vanishing point of two lane lines (the calibration helper).
 //
 // With no roll, the road's forward direction e_x seen by a camera of pitch p (down positive)
@@ -6,7 +7,15 @@
 // so p = atan((cy - v) / fy) and y = atan((u - cx) cos(p) / fx). Lens distortion is ignored:
 // the vanishing point of a road lies near the image centre, where distortion is smallest.
 
-/** Intersection [u, v] of the lines through a0-a1 and b0-b1, or null when they are parallel. */
+/** @typedef {[number, number]} Point */
+/** @typedef {Pick<import('../pkg/web/lanepf.js').CameraConfig, 'fx' | 'fy' | 'cx' | 'cy'>} Intrinsics */
+
+/**
+ * Intersection [u, v] of the lines through a0-a1 and b0-b1, or null when they are parallel.
+ * @param {[Point, Point]} a
+ * @param {[Point, Point]} b
+ * @returns {Point | null}
+ */
 export function intersect([a0, a1], [b0, b1]) {
   const [x1, y1] = a0;
   const [x2, y2] = a1;
@@ -19,7 +28,11 @@ export function intersect([a0, a1], [b0, b1]) {
   return [(a * (x3 - x4) - (x1 - x2) * b) / den, (a * (y3 - y4) - (y1 - y2) * b) / den];
 }
 
-/** { pitch_deg, yaw_deg } of `camera` whose straight road vanishes at [u, v]. */
+/**
+ * { pitch_deg, yaw_deg } of `camera` whose straight road vanishes at [u, v].
+ * @param {Intrinsics} camera
+ * @param {Point} vp
+ */
 export function poseFromVanishingPoint(camera, [u, v]) {
   const pitch = Math.atan((camera.cy - v) / camera.fy);
   const yaw = Math.atan(((u - camera.cx) * Math.cos(pitch)) / camera.fx);
@@ -33,6 +46,12 @@ export function poseFromVanishingPoint(camera, [u, v]) {
  * optical axis is fx / Z pixels per metre across and fy h / (Z cos p) rows below the horizon
  * v0 = cy - fy tan(p), so h = widthM (row - v0) fx cos(p) / ((uRight - uLeft) fy).
  * Null when the row is not below the horizon or the columns are not left to right.
+ * @param {Intrinsics} camera
+ * @param {number} pitchDeg
+ * @param {number} row
+ * @param {number} uLeft
+ * @param {number} uRight
+ * @param {number} widthM
  */
 export function heightFromLaneWidth(camera, pitchDeg, row, uLeft, uRight, widthM) {
   const p = (pitchDeg * Math.PI) / 180;

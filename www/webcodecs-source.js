@@ -1,3 +1,4 @@
+// @ts-check
 // A video decoded with WebCodecs: the container is demuxed here (demux-webm.js, demux-mp4.js),
 // the samples are read from the file by offset and decoded by a VideoDecoder, and the frames
 // come out in presentation order with the container's timestamps: frame-accurate, and as fast
@@ -13,7 +14,18 @@ const FRAMES_AHEAD = 3;
 /** A decoder that gives nothing for this long is reported, not waited on for ever. */
 const STALL_MS = 20000;
 
-/** The first video track of a WebM/Matroska or MP4 `blob` (see the demuxers for the fields). */
+/**
+ * A demuxed video track: samples in decode order, timestamps and durations in µs.
+ * @typedef {{ container: string, codec: string, description?: Uint8Array | null, codedWidth: number,
+ *   codedHeight: number, duration: number, fps: number | null,
+ *   samples: { timestamp: number, duration: number, key: boolean, offset: number, size: number }[] }} Track
+ */
+
+/**
+ * The first video track of a WebM/Matroska or MP4 `blob` (see the demuxers for the fields).
+ * @param {Blob} blob
+ * @returns {Promise<Track>}
+ */
 export async function demux(blob) {
   const head = new Uint8Array(await blob.slice(0, 12).arrayBuffer());
   if (isWebm(head)) return demuxWebm(blob);
@@ -22,6 +34,7 @@ export async function demux(blob) {
 }
 
 export class WebCodecsVideoSource {
+  /** @param {{ blob: Blob, name: string, camera?: import('../pkg/web/lanepf.js').CameraConfig | null, sideBySide?: boolean }} source */
   constructor({ blob, name, camera = null, sideBySide = false }) {
     this.blob = blob;
     this.name = name;
@@ -30,14 +43,42 @@ export class WebCodecsVideoSource {
     this.index = 0;
     this.progress = 0;
     this.label = `Video “${name}”`;
+    /** Decoded frames waiting to be read, in presentation order. */
+    /** @type {VideoFrame[]} */
     this.ready = [];
+    /** @type {VideoDecoder | null} */
     this.decoder = null;
+    // Set by `open` (the track, its decoder config and reader, each timestamp's frame index,
+    // the picture size) and by `start` (samples fed, flushed, the decoder's error).
+    /** @type {Track | null} */
+    this.track = null;
+    /** @type {VideoDecoderConfig | null} */
+    this.config = null;
+    /** @type {BlobReader | null} */
+    this.reader = null;
+    /** @type {Map<number, number>} */
+    this.indexOf = new Map();
+    /** @type {{ width: number, height: number } | null} */
+    this.size = null;
+    /** @type {Grabber | null} */
+    this.grabber = null;
+    /** @type {Error | null} */
+    this.error = null;
+    this.frames = 0;
+    /** @type {number | null} */
+    this.fps = null;
+    this.fed = 0;
+    this.flushed = false;
+    /** Called on the decoder's next output, dequeue or error (see `wait`). */
+    /** @type {(() => void) | null} */
+    this.waiter = null;
   }
 
   /** Demuxes, checks the browser decodes the codec, and decodes the first frame. */
   async open() {
     if (typeof VideoDecoder === 'undefined') throw new Error('this browser has no WebCodecs VideoDecoder');
     const track = await demux(this.blob);
+    /** @type {VideoDecoderConfig} */
     const config = { codec: track.codec };
     // A size of 0 (a container that gives none) is invalid in a config: left out, the decoder finds it.
     if (track.codedWidth > 0 && track.codedHeight > 0) Object.assign(config, { codedWidth: track.codedWidth, codedHeight: track.codedHeight });
@@ -46,7 +87,7 @@ export class WebCodecsVideoSource {
     try {
       support = await VideoDecoder.isConfigSupported(config);
     } catch (err) {
-      throw new Error(`the decoder configuration for ${track.codec} is invalid (${err.message})`);
+      throw new Error(`the decoder configuration for ${track.codec} is invalid (${err instanceof Error ? err.message : err})`, { cause: err });
     }
     if (!support.supported) throw new Error(`this browser's VideoDecoder does not decode ${track.codec}`);
     // Each frame's index in presentation order, by its timestamp.
@@ -94,6 +135,7 @@ export class WebCodecsVideoSource {
       },
     });
     decoder.addEventListener('dequeue', () => this.wake());
+    if (!this.config) throw new Error(`“${this.name}” is not open`);
     decoder.configure(this.config);
     this.decoder = decoder;
   }
@@ -105,6 +147,7 @@ export class WebCodecsVideoSource {
   }
 
   /** Resolves on the decoder's next output, dequeue or error; rejects when it stalls. */
+  /** @returns {Promise<void>} */
   wait() {
     return new Promise((resolve, reject) => {
       const timer = setTimeout(() => {
@@ -120,33 +163,41 @@ export class WebCodecsVideoSource {
 
   /** Queues samples while the decoder's queue and the decoded frames stay short. */
   async pump() {
-    const samples = this.track.samples;
-    while (this.fed < samples.length && !this.error && this.decoder.decodeQueueSize < DECODE_AHEAD
+    const { track, reader } = this;
+    if (!track || !reader) throw new Error(`“${this.name}” is not open`);
+    const samples = track.samples;
+    while (this.fed < samples.length && !this.error && this.decoder && this.decoder.decodeQueueSize < DECODE_AHEAD
       && this.ready.length < FRAMES_AHEAD) {
       const k = this.fed++;
       const s = samples[k];
-      const data = await this.reader.read(s.offset, s.size, `frame ${k + 1} of ${samples.length}`);
+      const data = await reader.read(s.offset, s.size, `frame ${k + 1} of ${samples.length}`);
       // EncodedVideoChunk copies the bytes, so a view into the reader's window is enough.
-      this.decoder.decode(new EncodedVideoChunk({
+      // (The decoder now: `restart` may have replaced it meanwhile.)
+      this.decoder?.decode(new EncodedVideoChunk({
         type: s.key ? 'key' : 'delta', timestamp: s.timestamp, duration: s.duration, data,
       }));
     }
   }
 
-  /** The next decoded VideoFrame in presentation order, or null when the stream is done. */
+  /**
+   * The next decoded VideoFrame in presentation order, or null when the stream is done.
+   * @returns {Promise<VideoFrame | null>}
+   */
   async decoded() {
     for (;;) {
       if (this.error) throw this.error;
-      if (this.ready.length) return this.ready.shift();
+      const frame = this.ready.shift();
+      if (frame) return frame;
+      const decoder = this.decoder;
+      if (!decoder) throw new Error(`“${this.name}” is not open`);
       if (this.fed < this.frames) {
         await this.pump();
-        if (!this.ready.length && !this.error && this.decoder.decodeQueueSize >= DECODE_AHEAD) await this.wait();
+        if (!this.ready.length && !this.error && decoder.decodeQueueSize >= DECODE_AHEAD) await this.wait();
       } else if (!this.flushed) {
         this.flushed = true;
-        const decoder = this.decoder;
         let done = false;
         decoder.flush().catch((err) => {
-          if (!this.error && decoder === this.decoder) this.error = new Error(`Cannot decode “${this.name}” with WebCodecs: ${err.message}`);
+          if (!this.error && decoder === this.decoder) this.error = new Error(`Cannot decode “${this.name}” with WebCodecs: ${err instanceof Error ? err.message : err}`);
         }).finally(() => {
           done = true;
           this.wake();
@@ -167,10 +218,12 @@ export class WebCodecsVideoSource {
   async next() {
     const frame = await this.decoded();
     if (!frame) return null;
+    const { grabber, size } = this;
+    if (!grabber || !size) throw new Error(`“${this.name}” is not open`);
     let rgba, right, t;
     try {
       await this.pump(); // keep the decoder busy while the tracker works on this frame
-      ({ rgba, right } = this.grabber.grab(frame));
+      ({ rgba, right } = grabber.grab(frame));
       t = frame.timestamp;
     } finally {
       frame.close();
@@ -178,7 +231,7 @@ export class WebCodecsVideoSource {
     const index = this.indexOf.get(t) ?? this.index;
     this.index += 1;
     this.progress = Math.min(1, this.index / this.frames);
-    return { rgba, right, width: this.size.width, height: this.size.height, name: `${index}`, index, t: t / 1e6 };
+    return { rgba, right, width: size.width, height: size.height, name: `${index}`, index, t: t / 1e6 };
   }
 
   dropFrames() {

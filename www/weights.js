@@ -1,3 +1,4 @@
+// @ts-check
 // The weight histogram of the road trackers' particles, redrawn after every frame and every
 // stage when stepping: how many particles (y) have each weight, in units of the uniform weight
 // 1/N (x: 1 = an average particle), with the ESS written above. After a resampling every
@@ -12,6 +13,7 @@ const TOP = 22;
 /**
  * Histogram of weights·N over [0, max(2, heaviest)]: { counts, hi }; bin k is centred on
  * k·hi/BINS, so equal weights (1) fall in the middle of a bin, not on an edge.
+ * @param {ArrayLike<number> & Iterable<number>} weights
  */
 export function weightHistogram(weights) {
   const n = weights.length;
@@ -27,9 +29,13 @@ export function weightHistogram(weights) {
 /**
  * Draws the histogram of `weighing` ({ weights, count, ess, group }, from the worker) on
  * `canvas`, with axes and units; `label` says after which step. Returns the caption text.
+ * @param {HTMLCanvasElement} canvas
+ * @param {{ weights: Float32Array, count: number, ess: number, group: number | null }} weighing
+ * @param {string} label
  */
 export function drawWeights(canvas, weighing, label) {
   const ctx = canvas.getContext('2d');
+  if (!ctx) throw new Error('the weights canvas has no 2-D context');
   const { width, height } = canvas;
   ctx.fillStyle = '#0b0e11';
   ctx.fillRect(0, 0, width, height);
@@ -57,6 +63,7 @@ export function drawWeights(canvas, weighing, label) {
   ctx.fillText(String(peak), 6, TOP + 10);
   ctx.fillText('0', 30, TOP + h);
   ctx.fillText('0', LEFT + 0.5 * bar - 3, TOP + h + 14);
+  /** @param {number} v */
   const at = (v) => LEFT + ((v / hi) * BINS + 0.5) * bar;
   ctx.fillText('1', at(1) - 3, TOP + h + 14);
   ctx.fillText(hi.toFixed(1), Math.min(at(hi), LEFT + w - 24), TOP + h + 14);
@@ -64,7 +71,7 @@ export function drawWeights(canvas, weighing, label) {
   ctx.fillText('particles', 6, TOP - 8);
   const n = weighing.weights.length;
   ctx.fillText(`ESS ${weighing.ess.toFixed(0)} of ${n}`, LEFT + w - 110, TOP - 8);
-  const stage = weighing.group > 0 ? `stage ${weighing.group}’s ` : '';
+  const stage = weighing.group !== null && weighing.group > 0 ? `stage ${weighing.group}’s ` : '';
   return `Weights of ${stage}${n} particles${weighing.count > n ? ` (of ${weighing.count})` : ''} ${label}: `
     + `ESS ${weighing.ess.toFixed(1)} of ${n}.`;
 }

@@ -1,3 +1,4 @@
+// @ts-check
 // The page's side of the demo's worker (worker.js): the package's own client, `TrackerWorker`
 // of lanepf/worker, connected to the demo's worker rather than the package's. The tracker is
 // opened and closed with `open` / `close`; the demo's ops (scenes, the comparison tracker,
@@ -12,8 +13,13 @@ export function connectWorker() {
   return TrackerWorker.connect({ worker });
 }
 
-/** A tracker config from the panel's options and the page's camera; a `camera` among the
- *  options would be silently replaced, so it is refused. */
+/**
+ * A tracker config from the panel's options and the page's camera; a `camera` among the
+ * options would be silently replaced, so it is refused.
+ * @param {Record<string, unknown> | null | undefined} options
+ * @param {import('../pkg/web/lanepf.js').CameraConfig} camera
+ * @returns {import('../pkg/web/lanepf.js').TrackerConfig}
+ */
 export function withCamera(options, camera) {
   if (options && 'camera' in options) {
     throw Object.assign(new Error('tracker options: `camera` comes from the camera panel, not the options'),

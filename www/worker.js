@@ -1,3 +1,4 @@
+// @ts-check
 // The demo's Web Worker: the package's own worker loop (`serve` of lanepf/worker, the one
 // `TrackerWorker` talks to) with the demo's ops beside the tracker's. The tracker is the one
 // `TrackerWorker.open` builds (`ctx.tracker`); the demo adds the simulator's scenes and test
@@ -14,16 +15,37 @@ import {
 import { topViewTable, topView } from './top-view.js';
 import { weightsByGroup, weighing } from './particle-weights.js';
 
+/** @typedef {import('../pkg/web/lanepf.js').EgoMotion} EgoMotion */
+/** @typedef {import('../pkg/web/lanepf.js').StepOptions} StepOptions */
+/** @typedef {import('../pkg/worker/serve.js').ServeContext} ServeContext */
+/**
+ * What the page asks for besides the estimate (main.js's `want()`).
+ * @typedef {{ hypotheses?: number, layers?: boolean, top?: boolean, calibration?: boolean, belief?: boolean }} Want
+ */
+/**
+ * A frame's size with what goes into `stepOptions`: its right image (stereo media) and the
+ * car's motion, when the source has them.
+ * @typedef {{ motion?: EgoMotion | null, frameRight?: Uint8Array | Uint8ClampedArray | null, width: number, height: number }} Feed
+ */
+/** @typedef {{ data: Uint8ClampedArray<ArrayBuffer>, width: number, height: number }} Frame */
+
+// The open synthetic source: a simulator scene or the test road (null: none).
+/** @type {Scene | TestRoad | null} */
 let road = null;
 // A second tracker run on the same frames, for comparison (null: none).
+/** @type {Tracker | null} */
 let compare = null;
 // The camera auto-calibrator fed every tracked frame of a video, images or the webcam (null: none).
+/** @type {Calibrator | null} */
 let calibrator = null;
 // The right image of the scene's current frame, for a stereo tracker.
+/** @type {{ rgba: Uint8ClampedArray, width: number, height: number } | null} */
 let right = null;
 // The top view's lookup table for the current camera.
+/** @type {ReturnType<typeof topViewTable> | null} */
 let topTable = null;
 
+/** @param {ServeContext} ctx */
 function requireTracker(ctx) {
   if (!ctx.tracker) throw new Error('choose a tracker first');
   return ctx.tracker;
@@ -34,8 +56,11 @@ function requireTracker(ctx) {
  * gets the frame's right image (stereo media) or the scene's right camera (without one its step
  * throws an Error saying that danescu-stereo needs a right image), every tracker the car's
  * motion when the source has it.
+ * @param {Tracker} t
+ * @param {Feed} feed
  */
 function stepOptions(t, { motion, frameRight, width, height }) {
+  /** @type {StepOptions} */
   const options = {};
   if (t.isStereo && frameRight) options.right = { data: frameRight, width, height };
   else if (t.isStereo && right) options.right = { data: right.rgba, width: right.width, height: right.height };
@@ -45,10 +70,17 @@ function stepOptions(t, { motion, frameRight, width, height }) {
   return options;
 }
 
-/** The particles' weights by group (lee-cpf's stage; 0 for the others). */
+/**
+ * The particles' weights by group (lee-cpf's stage; 0 for the others).
+ * @param {Tracker} t
+ */
 const weightsOf = (t) => weightsByGroup(t.id, t.particles(), t.particleStride);
 
-/** What the page draws of a tracker besides its estimate, on request (`want`). */
+/**
+ * What the page draws of a tracker besides its estimate, on request (`want`).
+ * @param {Tracker} t
+ * @param {Want} want
+ */
 function views(t, { hypotheses = 0, layers = false, belief = false }) {
   return {
     particles: belief ? { data: t.particles(), stride: t.particleStride } : null,
@@ -61,6 +93,9 @@ function views(t, { hypotheses = 0, layers = false, belief = false }) {
 /**
  * One whole frame through the comparison tracker: its estimate, time, particles drawn, the
  * weights and belief the page shows for it and the resampling it reported.
+ * @param {Uint8ClampedArray} rgba
+ * @param {Feed} feed
+ * @param {Want | undefined} want
  */
 function stepCompare(rgba, feed, want) {
   if (!compare) return null;
@@ -80,6 +115,10 @@ function stepCompare(rgba, feed, want) {
 /**
  * Feeds a frame to the auto-calibrator (when one is open for its size): its verdict on the
  * frame, the estimate so far, and with `want.calibration` the lines it saw, for drawing.
+ * @param {Uint8ClampedArray} rgba
+ * @param {number} width
+ * @param {number} height
+ * @param {Want | undefined} want
  */
 function calibrate(rgba, width, height, want) {
   if (!calibrator || calibrator.width !== width || calibrator.height !== height) return null;
@@ -91,14 +130,23 @@ function calibrate(rgba, width, height, want) {
   };
 }
 
-/** A result that carries the frame's pixels (and a top view) back, transferred, not copied. */
+/**
+ * A result that carries the frame's pixels (and a top view) back, transferred, not copied.
+ * @param {Frame} frame
+ * @param {{ top?: { rgba: Uint8ClampedArray<ArrayBuffer> } | null } & Record<string, unknown>} result
+ */
 function reply(frame, result) {
+  /** @type {Transferable[]} */
   const transfer = [frame.data.buffer];
   if (result.top) transfer.push(result.top.rgba.buffer);
   return { result: { frame, ...result }, transfer };
 }
 
-/** The top view of a frame when the page asks for it. */
+/**
+ * The top view of a frame when the page asks for it.
+ * @param {Frame} frame
+ * @param {Want | undefined} want
+ */
 const topOf = (frame, want) => (want?.top ? topView(topTable, frame.data, frame.width, frame.height) : null);
 
 serve({
@@ -117,8 +165,9 @@ serve({
   openScene({ name, options }) {
     road?.free();
     road = null;
-    road = new Scene(name, options ?? {});
-    return { result: { width: road.width, height: road.height, frames: road.frames, camera: road.camera() } };
+    const scene = new Scene(name, options ?? {});
+    road = scene;
+    return { result: { width: scene.width, height: scene.height, frames: scene.frames, camera: scene.camera() } };
   },
   /** The top view's lookup table for a camera (the tracker itself is `open`ed by TrackerWorker). */
   openTopView({ camera }) {
@@ -150,7 +199,7 @@ serve({
     const t0 = performance.now();
     const rgba = road.render(index);
     const ms = performance.now() - t0;
-    right = ctx.tracker?.isStereo && road.renderRight
+    right = ctx.tracker?.isStereo && road instanceof Scene
       ? { rgba: road.renderRight(index), width: road.width, height: road.height }
       : null;
     const truth = road.truth(index);
@@ -209,7 +258,8 @@ serve({
   stepStage({ frame, want }, ctx) {
     const t = requireTracker(ctx);
     const done = t.nextStep;
-    const name = t.stepNames()[done];
+    // (No frame in progress: `advance` below throws, saying so.)
+    const name = done === undefined ? '' : t.stepNames()[done];
     // The weights the histogram shows: lee-cpf's stage from the step's name.
     const group = t.id === 'lee-cpf' ? (/^stage 2/.test(name) ? 2 : /^stage 1/.test(name) ? 1 : 0) : 0;
     const t0 = performance.now();

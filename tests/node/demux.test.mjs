@@ -244,8 +244,6 @@ test('WebM: zero-size blocks, absurd Duration, TimecodeScale and frame rates are
   // 10^12 ms: 31 years.
   await assert.rejects(demuxWebm(blob(webm({ info: [el(0x4489, f64(1e12))] }))),
     /the Info element's Duration \(1000000000 s\) is not a video's length: it must be 0 to 604800 s/);
-  {
-  }
   await assert.rejects(demuxWebm(blob(webm({ info: [el(0x2ad7b1, Buffer.alloc(8, 0xff))] }))),
     /TimecodeScale \(18446744073709552000 ns a tick\) is not 1 ns to 1 s/);
   await assert.rejects(demuxWebm(blob(webm({ info: [el(0x2ad7b1, u(0))] }))), /TimecodeScale \(0 ns a tick\)/);

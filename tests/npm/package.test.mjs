@@ -308,6 +308,7 @@ test('in a Vite app under the dev server (vite)', { timeout: 180_000 }, async ()
   try {
     const deadline = Date.now() + 30_000;
     // A terminal that forces colour puts escape codes between "localhost:" and the port.
+    // eslint-disable-next-line no-control-regex -- ESC starts those codes
     while (!log.replace(/\x1b\[[0-9;]*m/g, '').includes(`:${port}`)) {
       if (dev.exitCode !== null || Date.now() > deadline) assert.fail(`vite did not start:\n${log}`);
       await new Promise((r) => setTimeout(r, 100));

@@ -82,7 +82,7 @@ export async function waitReady(url, ms) {
     try {
       if ((await request(url, 'GET', '/status')).ready) return;
     } catch (e) {
-      if (Date.now() > until) throw new Error(`WebDriver at ${url} not ready after ${ms} ms: ${e.message}`);
+      if (Date.now() > until) throw new Error(`WebDriver at ${url} not ready after ${ms} ms: ${e.message}`, { cause: e });
     }
     if (Date.now() > until) throw new Error(`WebDriver at ${url} not ready after ${ms} ms`);
     await new Promise((r) => setTimeout(r, 100));

@@ -175,7 +175,7 @@ export async function launch() {
     await session.setWindowRect({ x: 0, y: 0, width: 1280, height: 1000 });
   } catch (e) {
     kill();
-    throw new Error(`${e.message}\nWebKitWebDriver said: ${driverLog}`);
+    throw new Error(`${e.message}\nWebKitWebDriver said: ${driverLog}`, { cause: e });
   }
   return {
     name,
