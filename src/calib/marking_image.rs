@@ -15,9 +15,10 @@
 //! ```
 //!
 //! (the floor keeps dark noise from looking colourful), which tells grey road from foliage,
-//! sky and car paint (see [`super::road_colour`]). Both images are then box-averaged over s x s blocks, with s the smallest integer that brings the width
-//! to at most [`MAX_WORK_WIDTH`]: the calibrator needs line directions, not fine detail, and
-//! this keeps its cost independent of the video's resolution.
+//! sky and car paint (see [`super::road_colour`]). Both images are then box-averaged over
+//! s x s blocks, with s the smallest integer that brings the width to at most
+//! [`MAX_WORK_WIDTH`]: the calibrator needs line directions, not fine detail, and this keeps
+//! its cost independent of the video's resolution.
 
 use crate::error::Result;
 use crate::image::{check_rgba, luma, Image};
