@@ -182,6 +182,8 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
     if (typeof v === 'number') return near(v);
     if (typeof v === 'boolean') return !v;
     if (hostile.has(v)) return v;
+    // A frame's pixels: cut short, never spread (a 1280x720 frame has 3.7 million indices).
+    if (ArrayBuffer.isView(v)) return R.chance(0.5) ? v : v.subarray(0, R.int(0, v.length));
     if (Array.isArray(v)) return v.map((x) => (R.chance(0.5) ? mutate(x) : x));
     if (v && typeof v === 'object') return mutateObject(v);
     return v;
@@ -196,7 +198,8 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
       else if (r < 0.2 && keys.length) delete out[R.pick(keys)];
       else if (keys.length) {
         const k = R.pick(keys);
-        const plain = out[k] && typeof out[k] === 'object' && !hostile.has(out[k]) && !Array.isArray(out[k]);
+        const plain = out[k] && typeof out[k] === 'object' && !hostile.has(out[k]) && !Array.isArray(out[k])
+          && !ArrayBuffer.isView(out[k]);
         out[k] = plain && depth < 2
           ? mutateObject(out[k], depth + 1) : mutate(out[k]);
       }
