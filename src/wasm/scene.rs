@@ -5,7 +5,7 @@ use super::error::{self, input, Kind, Thrown};
 use super::estimate::{self, Keep};
 use super::object;
 use crate::camera::{Camera, CameraFile};
-use crate::synth::{default_camera, draw_scenario, reference_member, Eye, Scene, SCENARIOS};
+use crate::synth::{draw_scenario, reference_member, Eye, Scene, SCENARIOS};
 use crate::Error;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
@@ -93,15 +93,15 @@ impl JsScene {
             reference_member(&name, options.seed)
         }
         .map_err(error::config)?;
-        let camera = match &options.camera {
-            Some(file) => Camera::from_file(file).map_err(error::config)?,
-            None if options.drawn => member
-                .mount
-                .camera(options.width, options.height)
-                .map_err(error::config)?,
-            None => default_camera(options.width, options.height).map_err(error::config)?,
-        };
-        let scene = Scene::new(member.config, camera, options.seed).map_err(error::config)?;
+        // Without a camera, the member's own: the reference mount is the default camera.
+        let scene = match &options.camera {
+            Some(file) => {
+                let camera = Camera::from_file(file).map_err(error::config)?;
+                Scene::new(member.config, camera, options.seed)
+            }
+            None => member.scene(options.width, options.height),
+        }
+        .map_err(error::config)?;
         let frame = vec![0; scene.width() * scene.height() * 4];
         Ok(JsScene { scene, frame })
     }
