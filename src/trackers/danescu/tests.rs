@@ -234,6 +234,29 @@ fn bad_input_is_an_error_and_the_tracker_goes_on() {
     }
 }
 
+/// Renders frame `f` of `scene` in both cameras and tracks it with danescu-stereo, given the
+/// car's motion from the simulator.
+fn track_stereo_frame(
+    scene: &mut Scene,
+    tracker: &mut DanescuTracker,
+    f: u32,
+    left: &mut [u8],
+    right: &mut [u8],
+) -> DanescuEstimate {
+    let (w, h) = (scene.width(), scene.height());
+    let pose = scene.render(f, Eye::Left, left, None).unwrap();
+    scene.render(f, Eye::Right, right, None).unwrap();
+    tracker
+        .set_ego_motion(EgoMotion {
+            t_s: pose.t,
+            speed_mps: pose.speed,
+            yaw_rate: pose.yaw_rate,
+        })
+        .unwrap();
+    tracker.set_right(right, w, h).unwrap();
+    tracker.track(left, w, h).unwrap()
+}
+
 /// Runs danescu-stereo over `frames` frames of a scenario with the simulator's ego motion.
 fn run_stereo(
     name: &str,
@@ -247,17 +270,7 @@ fn run_stereo(
     let (mut left, mut right) = (vec![0; w * h * 4], vec![0; w * h * 4]);
     (0..frames)
         .map(|f| {
-            let pose = scene.render(f, Eye::Left, &mut left, None).unwrap();
-            scene.render(f, Eye::Right, &mut right, None).unwrap();
-            tracker
-                .set_ego_motion(EgoMotion {
-                    t_s: pose.t,
-                    speed_mps: pose.speed,
-                    yaw_rate: pose.yaw_rate,
-                })
-                .unwrap();
-            tracker.set_right(&right, w, h).unwrap();
-            let e = tracker.track(&left, w, h).unwrap();
+            let e = track_stereo_frame(&mut scene, &mut tracker, f, &mut left, &mut right);
             let pitch = tracker.stereo.as_ref().unwrap().pitch_change();
             (scene.truth(f), e, pitch)
         })
@@ -856,17 +869,7 @@ fn stereo_recovery(member: &crate::synth::FamilyMember, extra: &str) -> Option<u
     let mut end = None;
     let mut dark = false;
     for f in 0..member.config.frames {
-        let pose = scene.render(f, Eye::Left, &mut left, None).unwrap();
-        scene.render(f, Eye::Right, &mut right, None).unwrap();
-        tracker
-            .set_ego_motion(EgoMotion {
-                t_s: pose.t,
-                speed_mps: pose.speed,
-                yaw_rate: pose.yaw_rate,
-            })
-            .unwrap();
-        tracker.set_right(&right, w, h).unwrap();
-        let e = tracker.track(&left, w, h).unwrap();
+        let e = track_stereo_frame(&mut scene, &mut tracker, f, &mut left, &mut right);
         let truth = scene.truth(f);
         let blackout = truth.state["blackout"] > 0.5;
         // The 3-D data of a blacked-out frame (matches of sensor noise) does not count.
