@@ -28,14 +28,22 @@ use std::path::{Path, PathBuf};
 
 /// Each row: a tracker id and the options it runs with (JSON; `{}` the defaults), so that a
 /// named option beyond a paper is reported beside the paper's method.
-const TRACKERS: [(&str, &str); 9] = [
+const TRACKERS: [(&str, &str); 11] = [
     ("adachi-mmpf", "{}"),
     ("adachi-mmpf", r#"{"lane_shape": "curved"}"#),
     ("adachi-mmpf", r#"{"relock_share": 0.05}"#),
     ("danescu-mono", "{}"),
     ("danescu-mono", r#"{"relock_share": 0.1}"#),
+    (
+        "danescu-mono",
+        r#"{"relock_share": 0.1, "adjacent_lanes": true}"#,
+    ),
     ("lee-cpf", "{}"),
     ("lee-cpf", r#"{"relock_share": 0.05}"#),
+    (
+        "lee-cpf",
+        r#"{"relock_share": 0.05, "adjacent_lanes": true}"#,
+    ),
     ("liu-ppf", "{}"),
     ("liu-ppf-nokernel", "{}"),
 ];
@@ -222,10 +230,11 @@ fn summary(metrics: &Metrics) -> String {
     let pct = |r: Option<f64>| r.map_or("n/a".into(), |r| format!("{:.1}", 100.0 * r));
     match metrics {
         Metrics::Caltech(r) => format!(
-            "ego {} / {} FP, all {}",
+            "ego {} / {} FP, all {} / {} FP",
             pct(r.ego_lanes.correct_rate),
             pct(r.ego_lanes.false_positive_rate),
-            pct(r.all_lanes.correct_rate)
+            pct(r.all_lanes.correct_rate),
+            pct(r.all_lanes.false_positive_rate)
         ),
         Metrics::Culane(r) => format!(
             "F1 {:.2} (P {} R {})",

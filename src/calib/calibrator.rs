@@ -321,6 +321,13 @@ impl Calibrator {
             .map(move |p| [p[0] as f64 * s, p[1] as f64 * s])
     }
 
+    /// The last frame's working images: marking intensity and saturation (see
+    /// [`super::marking_image`]), and the block size s they were averaged over (working pixel
+    /// (i, j) covers full-resolution pixels s i .. s i + s - 1, s j .. s j + s - 1).
+    pub fn working_images(&self) -> (&Image<u8>, &Image<u8>, usize) {
+        (&self.work, &self.saturation, self.scale)
+    }
+
     /// Uses `vp` (undistorted pixels), where a known camera's road vanishes, as the prior of
     /// every frame instead of learning it from the frames: the ego pair is then the pair of
     /// lines through it nearest the middle, from the first frame on. For a lane detector

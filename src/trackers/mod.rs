@@ -4,7 +4,8 @@
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
 //! `config.rs` the [`TrackerConfig`], `defaults.rs` / `ranges.rs` every option's default and
 //! range, `ego_motion.rs`, `layer.rs`, `stage_times.rs` the types the trait speaks,
-//! `lane_change.rs` the lane-change rule trackers share, `relock.rs` the detector proposal, and
+//! `lane_change.rs` the lane-change rule trackers share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the
+//! neighbouring lanes found beside an ego lane, and
 //! one folder per paper.
 //!
 //! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
@@ -13,6 +14,7 @@
 //! available ones.
 
 pub mod adachi;
+pub mod adjacent_lanes;
 mod config;
 pub mod danescu;
 mod defaults;

@@ -59,6 +59,12 @@ impl RelockDetector {
         self.detection
     }
 
+    /// The last frame's marking intensity and saturation images and their block size (see
+    /// [`Calibrator::working_images`]).
+    pub fn working_images(&self) -> (&crate::image::Image<u8>, &crate::image::Image<u8>, usize) {
+        self.calibrator.working_images()
+    }
+
     /// Forgets every frame (a new video).
     pub fn reset(&mut self) {
         self.calibrator.reset();

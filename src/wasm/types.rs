@@ -337,6 +337,9 @@ export interface LeeOptions {
   /** Restart after this many frames with no marking near either boundary (2; 0: never). */
   lost_restart?: number;
   relock_share?: number;
+  /** Report the lanes beside the ego lane (left-adjacent, right-adjacent) where markings run
+   *  beside an ego boundary at a lane's width (not in the paper; false, off). */
+  adjacent_lanes?: boolean;
   /** Kalman smoothing of the output (true). */
   kalman?: boolean;
   /** Kalman process noise, same order as process_sd ([0.003, 0.03, 0.01, 0.0005, 2, 0.0002]). */
@@ -479,6 +482,9 @@ export interface DanescuOptions {
   /** Share of the particles replaced each frame by draws around the ego pair a bottom-up
    *  line detector finds (not in the paper; 0, off; 0 to 0.5). */
   relock_share?: number;
+  /** Report the lanes beside the ego lane (left-adjacent, right-adjacent) where markings run
+   *  beside an ego boundary at a lane's width (not in the paper; false, off). */
+  adjacent_lanes?: boolean;
 }
 
 /**

@@ -119,6 +119,11 @@ pub struct DanescuConfig {
     /// the generic one of `init_fraction` (ours, beyond the paper; 0: off, the paper's
     /// filter; see [`crate::trackers::relock`]).
     pub relock_share: f64,
+    /// Report the lanes beside the ego lane (`left-adjacent`, `right-adjacent`) where the
+    /// bottom-up detector's markings run beside an ego boundary at a lane's width
+    /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, which follows the ego lane
+    /// only; off by default).
+    pub adjacent_lanes: bool,
 }
 
 impl Default for DanescuConfig {
@@ -176,6 +181,7 @@ impl Default for DanescuConfig {
             valid_support: 0.15,
             valid_cluster_share: 0.3,
             relock_share: 0.0,
+            adjacent_lanes: false,
         }
     }
 }

@@ -55,6 +55,7 @@ pub mod elevation;
 pub mod model;
 pub mod stereo;
 
+use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
 use super::{
@@ -187,7 +188,7 @@ impl DanescuTracker {
         let camera = config.validate()?;
         let danescu = DanescuConfig::from_options(&config.options, id)?;
         let cues = ImageCues::new(&camera, &danescu)?;
-        let detector = if danescu.relock_share > 0.0 {
+        let detector = if danescu.relock_share > 0.0 || danescu.adjacent_lanes {
             Some(RelockDetector::new(&camera)?)
         } else {
             None
@@ -521,7 +522,15 @@ impl DanescuTracker {
     /// The estimate as the shared output type.
     pub fn to_lane_estimate(&self, e: &DanescuEstimate) -> LaneEstimate {
         let lane = &e.lane;
-        let boundaries = self.boundaries(lane);
+        let mut boundaries = self.boundaries(lane);
+        if let Some(d) = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.adjacent_lanes)
+        {
+            let adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            boundaries.extend(adjacent);
+        }
         let mut state: std::collections::BTreeMap<String, f64> = Lane3d::NAMES
             .iter()
             .zip(lane.to_array())

@@ -106,6 +106,11 @@ pub struct LeeConfig {
     /// that lets a cloud stuck on a wrong lane re-lock (ours, beyond the paper; 0: off, the
     /// paper's filter).
     pub relock_share: f64,
+    /// Report the lanes beside the ego lane (`left-adjacent`, `right-adjacent`) where the
+    /// bottom-up detector's markings run beside an ego boundary at a lane's width
+    /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, which follows the ego lane
+    /// only; off by default).
+    pub adjacent_lanes: bool,
     /// Kalman smoothing of the CPF output (Fig. 4).
     pub kalman: bool,
     /// Kalman process noise per frame, same order as `process_sd`.
@@ -159,6 +164,7 @@ impl Default for LeeConfig {
             start_fresh: 0.2,
             lost_restart: 2,
             relock_share: 0.0,
+            adjacent_lanes: false,
             kalman: true,
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],

@@ -50,6 +50,7 @@ pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
 
+use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
@@ -329,7 +330,7 @@ impl LeeTracker {
             None
         };
         let smoother = Smoother::new(lee.kalman_process_sd, lee.kalman_measurement_sd);
-        let detector = if lee.relock_share > 0.0 {
+        let detector = if lee.relock_share > 0.0 || lee.adjacent_lanes {
             Some(RelockDetector::new(&camera)?)
         } else {
             None
@@ -746,7 +747,15 @@ impl LeeTracker {
     pub fn to_lane_estimate(&self, e: &LeeEstimate) -> LaneEstimate {
         let s = e.state;
         let curve = Curve::new(s.c, s.delta, self.config.spiral_length_m);
-        let boundaries = self.boundaries(&s);
+        let mut boundaries = self.boundaries(&s);
+        if let Some(d) = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.adjacent_lanes)
+        {
+            let adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            boundaries.extend(adjacent);
+        }
         let r = e.raw;
         let state = [
             ("lee.psi", s.psi),
