@@ -3,7 +3,8 @@
 //!
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
 //! `config.rs` the [`TrackerConfig`], `defaults.rs` / `ranges.rs` every option's default and
-//! range, `ego_motion.rs`, `layer.rs`, `stage_times.rs` the types the trait speaks,
+//! range, `ego_motion.rs`, `layer.rs` the types the trait speaks (and the filter core's
+//! [`StageTimes`]),
 //! `lane_change.rs` the lane-change rule trackers share, `relock.rs` the detector proposal, and
 //! one folder per paper.
 //!
@@ -27,11 +28,12 @@ mod option_fuzz;
 mod ranges;
 mod registry;
 pub mod relock;
-mod stage_times;
 #[cfg(test)]
 mod tests;
 mod tracker;
 
+pub(crate) use crate::filter::now;
+pub use crate::filter::StageTimes;
 pub(crate) use config::parse_options;
 pub use config::{TrackerConfig, MAX_PARTICLES};
 pub use defaults::default_options;
@@ -40,8 +42,6 @@ pub use hypothesis::{spread_indices, Hypothesis};
 pub use layer::{Layer, PlaneAxes};
 pub use ranges::{option_ranges, OptionRange};
 pub use registry::{create, TRACKER_IDS};
-pub(crate) use stage_times::now;
-pub use stage_times::StageTimes;
 pub use tracker::Tracker;
 pub(crate) use tracker::{check_frame, no_frame_in_progress};
 
