@@ -4,6 +4,7 @@
 use super::{EgoMotion, Hypothesis, Layer, StageTimes};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
+use crate::filter::Scheduled;
 use crate::lane::LaneEstimate;
 
 /// A lane tracker: one frame in, one estimate out.
@@ -114,6 +115,21 @@ pub(crate) fn check_frame(camera: &Camera, rgba: &[u8], width: usize, height: us
         )));
     }
     crate::image::check_rgba(rgba, width, height)
+}
+
+/// [`Tracker::advance`] of a tracker on the filter core's stepper: the next step of its
+/// schedule, and after the last the estimate as `output` makes it the shared type.
+///
+/// # Errors
+/// [`Error::State`] when no frame is in progress.
+pub(crate) fn advance_scheduled<T: Scheduled>(
+    tracker: &mut T,
+    output: impl FnOnce(&T, &T::Estimate) -> LaneEstimate,
+) -> Result<Option<LaneEstimate>> {
+    if !tracker.stepper().in_progress() {
+        return Err(no_frame_in_progress());
+    }
+    Ok(tracker.advance_step().map(|e| output(tracker, &e)))
 }
 
 /// The error of [`Tracker::advance`] without a frame in progress.
