@@ -43,6 +43,6 @@ pub use layer::{Layer, PlaneAxes};
 pub use ranges::{option_ranges, OptionRange};
 pub use registry::{create, TRACKER_IDS};
 pub use tracker::Tracker;
-pub(crate) use tracker::{advance_scheduled, check_frame, no_frame_in_progress};
+pub(crate) use tracker::{advance_scheduled, check_frame};
 
 use crate::error::{Error, Result};

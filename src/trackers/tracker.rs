@@ -133,6 +133,6 @@ pub(crate) fn advance_scheduled<T: Scheduled>(
 }
 
 /// The error of [`Tracker::advance`] without a frame in progress.
-pub(crate) fn no_frame_in_progress() -> Error {
+fn no_frame_in_progress() -> Error {
     Error::State("no frame in progress: call beginFrame (begin_frame in Rust) first".into())
 }
