@@ -13,9 +13,13 @@
 //!
 //! The stepper also keeps whether the next frame is a first frame (after construction,
 //! [`Stepper::restart`] or a tracker's own restart), which a [`FirstFrame::WeighFirst`]
-//! schedule runs differently (see [`super::schedule`]).
+//! schedule runs differently (see [`super::schedule`]), and the record of the resampling
+//! decisions of the last `step_frame` or `advance_step` ([`Stepper::resamplings`]): after
+//! every `Resample` and `ResampleBetween` it takes the filter's decision
+//! ([`ParticleFilter::take_decision`]), in the order the filters made them.
 
 use super::particle_filter::ParticleFilter;
+use super::resampling_log::ResampleDecision;
 use super::schedule::{FirstFrame, Op, Pass, Schedule};
 use super::stage_times::{now, StageTimes};
 use crate::error::{Error, Result};
@@ -38,6 +42,10 @@ pub struct Stepper {
     frame: Option<Progress>,
     first_next: bool,
     last: StageTimes,
+    /// The resampling decisions of the frame (in progress or last).
+    resamplings: Vec<ResampleDecision>,
+    /// Where the last call's decisions start in `resamplings` (0 after a whole frame).
+    call_from: usize,
 }
 
 impl Default for Stepper {
@@ -53,6 +61,8 @@ impl Stepper {
             frame: None,
             first_next: true,
             last: StageTimes::default(),
+            resamplings: Vec::new(),
+            call_from: 0,
         }
     }
 
@@ -61,6 +71,8 @@ impl Stepper {
     pub fn begin(&mut self, cues: StageTimes) {
         let first = self.first_next;
         self.first_next = false;
+        self.resamplings.clear();
+        self.call_from = 0;
         self.frame = Some(Progress {
             next: 0,
             first,
@@ -75,9 +87,19 @@ impl Stepper {
         self.first_next = true;
     }
 
-    /// Forgets the frame in progress.
+    /// Forgets the frame in progress and the resampling decisions.
     pub fn abandon(&mut self) {
         self.frame = None;
+        self.resamplings.clear();
+        self.call_from = 0;
+    }
+
+    /// The resampling decisions of the last [`Scheduled::advance_step`] (that step's) or
+    /// [`Scheduled::step_frame`] (the whole frame's), in the order the filters made them;
+    /// empty after [`Stepper::begin`] and [`Stepper::abandon`]. A first frame's start-up
+    /// rounds report theirs; an operation a first frame skips reports none.
+    pub fn resamplings(&self) -> &[ResampleDecision] {
+        &self.resamplings[self.call_from..]
     }
 
     /// Index of the next step of the frame in progress; `None` when none is in progress.
@@ -188,7 +210,9 @@ pub trait Scheduled {
     /// step, `None` before it or when no frame is in progress.
     fn advance_step(&mut self) -> Option<Self::Estimate> {
         let schedule = self.schedule();
-        let frame = self.stepper_mut().frame.as_mut()?;
+        let stepper = self.stepper_mut();
+        stepper.call_from = stepper.resamplings.len();
+        let frame = stepper.frame.as_mut()?;
         let step = frame.next;
         frame.next += 1;
         let first = frame.first;
@@ -236,6 +260,7 @@ pub trait Scheduled {
         }
         loop {
             if let Some(estimate) = self.advance_step() {
+                self.stepper_mut().call_from = 0;
                 return Ok(estimate);
             }
         }
@@ -256,6 +281,14 @@ fn run<T: Scheduled + ?Sized>(tracker: &mut T, op: Op, pass: Pass) -> Option<T::
         Op::Estimate => estimate = Some(tracker.estimate()),
     }
     tracker.stepper_mut().charge(op, now() - t);
+    if let Op::Resample(k) | Op::ResampleBetween(k) = op {
+        if let Some(d) = tracker
+            .filter_mut(k)
+            .and_then(ParticleFilter::take_decision)
+        {
+            tracker.stepper_mut().resamplings.push(d);
+        }
+    }
     estimate
 }
 
@@ -357,8 +390,11 @@ mod tests {
             &mut self.stepper
         }
         fn filter_mut(&mut self, stage: usize) -> Option<&mut ParticleFilter<f64>> {
-            self.log.push((Op::Resample(stage), Pass::Frame));
             self.filters.get_mut(stage)
+        }
+        fn resample(&mut self, stage: usize) {
+            self.log.push((Op::Resample(stage), Pass::Frame));
+            self.filters[stage].resample();
         }
         fn start_rounds(&self) -> usize {
             2
@@ -491,5 +527,46 @@ mod tests {
         t.stepper_mut().abandon();
         assert!(t.advance_step().is_none() && !t.stepper().in_progress());
         assert_eq!(t.stepper().times(), s, "the last finished frame's");
+    }
+
+    #[test]
+    fn the_resampling_decisions_of_the_last_call_are_kept_in_order() {
+        use crate::filter::ResampleRule;
+        let mut t = Toy::new();
+        t.step_frame(|t| t.begin(0)).unwrap();
+        // First frame: the start rounds' resamplings of stage 1, of stage 2, then stage 2's
+        // own (stage 1's own is skipped: nothing weighed yet).
+        let rules: Vec<(ResampleRule, usize)> = t
+            .stepper()
+            .resamplings()
+            .iter()
+            .map(|d| (d.rule, d.particles))
+            .collect();
+        let (inject, ess) = ((ResampleRule::Injection, 50), (ResampleRule::EssBelow, 40));
+        assert_eq!(rules, [inject, inject, ess, ess, ess]);
+        t.begin(1).unwrap();
+        assert!(
+            t.stepper().resamplings().is_empty(),
+            "begin resamples nothing"
+        );
+        let mut per_step = Vec::new();
+        while {
+            let done = t.advance_step().is_some();
+            per_step.push(t.stepper().resamplings().to_vec());
+            !done
+        } {}
+        let counts: Vec<usize> = per_step.iter().map(Vec::len).collect();
+        assert_eq!(counts, [1, 0, 0, 0, 0, 1]);
+        assert_eq!(per_step[0][0].rule, ResampleRule::Injection);
+        let d = per_step[5][0];
+        assert_eq!(d.threshold, Some(20.0));
+        assert_eq!(d.resampled, d.ess < 20.0);
+        // The same frame whole gives the same decisions, all of them.
+        let mut whole = Toy::new();
+        whole.step_frame(|t| t.begin(0)).unwrap();
+        whole.step_frame(|t| t.begin(1)).unwrap();
+        assert_eq!(whole.stepper().resamplings(), [per_step[0][0], d]);
+        whole.stepper_mut().abandon();
+        assert!(whole.stepper().resamplings().is_empty());
     }
 }

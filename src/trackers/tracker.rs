@@ -4,7 +4,7 @@
 use super::{EgoMotion, Hypothesis, Layer, StageTimes};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
-use crate::filter::Scheduled;
+use crate::filter::{ResampleDecision, Scheduled};
 use crate::lane::LaneEstimate;
 
 /// A lane tracker: one frame in, one estimate out.
@@ -98,6 +98,13 @@ pub trait Tracker {
     /// progress.
     fn next_step(&self) -> Option<usize> {
         None
+    }
+    /// The resampling decisions of the last [`Tracker::step`] (the whole frame's) or
+    /// [`Tracker::advance`] (that step's), as its filters made them, in order; empty after
+    /// [`Tracker::begin_frame`] and [`Tracker::reset`] (the schedule's record,
+    /// [`crate::filter::Stepper::resamplings`]).
+    fn resamplings(&self) -> &[ResampleDecision] {
+        &[]
     }
 }
 

@@ -46,8 +46,8 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
     model_probabilities, FilterConfig, FirstFrame, Injection, MarkovChain, MeasurementModel, Op,
-    ParticleFilter, Pass, Regime, ResamplePolicy, Resampler, Schedule, Scheduled, Stepper,
-    SwitchingMotion,
+    ParticleFilter, Pass, Regime, ResampleDecision, ResamplePolicy, Resampler, Schedule, Scheduled,
+    Stepper, SwitchingMotion,
 };
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
 use config::AdachiConfig;
@@ -507,6 +507,10 @@ impl Tracker for AdachiTracker {
 
     fn next_step(&self) -> Option<usize> {
         self.stepper.next_step()
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
     }
 }
 

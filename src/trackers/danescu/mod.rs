@@ -64,7 +64,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
     FilterConfig, FirstFrame, Injection, Mbsas, MeasurementModel, Op, ParticleFilter, Pass,
-    ResamplePolicy, Resampler, Schedule, Scheduled, Stepper,
+    ResampleDecision, ResamplePolicy, Resampler, Schedule, Scheduled, Stepper,
 };
 use crate::lane::{
     sample_road_curve, Boundary, Delimiter, Edge, Lane3d, LaneCamera, LaneEstimate, Role, Side,
@@ -733,6 +733,10 @@ impl Tracker for DanescuTracker {
 
     fn next_step(&self) -> Option<usize> {
         self.stepper.next_step()
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
     }
 }
 

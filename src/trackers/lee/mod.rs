@@ -57,7 +57,8 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
     expectation, FilterConfig, FirstFrame, InitialDistribution, Injection, MeasurementModel, Op,
-    ParticleFilter, Pass, ResamplePolicy, Resampler, Schedule, Scheduled, Stepper,
+    ParticleFilter, Pass, ResampleDecision, ResamplePolicy, Resampler, Schedule, Scheduled,
+    Stepper,
 };
 use crate::image::{luma, Image};
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
@@ -698,6 +699,10 @@ impl Tracker for LeeTracker {
 
     fn next_step(&self) -> Option<usize> {
         LeeTracker::next_step(self)
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
     }
 }
 

@@ -40,8 +40,8 @@ use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, Tracker
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
-    FilterConfig, FirstFrame, Injection, Op, ParticleFilter, Pass, ResamplePolicy, Resampler,
-    Schedule, Scheduled, Stepper,
+    FilterConfig, FirstFrame, Injection, Op, ParticleFilter, Pass, ResampleDecision,
+    ResamplePolicy, Resampler, Schedule, Scheduled, Stepper,
 };
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, LinearParabolic, Role};
 use crate::math;
@@ -568,6 +568,10 @@ impl Tracker for LiuTracker {
 
     fn next_step(&self) -> Option<usize> {
         self.stepper.next_step()
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
     }
 }
 
