@@ -6,7 +6,10 @@
 //! range, `ego_motion.rs`, `layer.rs` the types the trait speaks (and the filter core's
 //! [`StageTimes`]),
 //! `lane_change.rs` the lane-change rule trackers share, `relock.rs` the detector proposal, and
-//! one folder per paper.
+//! one folder per paper. Each paper's tracker is its image cues, its models and its frame
+//! schedule: a [`crate::filter::Schedule`] whose operations it implements
+//! ([`crate::filter::Scheduled`]) and the filter core's stepper runs, whole (`step`) or one
+//! step at a time (`begin_frame`, `advance`).
 //!
 //! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
 //! `danescu-stereo`, `danescu-mono`. An id is listed in [`TRACKER_IDS`] only once its tracker
