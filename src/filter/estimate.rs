@@ -42,6 +42,25 @@ pub fn weighted_mean<S, const D: usize>(
     acc
 }
 
+/// sum_i w_i f(x_i) for weights that sum to one (a filter's normalised weights): the estimate
+/// x = sum_i w_i x_i of Lee's Algorithm 1. Unlike [`weighted_mean`] it neither skips zero
+/// weights nor divides by the total, which is 1 only up to rounding (so the two differ in the
+/// last bits).
+pub fn expectation<S, const D: usize>(
+    states: &[S],
+    weights: &[f64],
+    f: impl Fn(&S) -> [f64; D],
+) -> [f64; D] {
+    let mut acc = [0.0; D];
+    for (s, &w) in states.iter().zip(weights) {
+        let v = f(s);
+        for k in 0..D {
+            acc[k] += w * v[k];
+        }
+    }
+    acc
+}
+
 /// Index of the highest weight (the first one on ties); 0 for an empty slice.
 pub fn map_index(weights: &[f64]) -> usize {
     let mut best = 0;
@@ -196,6 +215,12 @@ mod tests {
         let w = [0.5, 0.25, 0.25];
         let m = weighted_mean(&states, &w, |&x| [x, x * x]);
         assert_eq!(m, [0.5 + 0.5 + 1.0, 0.5 + 1.0 + 4.0]);
+        assert_eq!(expectation(&states, &w, |&x| [x, x * x]), m);
+        // Weights that do not sum to one: the mean divides by the total, the expectation
+        // does not.
+        let half = [0.25, 0.125, 0.125];
+        assert_eq!(weighted_mean(&states, &half, |&x| [x]), [2.0]);
+        assert_eq!(expectation(&states, &half, |&x| [x]), [1.0]);
         assert_eq!(map_index(&w), 0);
         assert_eq!(map_index(&[0.1, 0.7, 0.2]), 1);
     }

@@ -17,7 +17,7 @@
 
 use super::model::{InitialDistribution, MeasurementModel, MotionModel};
 use super::resample::{ResamplePolicy, Resampler};
-use super::resampling_log::{self, ResampleDecision, ResampleRule};
+use super::resampling_log::{ResampleDecision, ResampleRule};
 use super::rng::Rng;
 use super::weights::{effective_sample_size, normalise};
 use crate::error::{require_finite, Error, Result};
@@ -74,6 +74,8 @@ pub struct ParticleFilter<S> {
     ess: f64,
     log_total: f64,
     degenerate: bool,
+    /// The last resampling decision, until [`ParticleFilter::take_decision`].
+    decision: Option<ResampleDecision>,
 }
 
 impl<S: Clone> ParticleFilter<S> {
@@ -143,6 +145,7 @@ impl<S: Clone> ParticleFilter<S> {
             ess: n as f64,
             log_total: 0.0,
             degenerate: false,
+            decision: None,
         })
     }
 
@@ -199,6 +202,12 @@ impl<S: Clone> ParticleFilter<S> {
     /// (Danescu eq. 15 leaves them out of the estimate).
     pub fn injected(&self) -> usize {
         self.injected
+    }
+    /// The decision of the last [`ParticleFilter::resample`] or
+    /// [`ParticleFilter::resample_between_stages`], once (`None` until the next one): the
+    /// [`Stepper`](super::Stepper) takes it after each resampling operation of a schedule.
+    pub fn take_decision(&mut self) -> Option<ResampleDecision> {
+        self.decision.take()
     }
     /// The settings.
     pub fn config(&self) -> &FilterConfig {
@@ -268,7 +277,7 @@ impl<S: Clone> ParticleFilter<S> {
     /// weights are equal and no particle counts as injected.
     pub fn resample_between_stages(&mut self) {
         let n = self.len();
-        resampling_log::note(ResampleDecision {
+        self.decision = Some(ResampleDecision {
             rule: ResampleRule::BetweenStages,
             ess: self.ess,
             particles: n,
@@ -302,7 +311,7 @@ impl<S: Clone> ParticleFilter<S> {
             (0, ResamplePolicy::EssBelow(f)) => (ResampleRule::EssBelow, Some(f * n as f64)),
             (0, ResamplePolicy::Never) => (ResampleRule::Never, None),
         };
-        resampling_log::note(ResampleDecision {
+        self.decision = Some(ResampleDecision {
             rule,
             ess: self.ess,
             particles: n,

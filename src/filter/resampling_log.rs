@@ -5,17 +5,17 @@
 //!
 //! [`ParticleFilter::resample`](super::ParticleFilter::resample) and
 //! [`ParticleFilter::resample_between_stages`](super::ParticleFilter::resample_between_stages)
-//! note every decision here; [`recorded`] runs a closure (e.g. a tracker's `step` or `advance`)
-//! and returns the decisions made inside it, in order. Outside [`recorded`] nothing is kept.
-//! The record is per thread and only observes: a filter decides and draws exactly the same with
-//! or without it, so the runs stay bit-identical.
+//! keep their decision until [`ParticleFilter::take_decision`](super::ParticleFilter::take_decision);
+//! the [`Stepper`](super::Stepper) takes it after every resampling operation of a tracker's
+//! schedule and keeps the decisions of the last `step` or `advance` in order
+//! ([`Stepper::resamplings`](super::Stepper::resamplings), `Tracker::resamplings`). The record
+//! only observes: a filter decides and draws exactly the same whether or not it is read.
 //!
-//! Why a record beside the filter rather than a method of every tracker: the decision is the
-//! core's, and each tracker composes one or more filters (Lee's cascade has two) in its own
-//! schedule; the record sees every filter a call runs without each tracker re-exporting it.
+//! Why the schedule owns the record: the decision is the core's, and the schedule is where the
+//! core knows which filter resamples when (Lee's cascade has two filters, a first frame has its
+//! start-up rounds), so no tracker re-exports its filters' decisions.
 
 use serde::Serialize;
-use std::cell::RefCell;
 
 /// The rule a resampling decision followed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -49,39 +49,6 @@ pub struct ResampleDecision {
     pub resampled: bool,
 }
 
-thread_local! {
-    /// The decisions of the [`recorded`] call in progress (`None`: none is).
-    static LOG: RefCell<Option<Vec<ResampleDecision>>> = const { RefCell::new(None) };
-}
-
-/// Notes a decision when a [`recorded`] call is in progress.
-pub(super) fn note(decision: ResampleDecision) {
-    LOG.with(|log| {
-        if let Some(list) = log.borrow_mut().as_mut() {
-            list.push(decision);
-        }
-    });
-}
-
-/// Runs `f` and returns its result with every resampling decision made inside it, in order.
-/// A call inside another keeps its own decisions (the outer call does not see them).
-pub fn recorded<R>(f: impl FnOnce() -> R) -> (R, Vec<ResampleDecision>) {
-    /// Puts the outer call's record back, also when `f` unwinds.
-    struct Restore(Option<Vec<ResampleDecision>>);
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            let outer = self.0.take();
-            LOG.with(|log| *log.borrow_mut() = outer);
-        }
-    }
-    let outer = LOG.with(|log| log.borrow_mut().replace(Vec::new()));
-    let restore = Restore(outer);
-    let result = f();
-    let mine = LOG.with(|log| log.borrow_mut().take()).unwrap_or_default();
-    drop(restore);
-    (result, mine)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,83 +78,60 @@ mod tests {
         pf.weigh_with(&ll).unwrap();
     }
 
+    /// `resample` then the decision it left.
+    fn decide(pf: &mut ParticleFilter<f64>) -> (bool, Option<ResampleDecision>) {
+        let resampled = pf.resample();
+        (resampled, pf.take_decision())
+    }
+
     #[test]
-    fn each_decision_is_recorded_with_the_ess_it_tested() {
+    fn each_decision_is_kept_with_the_ess_it_tested_and_taken_once() {
         let mut pf = filter(ResamplePolicy::EssBelow(0.5), Injection::None);
-        let (skipped, log) = recorded(|| pf.resample());
+        assert_eq!(pf.take_decision(), None, "nothing decided yet");
+        let (skipped, decision) = decide(&mut pf);
         assert!(!skipped);
         assert_eq!(
-            log,
-            [ResampleDecision {
+            decision,
+            Some(ResampleDecision {
                 rule: ResampleRule::EssBelow,
                 ess: 100.0,
                 particles: 100,
                 threshold: Some(50.0),
                 resampled: false,
-            }]
+            })
         );
+        assert_eq!(pf.take_decision(), None, "taken once");
         skew(&mut pf);
         let ess = pf.ess();
         assert!(ess < 50.0, "ESS {ess}");
-        let (done, log) = recorded(|| {
-            let a = pf.resample();
-            pf.resample_between_stages();
-            a
-        });
+        let (done, decision) = decide(&mut pf);
         assert!(done);
-        assert_eq!(log.len(), 2);
-        assert_eq!((log[0].ess, log[0].resampled), (ess, true));
-        assert_eq!(log[1].rule, ResampleRule::BetweenStages);
-        assert_eq!((log[1].ess, log[1].threshold), (100.0, None));
+        let d = decision.unwrap();
+        assert_eq!((d.ess, d.resampled), (ess, true));
+        pf.resample_between_stages();
+        let d = pf.take_decision().unwrap();
+        assert_eq!(d.rule, ResampleRule::BetweenStages);
+        assert_eq!((d.ess, d.threshold), (100.0, None));
 
         let mut pf = filter(ResamplePolicy::EssBelow(0.5), Injection::Count(10));
-        let (_, log) = recorded(|| pf.resample());
-        assert_eq!(log[0].rule, ResampleRule::Injection);
-        assert!(log[0].resampled && log[0].threshold.is_none());
+        let d = decide(&mut pf).1.unwrap();
+        assert_eq!(d.rule, ResampleRule::Injection);
+        assert!(d.resampled && d.threshold.is_none());
         let mut pf = filter(ResamplePolicy::Never, Injection::None);
         skew(&mut pf);
-        let (_, log) = recorded(|| pf.resample());
-        assert_eq!(
-            (log[0].rule, log[0].resampled),
-            (ResampleRule::Never, false)
-        );
+        let d = decide(&mut pf).1.unwrap();
+        assert_eq!((d.rule, d.resampled), (ResampleRule::Never, false));
     }
 
     #[test]
-    fn nothing_is_kept_outside_a_recorded_call_and_nested_calls_keep_their_own() {
-        let mut pf = filter(ResamplePolicy::Always, Injection::None);
-        pf.resample();
-        let ((inner, ()), outer) = recorded(|| {
-            pf.resample();
-            let inner = recorded(|| {
-                pf.resample();
-                pf.resample();
-            });
-            pf.resample();
-            (inner.1, inner.0)
-        });
-        assert_eq!(inner.len(), 2);
-        assert_eq!(
-            outer.len(),
-            2,
-            "the outer call sees its own two, not the inner ones"
-        );
-        assert!(outer
-            .iter()
-            .all(|d| d.rule == ResampleRule::Always && d.resampled));
-        assert!(recorded(|| ()).1.is_empty());
-    }
-
-    #[test]
-    fn recording_changes_nothing_the_filter_does() {
-        let run = |record: bool| {
+    fn reading_the_decisions_changes_nothing_the_filter_does() {
+        let run = |read: bool| {
             let mut pf = filter(ResamplePolicy::EssBelow(0.5), Injection::Count(5));
             for _ in 0..4 {
                 skew(&mut pf);
-                if record {
-                    recorded(|| pf.resample());
-                } else {
-                    pf.resample();
+                pf.resample();
+                if read {
+                    assert!(pf.take_decision().is_some());
                 }
                 pf.inject(&Uniform);
             }

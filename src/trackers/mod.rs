@@ -3,10 +3,13 @@
 //!
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
 //! `config.rs` the [`TrackerConfig`], `defaults.rs` / `ranges.rs` every option's default and
-//! range, `ego_motion.rs`, `layer.rs`, `stage_times.rs` the types the trait speaks,
-//! `lane_change.rs` the lane-change rule trackers share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the
-//! neighbouring lanes found beside an ego lane, and
-//! one folder per paper.
+//! range, `ego_motion.rs`, `layer.rs` the types the trait speaks (and the filter core's
+//! [`StageTimes`]), `lane_change.rs` the lane-change rule trackers share, `relock.rs` the
+//! detector proposal, `adjacent_lanes.rs` the neighbouring lanes found beside an ego lane, and
+//! one folder per paper. Each paper's tracker is its image cues, its models and its frame
+//! schedule: a [`crate::filter::Schedule`] whose operations it implements
+//! ([`crate::filter::Scheduled`]) and the filter core's stepper runs, whole (`step`) or one
+//! step at a time (`begin_frame`, `advance`).
 //!
 //! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
 //! `danescu-stereo`, `danescu-mono`. An id is listed in [`TRACKER_IDS`] only once its tracker
@@ -29,11 +32,12 @@ mod option_fuzz;
 mod ranges;
 mod registry;
 pub mod relock;
-mod stage_times;
 #[cfg(test)]
 mod tests;
 mod tracker;
 
+pub(crate) use crate::filter::now;
+pub use crate::filter::StageTimes;
 pub(crate) use config::parse_options;
 pub use config::{TrackerConfig, MAX_PARTICLES};
 pub use defaults::default_options;
@@ -42,9 +46,7 @@ pub use hypothesis::{spread_indices, Hypothesis};
 pub use layer::{Layer, PlaneAxes};
 pub use ranges::{option_ranges, OptionRange};
 pub use registry::{create, TRACKER_IDS};
-pub(crate) use stage_times::now;
-pub use stage_times::StageTimes;
 pub use tracker::Tracker;
-pub(crate) use tracker::{check_frame, no_frame_in_progress};
+pub(crate) use tracker::{advance_scheduled, check_frame};
 
 use crate::error::{Error, Result};

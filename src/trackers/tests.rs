@@ -68,10 +68,25 @@ fn every_tracker_steps_one_step_at_a_time_to_the_same_result() {
             }
             let expected = whole.step(&rgba, 320, 240).unwrap();
             stepped.begin_frame(&rgba, 320, 240).unwrap();
-            let results: Vec<_> = (0..n).map(|_| stepped.advance().unwrap()).collect();
+            assert!(
+                stepped.resamplings().is_empty(),
+                "{id}: begin resamples nothing"
+            );
+            let mut decisions = Vec::new();
+            let results: Vec<_> = (0..n)
+                .map(|_| {
+                    let r = stepped.advance().unwrap();
+                    decisions.extend_from_slice(stepped.resamplings());
+                    r
+                })
+                .collect();
             assert!(results[..n - 1].iter().all(Option::is_none), "{id}");
             assert_eq!(results[n - 1].as_ref(), Some(&expected), "{id} frame {f}");
             assert_eq!(stepped.particles(), whole.particles(), "{id} frame {f}");
+            // The same resampling decisions, step by step as for the whole frame; after the
+            // first frame every tracker resamples.
+            assert_eq!(decisions, whole.resamplings(), "{id} frame {f}");
+            assert!(f == 0 || !decisions.is_empty(), "{id} frame {f}");
         }
     }
 }

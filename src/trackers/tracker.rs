@@ -4,6 +4,7 @@
 use super::{EgoMotion, Hypothesis, Layer, StageTimes};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
+use crate::filter::{ResampleDecision, Scheduled};
 use crate::lane::LaneEstimate;
 
 /// A lane tracker: one frame in, one estimate out.
@@ -98,6 +99,13 @@ pub trait Tracker {
     fn next_step(&self) -> Option<usize> {
         None
     }
+    /// The resampling decisions of the last [`Tracker::step`] (the whole frame's) or
+    /// [`Tracker::advance`] (that step's), as its filters made them, in order; empty after
+    /// [`Tracker::begin_frame`] and [`Tracker::reset`] (the schedule's record,
+    /// [`crate::filter::Stepper::resamplings`]).
+    fn resamplings(&self) -> &[ResampleDecision] {
+        &[]
+    }
 }
 
 /// Checks that an RGBA frame has the camera's size.
@@ -116,7 +124,22 @@ pub(crate) fn check_frame(camera: &Camera, rgba: &[u8], width: usize, height: us
     crate::image::check_rgba(rgba, width, height)
 }
 
+/// [`Tracker::advance`] of a tracker on the filter core's stepper: the next step of its
+/// schedule, and after the last the estimate as `output` makes it the shared type.
+///
+/// # Errors
+/// [`Error::State`] when no frame is in progress.
+pub(crate) fn advance_scheduled<T: Scheduled>(
+    tracker: &mut T,
+    output: impl FnOnce(&T, &T::Estimate) -> LaneEstimate,
+) -> Result<Option<LaneEstimate>> {
+    if !tracker.stepper().in_progress() {
+        return Err(no_frame_in_progress());
+    }
+    Ok(tracker.advance_step().map(|e| output(tracker, &e)))
+}
+
 /// The error of [`Tracker::advance`] without a frame in progress.
-pub(crate) fn no_frame_in_progress() -> Error {
+fn no_frame_in_progress() -> Error {
     Error::State("no frame in progress: call beginFrame (begin_frame in Rust) first".into())
 }

@@ -7,7 +7,7 @@ use super::estimate::{self, Keep};
 use super::object;
 use super::step_input;
 use crate::camera::CameraFile;
-use crate::filter::{self, ResampleDecision};
+use crate::filter::ResampleDecision;
 use crate::trackers::{self, TrackerConfig};
 use wasm_bindgen::prelude::*;
 
@@ -119,9 +119,8 @@ impl JsTracker {
     ) -> Result<JsValue, Thrown> {
         let [w, h] = self.take_step_input(&frame, options.as_ref(), height.as_ref())?;
         self.resamplings.clear();
-        let (estimate, decisions) = filter::recorded(|| self.inner.step(&self.frame, w, h));
-        let estimate = estimate.map_err(input)?;
-        self.resamplings = decisions;
+        let estimate = self.inner.step(&self.frame, w, h).map_err(input)?;
+        self.resamplings = self.inner.resamplings().to_vec();
         estimate::to_js(&estimate, Keep::Neither)
     }
 
@@ -304,9 +303,8 @@ impl JsTracker {
     #[wasm_bindgen(unchecked_return_type = "LaneEstimate | null")]
     pub fn advance(&mut self) -> Result<JsValue, Thrown> {
         self.resamplings.clear();
-        let (estimate, decisions) = filter::recorded(|| self.inner.advance());
-        let estimate = estimate.map_err(input)?;
-        self.resamplings = decisions;
+        let estimate = self.inner.advance().map_err(input)?;
+        self.resamplings = self.inner.resamplings().to_vec();
         match estimate {
             Some(estimate) => estimate::to_js(&estimate, Keep::Neither),
             None => Ok(JsValue::NULL),

@@ -45,8 +45,9 @@ use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, Tracker
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
-    model_probabilities, FilterConfig, Injection, MarkovChain, MeasurementModel, ParticleFilter,
-    Regime, ResamplePolicy, Resampler, SwitchingMotion,
+    model_probabilities, FilterConfig, FirstFrame, Injection, MarkovChain, MeasurementModel, Op,
+    ParticleFilter, Pass, Regime, ResampleDecision, ResamplePolicy, Resampler, Schedule, Scheduled,
+    Stepper, SwitchingMotion,
 };
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
 use config::AdachiConfig;
@@ -79,14 +80,15 @@ pub struct AdachiTracker {
     filter: ParticleFilter<Regime<Lane>>,
     initial: Initial,
     probabilities: [f64; 4],
-    times: StageTimes,
-    first: bool,
+    /// The frame's schedule in progress and the last frame's times.
+    stepper: Stepper,
+    /// Edge votes of the frame in progress.
+    frame_votes: usize,
     /// The estimate's q followed without wrapping, and the lane index it implies.
     q_track: Option<f64>,
     lane_index: i64,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
-    frame: Option<Frame>,
 }
 
 /// The steps of one frame after [`AdachiTracker::begin`] (per-step mode).
@@ -97,14 +99,20 @@ pub const STEP_NAMES: [&str; 4] = [
     "estimate: most probable model, q and w",
 ];
 
-/// A frame in progress in per-step mode.
-#[derive(Debug, Clone)]
-struct Frame {
-    next: usize,
-    first: bool,
-    votes: usize,
-    times: StageTimes,
-}
+/// The frame as the filter core runs it ([`crate::filter::schedule`]): one multiple-model
+/// filter, resampled at the start of the frame (Sec. 3.3). A first frame has nothing to
+/// resample or predict from: its particles are weighed, then `start_iterations` rounds of
+/// resample, predict (without the relock proposal) and weigh run on the same votes.
+pub static SCHEDULE: Schedule = Schedule::new(
+    &STEP_NAMES,
+    &[
+        &[Op::Resample(0)],
+        &[Op::Predict(0)],
+        &[Op::Weigh(0)],
+        &[Op::Estimate],
+    ],
+    FirstFrame::WeighFirst,
+);
 
 /// Hysteresis of the shared lane-change rule ([`super::lane_change`]) for this tracker, metres:
 /// q comes from per-particle wraps (eq. 9) and is noisy at the seam.
@@ -182,12 +190,11 @@ impl AdachiTracker {
             filter,
             initial,
             probabilities: [0.25; 4],
-            times: StageTimes::default(),
-            first: true,
+            stepper: Stepper::new(),
+            frame_votes: 0,
             q_track: None,
             lane_index: 0,
             detector,
-            frame: None,
         })
     }
 
@@ -258,17 +265,12 @@ impl AdachiTracker {
     }
 
     /// One frame, returning the estimate in the paper's terms: [`AdachiTracker::begin`], then
-    /// every step of [`STEP_NAMES`] in order.
+    /// every step of [`SCHEDULE`] in order ([`Scheduled::step_frame`]).
     ///
     /// # Errors
     /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
     pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<AdachiEstimate> {
-        self.begin(rgba, width, height)?;
-        loop {
-            if let Some(e) = self.advance_step() {
-                return Ok(e);
-            }
-        }
+        self.step_frame(|t| t.begin(rgba, width, height))
     }
 
     /// Starts a frame: checks it and votes its edge points (H_j, Sec. 3.2). A frame still in
@@ -279,84 +281,19 @@ impl AdachiTracker {
     pub fn begin(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         super::check_frame(&self.camera, rgba, width, height)?;
         let t0 = now();
-        let votes = self.votes.vote(rgba);
+        self.frame_votes = self.votes.vote(rgba);
         self.likelihood.prepare(&self.votes);
         if let Some(d) = self.detector.as_mut() {
             d.feed(&self.camera, rgba, width, height)?;
         }
-        let first = self.first;
-        self.first = false;
-        self.frame = Some(Frame {
-            next: 0,
-            first,
-            votes,
-            times: StageTimes {
-                preprocess: now() - t0,
-                ..StageTimes::default()
-            },
+        self.stepper.begin(StageTimes {
+            preprocess: now() - t0,
+            ..StageTimes::default()
         });
         Ok(())
     }
 
-    /// Index into [`STEP_NAMES`] of the next step of the frame in progress.
-    pub fn next_step(&self) -> Option<usize> {
-        self.frame.as_ref().map(|f| f.next)
-    }
-
-    /// Runs the next step of the frame in progress; returns the estimate after the last one
-    /// (and `None` before, or when no frame is in progress). On the first frame there is
-    /// nothing to resample or predict from, and the weigh step runs the start-up rounds.
-    pub fn advance_step(&mut self) -> Option<AdachiEstimate> {
-        let mut frame = self.frame.take()?;
-        let step = frame.next;
-        frame.next += 1;
-        let t = now();
-        let motion = SwitchingMotion {
-            chain: &self.chain,
-            motion: Motion {
-                sigma_q: self.config.sigma_q_m,
-                sigma_w: self.config.sigma_w_m,
-                width_range: self.config.width_range_m,
-            },
-        };
-        match step {
-            0 => {
-                if !frame.first {
-                    self.filter.resample();
-                }
-                frame.times.resample += now() - t;
-            }
-            1 => {
-                if !frame.first {
-                    self.filter.predict(&motion);
-                    self.relock();
-                }
-                frame.times.predict += now() - t;
-            }
-            2 => {
-                self.filter.weigh(&Measure(&self.likelihood), &self.votes);
-                if frame.first {
-                    // Start-up: more rounds on the same votes (see `start_iterations`).
-                    for _ in 0..self.config.start_iterations {
-                        self.filter.resample();
-                        self.filter.predict(&motion);
-                        self.filter.weigh(&Measure(&self.likelihood), &self.votes);
-                    }
-                }
-                frame.times.weigh += now() - t;
-            }
-            _ => {
-                let estimate = self.estimate(frame.votes);
-                frame.times.estimate += now() - t;
-                self.times = frame.times;
-                return Some(estimate);
-            }
-        }
-        self.frame = Some(frame);
-        None
-    }
-
-    fn estimate(&mut self, votes: usize) -> AdachiEstimate {
+    fn read_estimate(&mut self, votes: usize) -> AdachiEstimate {
         let states = self.filter.states();
         let weights = self.filter.weights();
         model_probabilities(states, weights, &mut self.probabilities);
@@ -496,14 +433,14 @@ impl Tracker for AdachiTracker {
         if let Some(d) = self.detector.as_mut() {
             d.reset();
         }
-        self.first = true;
+        self.stepper.restart();
+        self.stepper.abandon();
         self.q_track = None;
         self.lane_index = 0;
-        self.frame = None;
     }
 
     fn stage_times(&self) -> StageTimes {
-        self.times
+        self.stepper.times()
     }
 
     /// Four numbers per particle: model r (1..4), q (m), w (m), normalised weight.
@@ -539,7 +476,7 @@ impl Tracker for AdachiTracker {
     }
 
     fn step_names(&self) -> &'static [&'static str] {
-        &STEP_NAMES
+        SCHEDULE.names()
     }
 
     /// The vote histogram H_j and the noise histogram N_j (Sec. 3.2, eq. 4).
@@ -565,14 +502,62 @@ impl Tracker for AdachiTracker {
     }
 
     fn advance(&mut self) -> Result<Option<LaneEstimate>> {
-        if self.frame.is_none() {
-            return Err(super::no_frame_in_progress());
-        }
-        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+        super::advance_scheduled(self, Self::to_lane_estimate)
     }
 
     fn next_step(&self) -> Option<usize> {
-        AdachiTracker::next_step(self)
+        self.stepper.next_step()
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
+    }
+}
+
+/// The models of the schedule's operations.
+impl Scheduled for AdachiTracker {
+    type State = Regime<Lane>;
+    type Estimate = AdachiEstimate;
+
+    fn schedule(&self) -> &'static Schedule {
+        &SCHEDULE
+    }
+    fn stepper(&self) -> &Stepper {
+        &self.stepper
+    }
+    fn stepper_mut(&mut self) -> &mut Stepper {
+        &mut self.stepper
+    }
+    fn filter_mut(&mut self, _stage: usize) -> Option<&mut ParticleFilter<Regime<Lane>>> {
+        Some(&mut self.filter)
+    }
+    fn start_rounds(&self) -> usize {
+        self.config.start_iterations
+    }
+    fn inject(&mut self, _stage: usize) {
+        self.filter.inject(&self.initial);
+    }
+    /// The Table 1 model switch and the random walk of q and w (eqs. 7-9); on a frame's own
+    /// pass, then the relock proposal.
+    fn predict(&mut self, _stage: usize, pass: Pass) {
+        let motion = SwitchingMotion {
+            chain: &self.chain,
+            motion: Motion {
+                sigma_q: self.config.sigma_q_m,
+                sigma_w: self.config.sigma_w_m,
+                width_range: self.config.width_range_m,
+            },
+        };
+        self.filter.predict(&motion);
+        if pass == Pass::Frame {
+            self.relock();
+        }
+    }
+    fn weigh(&mut self, _stage: usize) {
+        self.filter.weigh(&Measure(&self.likelihood), &self.votes);
+    }
+    fn estimate(&mut self) -> AdachiEstimate {
+        self.read_estimate(self.frame_votes)
     }
 }
 

@@ -64,7 +64,8 @@ use super::{
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
-    FilterConfig, Injection, Mbsas, MeasurementModel, ParticleFilter, ResamplePolicy, Resampler,
+    FilterConfig, FirstFrame, Injection, Mbsas, MeasurementModel, Op, ParticleFilter, Pass,
+    ResampleDecision, ResamplePolicy, Resampler, Schedule, Scheduled, Stepper,
 };
 use crate::lane::{
     sample_road_curve, Boundary, Delimiter, Edge, Lane3d, LaneCamera, LaneEstimate, Role, Side,
@@ -94,14 +95,19 @@ pub const STEP_NAMES: [&str; 4] = [
     "estimate: MBSAS clusters on X_CW, eq. 15",
 ];
 
-/// A frame in progress in per-step mode.
-#[derive(Debug, Clone, Copy)]
-struct Frame {
-    next: usize,
-    first: bool,
-    motion: Motion,
-    times: StageTimes,
-}
+/// The frame as the filter core runs it ([`crate::filter::schedule`]), Sec. III's cycle. A
+/// first frame has no previous set: its particles come from the initial distribution and are
+/// only weighed.
+pub static SCHEDULE: Schedule = Schedule::new(
+    &STEP_NAMES,
+    &[
+        &[Op::Resample(0), Op::Inject(0)],
+        &[Op::Predict(0)],
+        &[Op::Weigh(0)],
+        &[Op::Estimate],
+    ],
+    FirstFrame::WeighFirst,
+);
 
 /// The estimate of one frame in the paper's terms.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -163,13 +169,14 @@ pub struct DanescuTracker {
     labels_current: bool,
     motion: Option<EgoMotion>,
     last_time: Option<f64>,
-    first: bool,
+    /// The drift and diffusion of the frame in progress (from the ego motion given for it).
+    drift: Motion,
     /// The previous frame's estimate (for [`lane_change::jump`]).
     last_lane: Option<Lane3d>,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
-    frame: Option<Frame>,
-    times: StageTimes,
+    /// The frame's schedule in progress and the last frame's times.
+    stepper: Stepper,
 }
 
 impl DanescuTracker {
@@ -249,25 +256,24 @@ impl DanescuTracker {
             labels_current: false,
             motion: None,
             last_time: None,
-            first: true,
+            drift: Motion {
+                travelled_m: 0.0,
+                turned_rad: 0.0,
+                diffusion,
+            },
             last_lane: None,
             detector,
-            frame: None,
-            times: StageTimes::default(),
+            stepper: Stepper::new(),
         })
     }
 
-    /// One frame in the paper's terms: [`DanescuTracker::begin`], then every step.
+    /// One frame in the paper's terms: [`DanescuTracker::begin`], then every step of
+    /// [`SCHEDULE`] ([`Scheduled::step_frame`]).
     ///
     /// # Errors
     /// As [`DanescuTracker::begin`].
     pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<DanescuEstimate> {
-        self.begin(rgba, width, height)?;
-        loop {
-            if let Some(e) = self.advance_step() {
-                return Ok(e);
-            }
-        }
+        self.step_frame(|t| t.begin(rgba, width, height))
     }
 
     /// Gives the right frame of the next step (danescu-stereo).
@@ -327,73 +333,17 @@ impl DanescuTracker {
             }
             None => (0.0, 0.0),
         };
-        let first = self.first;
-        self.first = false;
-        self.frame = Some(Frame {
-            next: 0,
-            first,
-            motion: Motion {
-                travelled_m,
-                turned_rad,
-                diffusion: self.diffusion,
-            },
-            times: StageTimes {
-                preprocess: now() - t0,
-                disparity,
-                ..StageTimes::default()
-            },
+        self.drift = Motion {
+            travelled_m,
+            turned_rad,
+            diffusion: self.diffusion,
+        };
+        self.stepper.begin(StageTimes {
+            preprocess: now() - t0,
+            disparity,
+            ..StageTimes::default()
         });
         Ok(())
-    }
-
-    /// Index into [`STEP_NAMES`] of the next step of the frame in progress.
-    pub fn next_step(&self) -> Option<usize> {
-        self.frame.as_ref().map(|f| f.next)
-    }
-
-    /// Runs the next step of the frame in progress; the estimate after the last one. The
-    /// first frame has no previous set: its particles come from the initial distribution and
-    /// are only weighed.
-    pub fn advance_step(&mut self) -> Option<DanescuEstimate> {
-        let mut frame = self.frame.take()?;
-        let step = frame.next;
-        frame.next += 1;
-        let t = now();
-        match step {
-            0 => {
-                if !frame.first {
-                    self.filter.resample();
-                    self.filter.inject(&self.initial);
-                    self.labels_current = false;
-                }
-                frame.times.resample += now() - t;
-            }
-            1 => {
-                if !frame.first {
-                    self.filter.predict(&frame.motion);
-                    self.relock(&frame.motion);
-                }
-                frame.times.predict += now() - t;
-            }
-            2 => {
-                let weigh = Weigh {
-                    measurement: &self.measurement,
-                    camera: &self.camera,
-                    cues: &self.cues,
-                    stereo: self.stereo.as_ref(),
-                };
-                self.filter.weigh(&weigh, &());
-                frame.times.weigh += now() - t;
-            }
-            _ => {
-                let e = self.estimate();
-                frame.times.estimate += now() - t;
-                self.times = frame.times;
-                return Some(e);
-            }
-        }
-        self.frame = Some(frame);
-        None
     }
 
     /// Replaces `relock_share` of the particles by draws around the detector's ego pair (see
@@ -421,7 +371,7 @@ impl DanescuTracker {
             });
     }
 
-    fn estimate(&mut self) -> DanescuEstimate {
+    fn read_estimate(&mut self) -> DanescuEstimate {
         let first = self.filter.injected();
         let states = self.filter.states();
         let weights = self.filter.weights();
@@ -631,9 +581,9 @@ impl Tracker for DanescuTracker {
         }
         self.labels_current = false;
         self.right_ready = false;
-        self.first = true;
+        self.stepper.restart();
+        self.stepper.abandon();
         self.last_lane = None;
-        self.frame = None;
         self.motion = None;
         self.last_time = None;
     }
@@ -653,7 +603,7 @@ impl Tracker for DanescuTracker {
     }
 
     fn stage_times(&self) -> StageTimes {
-        self.times
+        self.stepper.times()
     }
 
     /// 13 numbers per particle: the 11 parameters in `Lane3d::NAMES` order, the normalised
@@ -779,7 +729,7 @@ impl Tracker for DanescuTracker {
     }
 
     fn step_names(&self) -> &'static [&'static str] {
-        &STEP_NAMES
+        SCHEDULE.names()
     }
 
     fn begin_frame(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
@@ -787,14 +737,63 @@ impl Tracker for DanescuTracker {
     }
 
     fn advance(&mut self) -> Result<Option<LaneEstimate>> {
-        if self.frame.is_none() {
-            return Err(super::no_frame_in_progress());
-        }
-        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+        super::advance_scheduled(self, Self::to_lane_estimate)
     }
 
     fn next_step(&self) -> Option<usize> {
-        DanescuTracker::next_step(self)
+        self.stepper.next_step()
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
+    }
+}
+
+/// The models of the schedule's operations.
+impl Scheduled for DanescuTracker {
+    type State = Lane3d;
+    type Estimate = DanescuEstimate;
+
+    fn schedule(&self) -> &'static Schedule {
+        &SCHEDULE
+    }
+    fn stepper(&self) -> &Stepper {
+        &self.stepper
+    }
+    fn stepper_mut(&mut self) -> &mut Stepper {
+        &mut self.stepper
+    }
+    fn filter_mut(&mut self, _stage: usize) -> Option<&mut ParticleFilter<Lane3d>> {
+        Some(&mut self.filter)
+    }
+    /// N - R particles from the previous set; the cluster labels belonged to the old order.
+    fn resample(&mut self, _stage: usize) {
+        self.filter.resample();
+        self.labels_current = false;
+    }
+    /// R initialisation particles from the generic distribution.
+    fn inject(&mut self, _stage: usize) {
+        self.filter.inject(&self.initial);
+    }
+    /// Drift by the ego motion and diffusion, then the relock proposal.
+    fn predict(&mut self, _stage: usize, _pass: Pass) {
+        let drift = self.drift;
+        self.filter.predict(&drift);
+        self.relock(&drift);
+    }
+    /// Eqs. 9-14 and the validation.
+    fn weigh(&mut self, _stage: usize) {
+        let weigh = Weigh {
+            measurement: &self.measurement,
+            camera: &self.camera,
+            cues: &self.cues,
+            stereo: self.stereo.as_ref(),
+        };
+        self.filter.weigh(&weigh, &());
+    }
+    /// MBSAS and eq. 15.
+    fn estimate(&mut self) -> DanescuEstimate {
+        self.read_estimate()
     }
 }
 

@@ -57,8 +57,9 @@ use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, Tracker
 use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::filter::{
-    FilterConfig, InitialDistribution, Injection, MeasurementModel, ParticleFilter, ResamplePolicy,
-    Resampler,
+    expectation, FilterConfig, FirstFrame, InitialDistribution, Injection, MeasurementModel, Op,
+    ParticleFilter, Pass, ResampleDecision, ResamplePolicy, Resampler, Schedule, Scheduled,
+    Stepper,
 };
 use crate::image::{luma, Image};
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
@@ -93,27 +94,6 @@ impl MeasurementModel<LaneState> for NearModel<'_> {
     }
 }
 
-/// One step of a frame (see [`LeeTracker::step_names`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Step {
-    Predict1,
-    Weigh1,
-    Finish1,
-    Predict2,
-    Weigh2,
-    Finish2,
-    Output,
-}
-
-const CASCADE_STEPS: [Step; 7] = [
-    Step::Predict1,
-    Step::Weigh1,
-    Step::Finish1,
-    Step::Predict2,
-    Step::Weigh2,
-    Step::Finish2,
-    Step::Output,
-];
 const CASCADE_STEP_NAMES: [&str; 7] = [
     "stage 1 [psi, y0, w, w']: predict",
     "stage 1: weigh (DLD distance map, eqs. 27-33)",
@@ -123,7 +103,6 @@ const CASCADE_STEP_NAMES: [&str; 7] = [
     "stage 2: estimate, resample if N_eff < N_thr",
     "Kalman smoothing and output",
 ];
-const SINGLE_STEPS: [Step; 4] = [Step::Predict1, Step::Weigh1, Step::Finish1, Step::Output];
 const SINGLE_STEP_NAMES: [&str; 4] = [
     "predict",
     "weigh",
@@ -131,17 +110,43 @@ const SINGLE_STEP_NAMES: [&str; 4] = [
     "Kalman smoothing and output",
 ];
 
-/// A frame in progress in per-step mode.
-#[derive(Debug, Clone)]
-struct Frame {
-    /// Index of the next step.
-    next: usize,
-    /// Whether this is the first frame (after construction or a reset).
-    first: bool,
+/// The cascade's frame as the filter core runs it ([`crate::filter::schedule`]): Algorithm 1
+/// for stage 1 (s = 1) and then stage 2 (s = 2), each predict, weigh, estimate (the weighted
+/// mean), resample when N_eff < N_thr; stage 2 weighs its particles completed with stage 1's
+/// estimate (Algorithm 2); then the Kalman smoother and the output. A first frame weighs each
+/// stage before moving it, then runs `start_iterations` rounds of resample, predict (stage 1's
+/// annealed, see [`LeeTracker::predict`]) and weigh on the same cues.
+pub static CASCADE_SCHEDULE: Schedule = Schedule::new(
+    &CASCADE_STEP_NAMES,
+    &[
+        &[Op::Predict(0)],
+        &[Op::Weigh(0)],
+        &[Op::StageEstimate(0), Op::Resample(0)],
+        &[Op::Predict(1)],
+        &[Op::Weigh(1)],
+        &[Op::StageEstimate(1), Op::Resample(1)],
+        &[Op::Estimate],
+    ],
+    FirstFrame::WeighFirst,
+);
+/// The baselines' frame (`first-order`, `full-model`): Algorithm 1 on one filter.
+pub static SINGLE_SCHEDULE: Schedule = Schedule::new(
+    &SINGLE_STEP_NAMES,
+    &[
+        &[Op::Predict(0)],
+        &[Op::Weigh(0)],
+        &[Op::StageEstimate(0), Op::Resample(0)],
+        &[Op::Estimate],
+    ],
+    FirstFrame::WeighFirst,
+);
+
+/// What the stages of the frame in progress found, for the stages after them and the output.
+#[derive(Debug, Clone, Copy, Default)]
+struct StageResults {
     estimate: LaneState,
     ess: [f64; 2],
     change: i8,
-    times: StageTimes,
 }
 
 /// Stage 2's model: the far edges, for the lane made of `first` (the stage-1 estimate, or the
@@ -217,13 +222,14 @@ pub struct LeeTracker {
     initial: Initial,
     limits: Limits,
     smoother: Smoother,
-    times: StageTimes,
-    first: bool,
+    /// The frame's schedule in progress and the last frame's times.
+    stepper: Stepper,
+    /// The stage estimates of the frame in progress.
+    stages: StageResults,
     /// Consecutive frames whose estimate no marking supports (see `lost_restart`).
     lost: usize,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
-    frame: Option<Frame>,
 }
 
 /// Image rows whose road point (at the left, centre or right column) lies in [from, to).
@@ -348,11 +354,10 @@ impl LeeTracker {
             initial,
             limits,
             smoother,
-            times: StageTimes::default(),
-            first: true,
+            stepper: Stepper::new(),
+            stages: StageResults::default(),
             lost: 0,
             detector,
-            frame: None,
             camera,
             config: lee,
         })
@@ -398,7 +403,7 @@ impl LeeTracker {
             f.reset(&self.initial);
         }
         self.smoother.reset();
-        self.first = true;
+        self.stepper.restart();
         self.lost = 0;
     }
 
@@ -458,39 +463,31 @@ impl LeeTracker {
     }
 
     /// One frame, returning the estimate in the paper's terms: [`LeeTracker::begin`], then
-    /// every step of [`LeeTracker::step_names`] in order.
+    /// every step of its schedule in order ([`Scheduled::step_frame`]).
     ///
     /// # Errors
     /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
     pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LeeEstimate> {
-        self.begin(rgba, width, height)?;
-        loop {
-            if let Some(e) = self.advance_step() {
-                return Ok(e);
-            }
-        }
+        self.step_frame(|t| t.begin(rgba, width, height))
     }
 
     /// The steps of one frame after [`LeeTracker::begin`], for teaching.
     pub fn step_names(&self) -> &'static [&'static str] {
-        if self.stage2.is_some() {
-            &CASCADE_STEP_NAMES
-        } else {
-            &SINGLE_STEP_NAMES
-        }
-    }
-
-    fn steps(&self) -> &'static [Step] {
-        if self.stage2.is_some() {
-            &CASCADE_STEPS
-        } else {
-            &SINGLE_STEPS
-        }
+        self.schedule().names()
     }
 
     /// Index of the next step of the frame in progress (`None` when no frame is in progress).
     pub fn next_step(&self) -> Option<usize> {
-        self.frame.as_ref().map(|f| f.next)
+        self.stepper.next_step()
+    }
+
+    /// Stage 1's motion: the first-order states, or all six in the full-model baseline.
+    fn stage1_part(&self) -> Part {
+        if self.config.variant == Variant::FullModel {
+            Part::Full
+        } else {
+            Part::FirstOrder
+        }
     }
 
     /// Starts a frame: checks it and computes the image cues (the DLD candidates and their map
@@ -508,217 +505,12 @@ impl LeeTracker {
         if let Some(d) = self.detector.as_mut() {
             d.feed(&self.camera, rgba, width, height)?;
         }
-        let first = self.first;
-        self.first = false;
-        self.frame = Some(Frame {
-            next: 0,
-            first,
-            estimate: LaneState::default(),
-            ess: [0.0; 2],
-            change: 0,
-            times: StageTimes {
-                preprocess: now() - t,
-                ..StageTimes::default()
-            },
+        self.stages = StageResults::default();
+        self.stepper.begin(StageTimes {
+            preprocess: now() - t,
+            ..StageTimes::default()
         });
         Ok(())
-    }
-
-    /// Runs the next step of the frame in progress; returns the estimate after the last one
-    /// (and `None` before, or when no frame is in progress).
-    pub fn advance_step(&mut self) -> Option<LeeEstimate> {
-        let mut frame = self.frame.take()?;
-        let step = self.steps()[frame.next];
-        frame.next += 1;
-        let t = now();
-        let spiral = self.config.spiral_length_m;
-        let starts = if frame.first {
-            self.config.start_iterations
-        } else {
-            0
-        };
-        match step {
-            Step::Predict1 => {
-                if !frame.first {
-                    let part = if self.config.variant == Variant::FullModel {
-                        Part::Full
-                    } else {
-                        Part::FirstOrder
-                    };
-                    self.stage1.predict(&self.motion(part));
-                    self.relock();
-                }
-                frame.times.predict += now() - t;
-            }
-            Step::Weigh1 => {
-                let part = if self.config.variant == Variant::FullModel {
-                    Part::Full
-                } else {
-                    Part::FirstOrder
-                };
-                // The first frame: more rounds on the same cues (see `start_iterations`),
-                // annealed: the process noise starts `start_spread` times wider and narrows
-                // linearly to Q, and in the first half of the rounds every
-                // 1 / `start_fresh`-th particle is drawn anew from the initial distribution,
-                // so that the search goes on beyond the uniform start's first draw.
-                for round in 0..=starts {
-                    if round > 0 {
-                        let left = 1.0 - round as f64 / starts as f64;
-                        let scale = 1.0 + (self.config.start_spread - 1.0) * left;
-                        let mut motion = self.motion(part);
-                        motion.sd = motion.sd.map(|sd| sd * scale);
-                        self.stage1.resample();
-                        if 2 * round <= starts {
-                            self.refresh_start_particles();
-                        }
-                        self.stage1.predict(&motion);
-                    }
-                    if self.config.variant == Variant::FullModel {
-                        let model = FarModel {
-                            measurement: &self.measurement,
-                            camera: &self.camera,
-                            edges: &self.far,
-                            spiral,
-                            first: None,
-                            near: Some(&self.map),
-                        };
-                        self.stage1.weigh(&model, &());
-                    } else {
-                        let model = NearModel {
-                            measurement: &self.measurement,
-                            map: &self.map,
-                        };
-                        self.stage1.weigh(&model, &());
-                    }
-                }
-                frame.times.weigh += now() - t;
-            }
-            Step::Finish1 => {
-                let mut estimate =
-                    estimate_first_order(self.stage1.states(), self.stage1.weights());
-                frame.ess[0] = self.stage1.ess();
-                // Lane change (the shared rule, `super::lane_change`): the car has crossed a
-                // boundary's centre, so it is in the neighbouring lane; the whole cloud moves
-                // one lane width.
-                let change =
-                    EgoLane::symmetric(estimate.y0, estimate.w).change(lane_change::MARGIN_M);
-                if change != 0 {
-                    let (y0, _) = motion::wrap(estimate.y0, estimate.w);
-                    let shift = y0 - estimate.y0;
-                    estimate.y0 = y0;
-                    for s in self.stage1.states_mut() {
-                        s.y0 += shift;
-                    }
-                }
-                // (On a first frame there is no lane to have changed from: re-centre only.)
-                frame.change = if frame.first { 0 } else { change };
-                if self.config.variant == Variant::FullModel {
-                    let (c, delta) = mean_curve(self.stage1.states(), self.stage1.weights());
-                    estimate.c = c;
-                    estimate.delta = delta;
-                }
-                frame.estimate = estimate;
-                let t1 = now();
-                frame.times.estimate += t1 - t;
-                self.stage1.resample();
-                frame.times.resample += now() - t1;
-            }
-            Step::Predict2 => {
-                let motion = self.motion(Part::Curve);
-                if let (Some(stage2), false) = (self.stage2.as_mut(), frame.first) {
-                    stage2.predict(&motion);
-                }
-                frame.times.predict += now() - t;
-            }
-            Step::Weigh2 => {
-                let motion = self.motion(Part::Curve);
-                if let Some(stage2) = self.stage2.as_mut() {
-                    let model = FarModel {
-                        measurement: &self.measurement,
-                        camera: &self.camera,
-                        edges: &self.far,
-                        spiral,
-                        first: Some(frame.estimate),
-                        near: None,
-                    };
-                    for round in 0..=starts {
-                        if round > 0 {
-                            stage2.resample();
-                            stage2.predict(&motion);
-                        }
-                        stage2.weigh(&model, &());
-                    }
-                }
-                frame.times.weigh += now() - t;
-            }
-            Step::Finish2 => {
-                if let Some(stage2) = self.stage2.as_mut() {
-                    let (c, delta) = mean_curve(stage2.states(), stage2.weights());
-                    frame.estimate.c = c;
-                    frame.estimate.delta = delta;
-                    frame.ess[1] = stage2.ess();
-                    // Stage-2 particles stand for full lanes with stage 1's first-order states,
-                    // stage-1 particles for full lanes with the curve estimate.
-                    let e = frame.estimate;
-                    for s in stage2.states_mut() {
-                        *s = LaneState {
-                            c: s.c,
-                            delta: s.delta,
-                            ..e
-                        };
-                    }
-                    for s in self.stage1.states_mut() {
-                        s.c = e.c;
-                        s.delta = e.delta;
-                    }
-                    let t1 = now();
-                    frame.times.estimate += t1 - t;
-                    stage2.resample();
-                    frame.times.resample += now() - t1;
-                }
-            }
-            Step::Output => {
-                let raw = frame.estimate;
-                let state = if self.config.kalman {
-                    let x = self
-                        .smoother
-                        .update([raw.psi, raw.y0, raw.w, raw.w1, raw.c, raw.delta]);
-                    LaneState {
-                        psi: x[0],
-                        y0: x[1],
-                        w: x[2],
-                        w1: x[3],
-                        c: x[4],
-                        delta: x[5],
-                    }
-                } else {
-                    raw
-                };
-                let support = self.measurement.near_support(&raw, None, &self.map);
-                // Lost: no marking near either boundary. After `lost_restart` such frames the
-                // filter starts again from the initial distribution (with the start
-                // iterations) on the next frame; a cloud that has lost the lane does not find
-                // it again by diffusing with Q.
-                let lost = support[0].max(support[1]) < LOST_SUPPORT;
-                self.lost = if lost { self.lost + 1 } else { 0 };
-                if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {
-                    self.restart();
-                }
-                frame.times.estimate += now() - t;
-                self.times = frame.times;
-                return Some(LeeEstimate {
-                    state,
-                    raw,
-                    valid: support[0].min(support[1]) >= self.config.valid_fraction,
-                    support,
-                    change: frame.change,
-                    candidates: self.candidates.count,
-                    ess: frame.ess,
-                });
-            }
-        }
-        self.frame = Some(frame);
-        None
     }
 
     /// The ego boundaries of lane state `s` (eqs. 27-28).
@@ -795,24 +587,23 @@ impl LeeTracker {
     }
 }
 
-/// Weighted mean of psi, y0, w and w'.
+/// Algorithm 1's estimate of psi, y0, w and w' (c and delta 0): the expectation over the
+/// normalised weights.
 fn estimate_first_order(states: &[LaneState], weights: &[f64]) -> LaneState {
-    let mut m = LaneState::default();
-    for (s, &wt) in states.iter().zip(weights) {
-        m.psi += wt * s.psi;
-        m.y0 += wt * s.y0;
-        m.w += wt * s.w;
-        m.w1 += wt * s.w1;
+    let [psi, y0, w, w1] = expectation(states, weights, |s| [s.psi, s.y0, s.w, s.w1]);
+    LaneState {
+        psi,
+        y0,
+        w,
+        w1,
+        ..LaneState::default()
     }
-    m
 }
 
-/// Weighted mean of (c, delta).
+/// Algorithm 1's estimate of (c, delta).
 fn mean_curve(states: &[LaneState], weights: &[f64]) -> (f64, f64) {
-    states
-        .iter()
-        .zip(weights)
-        .fold((0.0, 0.0), |(c, d), (s, &w)| (c + w * s.c, d + w * s.delta))
+    let [c, delta] = expectation(states, weights, |s| [s.c, s.delta]);
+    (c, delta)
 }
 
 impl Tracker for LeeTracker {
@@ -830,11 +621,11 @@ impl Tracker for LeeTracker {
         if let Some(d) = self.detector.as_mut() {
             d.reset();
         }
-        self.frame = None;
+        self.stepper.abandon();
     }
 
     fn stage_times(&self) -> StageTimes {
-        self.times
+        self.stepper.times()
     }
 
     /// Eight numbers per particle: stage (1, 2, or 0 for a single-stage baseline), psi (rad),
@@ -912,14 +703,206 @@ impl Tracker for LeeTracker {
     }
 
     fn advance(&mut self) -> Result<Option<LaneEstimate>> {
-        if self.frame.is_none() {
-            return Err(super::no_frame_in_progress());
-        }
-        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+        super::advance_scheduled(self, Self::to_lane_estimate)
     }
 
     fn next_step(&self) -> Option<usize> {
         LeeTracker::next_step(self)
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
+    }
+}
+
+/// The models of the schedule's operations: stage 0 is stage 1 of the paper (or the single
+/// filter of a baseline), stage 1 the cascade's stage 2.
+impl Scheduled for LeeTracker {
+    type State = LaneState;
+    type Estimate = LeeEstimate;
+
+    fn schedule(&self) -> &'static Schedule {
+        if self.stage2.is_some() {
+            &CASCADE_SCHEDULE
+        } else {
+            &SINGLE_SCHEDULE
+        }
+    }
+    fn stepper(&self) -> &Stepper {
+        &self.stepper
+    }
+    fn stepper_mut(&mut self) -> &mut Stepper {
+        &mut self.stepper
+    }
+    fn filter_mut(&mut self, stage: usize) -> Option<&mut ParticleFilter<LaneState>> {
+        match stage {
+            0 => Some(&mut self.stage1),
+            1 => self.stage2.as_mut(),
+            _ => None,
+        }
+    }
+    fn start_rounds(&self) -> usize {
+        self.config.start_iterations
+    }
+    fn inject(&mut self, stage: usize) {
+        let filter = match stage {
+            0 => Some(&mut self.stage1),
+            _ => self.stage2.as_mut(),
+        };
+        if let Some(f) = filter {
+            f.inject(&self.initial);
+        }
+    }
+    /// Eq. 20 on the stage's states. Stage 1's frame pass adds the relock proposal. Its
+    /// start-up rounds are annealed: the process noise starts `start_spread` times wider and
+    /// narrows linearly to Q, and in the first half of the rounds every 1 / `start_fresh`-th
+    /// particle of the resampled cloud is first drawn anew from the initial distribution, so
+    /// that the search goes on beyond the uniform start's first draw.
+    fn predict(&mut self, stage: usize, pass: Pass) {
+        if stage > 0 {
+            let motion = self.motion(Part::Curve);
+            if let Some(stage2) = self.stage2.as_mut() {
+                stage2.predict(&motion);
+            }
+            return;
+        }
+        let mut motion = self.motion(self.stage1_part());
+        match pass {
+            Pass::Frame => {
+                self.stage1.predict(&motion);
+                self.relock();
+            }
+            Pass::StartRound { round, rounds } => {
+                let left = 1.0 - round as f64 / rounds as f64;
+                let scale = 1.0 + (self.config.start_spread - 1.0) * left;
+                motion.sd = motion.sd.map(|sd| sd * scale);
+                if 2 * round <= rounds {
+                    self.refresh_start_particles();
+                }
+                self.stage1.predict(&motion);
+            }
+        }
+    }
+    /// Stage 1: eq. 33 on the map D (the full-model baseline adds the far edges of each
+    /// particle's own lane); stage 2: the far edges of the lane completed with stage 1's
+    /// estimate.
+    fn weigh(&mut self, stage: usize) {
+        let spiral = self.config.spiral_length_m;
+        if stage > 0 {
+            if let Some(stage2) = self.stage2.as_mut() {
+                let model = FarModel {
+                    measurement: &self.measurement,
+                    camera: &self.camera,
+                    edges: &self.far,
+                    spiral,
+                    first: Some(self.stages.estimate),
+                    near: None,
+                };
+                stage2.weigh(&model, &());
+            }
+        } else if self.config.variant == Variant::FullModel {
+            let model = FarModel {
+                measurement: &self.measurement,
+                camera: &self.camera,
+                edges: &self.far,
+                spiral,
+                first: None,
+                near: Some(&self.map),
+            };
+            self.stage1.weigh(&model, &());
+        } else {
+            let model = NearModel {
+                measurement: &self.measurement,
+                map: &self.map,
+            };
+            self.stage1.weigh(&model, &());
+        }
+    }
+    /// Algorithm 1's weighted mean of the stage. Stage 1's goes through the lane-change rule
+    /// (the whole cloud re-centred on the lane the car is in); stage 2's completes the lane,
+    /// and each stage's particles then stand for full lanes with the other stage's estimate.
+    fn stage_estimate(&mut self, stage: usize) {
+        if stage == 0 {
+            let mut estimate = estimate_first_order(self.stage1.states(), self.stage1.weights());
+            self.stages.ess[0] = self.stage1.ess();
+            // Lane change (the shared rule, `super::lane_change`): the car has crossed a
+            // boundary's centre, so it is in the neighbouring lane; the whole cloud moves
+            // one lane width.
+            let change = EgoLane::symmetric(estimate.y0, estimate.w).change(lane_change::MARGIN_M);
+            if change != 0 {
+                let (y0, _) = motion::wrap(estimate.y0, estimate.w);
+                let shift = y0 - estimate.y0;
+                estimate.y0 = y0;
+                for s in self.stage1.states_mut() {
+                    s.y0 += shift;
+                }
+            }
+            // (On a first frame there is no lane to have changed from: re-centre only.)
+            self.stages.change = if self.stepper.is_first_frame() {
+                0
+            } else {
+                change
+            };
+            if self.config.variant == Variant::FullModel {
+                let (c, delta) = mean_curve(self.stage1.states(), self.stage1.weights());
+                estimate.c = c;
+                estimate.delta = delta;
+            }
+            self.stages.estimate = estimate;
+        } else if let Some(stage2) = self.stage2.as_mut() {
+            let (c, delta) = mean_curve(stage2.states(), stage2.weights());
+            self.stages.estimate.c = c;
+            self.stages.estimate.delta = delta;
+            self.stages.ess[1] = stage2.ess();
+            let e = self.stages.estimate;
+            for s in stage2.states_mut() {
+                *s = LaneState {
+                    c: s.c,
+                    delta: s.delta,
+                    ..e
+                };
+            }
+            for s in self.stage1.states_mut() {
+                s.c = e.c;
+                s.delta = e.delta;
+            }
+        }
+    }
+    /// The Kalman smoother, the support, the lost count (after `lost_restart` frames without a
+    /// marking near either boundary the filter starts again on the next frame: a cloud that
+    /// has lost the lane does not find it again by diffusing with Q) and the output.
+    fn estimate(&mut self) -> LeeEstimate {
+        let raw = self.stages.estimate;
+        let state = if self.config.kalman {
+            let x = self
+                .smoother
+                .update([raw.psi, raw.y0, raw.w, raw.w1, raw.c, raw.delta]);
+            LaneState {
+                psi: x[0],
+                y0: x[1],
+                w: x[2],
+                w1: x[3],
+                c: x[4],
+                delta: x[5],
+            }
+        } else {
+            raw
+        };
+        let support = self.measurement.near_support(&raw, None, &self.map);
+        let lost = support[0].max(support[1]) < LOST_SUPPORT;
+        self.lost = if lost { self.lost + 1 } else { 0 };
+        if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {
+            self.restart();
+        }
+        LeeEstimate {
+            state,
+            raw,
+            valid: support[0].min(support[1]) >= self.config.valid_fraction,
+            support,
+            change: self.stages.change,
+            candidates: self.candidates.count,
+            ess: self.stages.ess,
+        }
     }
 }
 

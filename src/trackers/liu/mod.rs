@@ -39,7 +39,10 @@ use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
-use crate::filter::{FilterConfig, Injection, ParticleFilter, ResamplePolicy, Resampler};
+use crate::filter::{
+    FilterConfig, FirstFrame, Injection, Op, ParticleFilter, Pass, ResampleDecision,
+    ResamplePolicy, Resampler, Schedule, Scheduled, Stepper,
+};
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, LinearParabolic, Role};
 use crate::math;
 use config::{LiuConfig, MAX_BOUNDARIES};
@@ -81,12 +84,25 @@ pub const STEP_NAMES_NOKERNEL: [&str; 7] = [
     STEP_NAMES[6],
 ];
 
-/// A frame in progress in per-step mode.
-#[derive(Debug, Clone)]
-struct Frame {
-    next: usize,
-    times: StageTimes,
-}
+/// The operations of a frame (Sec. IV-D to IV-F): one filter of N + N' particles whose two
+/// partitions, the linear part (stage 0) and the parabolic part (stage 1), are moved and
+/// weighed in turn, with resampling between them. The first frame runs like any other (the
+/// initial set is resampled, injected and moved).
+const STEPS: [&[Op]; 7] = [
+    &[Op::Resample(0), Op::Inject(0)],
+    &[Op::Predict(0)],
+    &[Op::Weigh(0)],
+    &[Op::ResampleBetween(1)],
+    &[Op::Predict(1)],
+    &[Op::Weigh(1)],
+    &[Op::Estimate],
+];
+
+/// PPF-Kernel's frame as the filter core runs it ([`crate::filter::schedule`]).
+pub static SCHEDULE: Schedule = Schedule::new(&STEP_NAMES, &STEPS, FirstFrame::AsAnyOther);
+/// PPF-NoKernel's: the same operations, its own weighing named.
+pub static SCHEDULE_NOKERNEL: Schedule =
+    Schedule::new(&STEP_NAMES_NOKERNEL, &STEPS, FirstFrame::AsAnyOther);
 
 /// The estimate of one frame in the paper's terms.
 #[derive(Debug, Clone, PartialEq)]
@@ -111,8 +127,8 @@ pub struct LiuTracker {
     filter: ParticleFilter<LaneParticle>,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
-    times: StageTimes,
-    frame: Option<Frame>,
+    /// The frame's schedule in progress and the last frame's times.
+    stepper: Stepper,
 }
 
 impl LiuTracker {
@@ -180,8 +196,7 @@ impl LiuTracker {
             initial,
             filter,
             detector,
-            times: StageTimes::default(),
-            frame: None,
+            stepper: Stepper::new(),
         })
     }
 
@@ -206,17 +221,12 @@ impl LiuTracker {
             .zip(self.filter.weights().iter().copied())
     }
 
-    /// One frame: [`LiuTracker::begin`], then every step in order.
+    /// One frame: [`LiuTracker::begin`], then every step in order ([`Scheduled::step_frame`]).
     ///
     /// # Errors
     /// [`Error::BufferSize`] / [`Error::Dimensions`] for a frame that does not match the camera.
     pub fn track(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<LiuEstimate> {
-        self.begin(rgba, width, height)?;
-        loop {
-            if let Some(e) = self.advance_step() {
-                return Ok(e);
-            }
-        }
+        self.step_frame(|t| t.begin(rgba, width, height))
     }
 
     /// Starts a frame: checks it and computes its descriptors. A frame still in progress is
@@ -231,59 +241,11 @@ impl LiuTracker {
         if let Some(d) = self.detector.as_mut() {
             d.feed(&self.camera, rgba, width, height)?;
         }
-        self.frame = Some(Frame {
-            next: 0,
-            times: StageTimes {
-                preprocess: now() - t0,
-                ..StageTimes::default()
-            },
+        self.stepper.begin(StageTimes {
+            preprocess: now() - t0,
+            ..StageTimes::default()
         });
         Ok(())
-    }
-
-    /// Index into the step names of the next step of the frame in progress.
-    pub fn next_step(&self) -> Option<usize> {
-        self.frame.as_ref().map(|f| f.next)
-    }
-
-    /// Runs the next step of the frame in progress; returns the estimate after the last one
-    /// (`None` before, or when no frame is in progress).
-    pub fn advance_step(&mut self) -> Option<LiuEstimate> {
-        let mut frame = self.frame.take()?;
-        let step = frame.next;
-        frame.next += 1;
-        let t = now();
-        match step {
-            0 => {
-                self.filter.resample();
-                self.filter.inject(&self.initial);
-                frame.times.resample += now() - t;
-            }
-            1 | 4 => {
-                self.filter.partitioned_predict(&self.model, step / 4);
-                if step == 1 {
-                    self.relock();
-                }
-                frame.times.predict += now() - t;
-            }
-            2 | 5 => {
-                self.filter
-                    .partitioned_weigh(&self.model, step / 4, &self.descriptors);
-                frame.times.weigh += now() - t;
-            }
-            3 => {
-                self.filter.resample_between_stages();
-                frame.times.resample += now() - t;
-            }
-            _ => {
-                let estimate = self.estimate();
-                frame.times.estimate += now() - t;
-                self.times = frame.times;
-                return Some(estimate);
-            }
-        }
-        self.frame = Some(frame);
-        None
     }
 
     /// Replaces `relock_share` of the particles by default-model lanes on the detector's ego
@@ -308,7 +270,7 @@ impl LiuTracker {
     /// at the bottom row and at y_m. (A plain mean would average modes that explain different
     /// sets of n_l boundaries of a wider road, e.g. the three left and the three right
     /// boundaries of a three-lane road, into lines between the markings.)
-    fn estimate(&self) -> LiuEstimate {
+    fn read_estimate(&self) -> LiuEstimate {
         let n = self.model.boundaries();
         let states = self.filter.states();
         let best = &states[crate::filter::map_index(self.filter.weights())];
@@ -496,11 +458,11 @@ impl Tracker for LiuTracker {
         if let Some(d) = self.detector.as_mut() {
             d.reset();
         }
-        self.frame = None;
+        self.stepper.abandon();
     }
 
     fn stage_times(&self) -> StageTimes {
-        self.times
+        self.stepper.times()
     }
 
     /// 3 n_l + 1 numbers per particle: (rho px, theta rad, d) of each boundary on the top
@@ -545,11 +507,7 @@ impl Tracker for LiuTracker {
     }
 
     fn step_names(&self) -> &'static [&'static str] {
-        if self.id == ID {
-            &STEP_NAMES
-        } else {
-            &STEP_NAMES_NOKERNEL
-        }
+        self.schedule().names()
     }
 
     /// The measurement pixels' weights and the top view itself (grey / 255). PPF-Kernel's
@@ -605,14 +563,58 @@ impl Tracker for LiuTracker {
     }
 
     fn advance(&mut self) -> Result<Option<LaneEstimate>> {
-        if self.frame.is_none() {
-            return Err(super::no_frame_in_progress());
-        }
-        Ok(self.advance_step().map(|e| self.to_lane_estimate(&e)))
+        super::advance_scheduled(self, Self::to_lane_estimate)
     }
 
     fn next_step(&self) -> Option<usize> {
-        LiuTracker::next_step(self)
+        self.stepper.next_step()
+    }
+
+    fn resamplings(&self) -> &[ResampleDecision] {
+        self.stepper.resamplings()
+    }
+}
+
+/// The models of the schedule's operations: stage k is partition k of the one filter.
+impl Scheduled for LiuTracker {
+    type State = LaneParticle;
+    type Estimate = LiuEstimate;
+
+    fn schedule(&self) -> &'static Schedule {
+        if self.id == ID {
+            &SCHEDULE
+        } else {
+            &SCHEDULE_NOKERNEL
+        }
+    }
+    fn stepper(&self) -> &Stepper {
+        &self.stepper
+    }
+    fn stepper_mut(&mut self) -> &mut Stepper {
+        &mut self.stepper
+    }
+    fn filter_mut(&mut self, _stage: usize) -> Option<&mut ParticleFilter<LaneParticle>> {
+        Some(&mut self.filter)
+    }
+    /// N' straight default lanes.
+    fn inject(&mut self, _stage: usize) {
+        self.filter.inject(&self.initial);
+    }
+    /// The random walk of partition k (eqs. 18-19, 22-23); after the linear part's, the
+    /// relock proposal.
+    fn predict(&mut self, stage: usize, _pass: Pass) {
+        self.filter.partitioned_predict(&self.model, stage);
+        if stage == 0 {
+            self.relock();
+        }
+    }
+    /// The kernel density of partition k (eqs. 20-21, 24-25; 26-27 without the kernels).
+    fn weigh(&mut self, stage: usize) {
+        self.filter
+            .partitioned_weigh(&self.model, stage, &self.descriptors);
+    }
+    fn estimate(&mut self) -> LiuEstimate {
+        self.read_estimate()
     }
 }
 

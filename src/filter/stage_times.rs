@@ -1,4 +1,5 @@
-//! Time spent per stage of a frame, and the clock that measures it.
+//! Time spent per stage of a frame, and the clock that measures it (the
+//! [`Stepper`](super::Stepper) charges each operation of a schedule to its stage).
 
 /// Time spent per stage of one frame, milliseconds.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
