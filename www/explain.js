@@ -4,6 +4,9 @@
 // name, with `.k` for element k of an array option; its default comes from trackerDefaults().
 
 const PARTICLES = { path: 'particles', label: 'particles N', min: 20, max: 2000, step: 10 };
+/** Options beyond the papers (ours), for real roads: each paper's filter is the default (off). */
+const RELOCK = { path: 'relock_share', label: 're-lock share: particles drawn around a line detector’s ego pair (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 };
+const ADJACENT = { path: 'adjacent_lanes', label: 'adjacent lanes: report the marked lanes beside the ego lane (ours, beyond the paper)', kind: /** @type {const} */ ('bool') };
 
 /**
  * A slider (`min`, `max`, `step`) or, with `kind: 'bool'`, a checkbox for the option at `path`.
@@ -27,6 +30,7 @@ export const TRACKERS = {
       { path: 'sigma_theta', label: 'σ_θ: random walk of θ (rad)', min: 0.0005, max: 0.03, step: 0.0005 },
       { path: 'sigma_d', label: 'σ_d: random walk of d', min: 0.001, max: 0.05, step: 0.001 },
       { path: 'gradient_threshold', label: 'gradient threshold of the mask', min: 1, max: 60, step: 1 },
+      RELOCK,
     ],
   },
   'lee-cpf': {
@@ -44,6 +48,8 @@ export const TRACKERS = {
       { path: 'process_sd.4', label: 'σ of c, the transition point, per frame (m)', min: 0.1, max: 5, step: 0.1 },
       { path: 'ess_threshold', label: 'N_thr / N: resample below', min: 0, max: 1, step: 0.05 },
       { path: 'kalman', label: 'Kalman smoothing', kind: 'bool' },
+      RELOCK,
+      ADJACENT,
     ],
   },
   'adachi-mmpf': {
@@ -59,6 +65,7 @@ export const TRACKERS = {
       { path: 'sigma_w_m', label: 'σ_w: random walk of w (m)', min: 0.002, max: 0.15, step: 0.002 },
       { path: 'beta', label: 'β: weight of the noise histogram', min: 0.05, max: 3, step: 0.05 },
       { path: 'edge_threshold', label: 'edge threshold', min: 10, max: 300, step: 5 },
+      RELOCK,
     ],
   },
   'danescu-stereo': {
@@ -77,6 +84,8 @@ export const TRACKERS = {
       { path: 'sigma_edge_px', label: 'σ of the edge distance (px)', min: 0.5, max: 10, step: 0.5 },
       { path: 'sigma_density', label: 'σ_D of the density distance (cells; stereo only)', min: 0.25, max: 8, step: 0.25 },
       { path: 'marking_widths', label: 'marking widths and gradient cue (off: the previous approach)', kind: 'bool' },
+      RELOCK,
+      ADJACENT,
     ],
   },
 };

@@ -669,6 +669,31 @@ for (const driver of DRIVERS) {
       await page.close();
     });
 
+    test(`${N}: the panel's beyond-the-paper box adds the lanes beside the ego lane`, async () => {
+      // multi-lane: four lanes, the car in the second, so a lane on each side.
+      const page = await b.open(`${b.base}/?source=multi-lane&tracker=lee-cpf`);
+      await running(page);
+      await page.click('#play');
+      await idle(page);
+      const roles = async () => {
+        await page.click('#restart');
+        await page.waitFor(() => window.lanepfDemo.pending === 0 && window.lanepfDemo.results.length === 0);
+        for (let k = 0; k < 5; k++) {
+          await page.click('#step');
+          await page.waitFor((k) => window.lanepfDemo.results.length === k + 1, { arg: k });
+        }
+        return page.eval(() => window.lanepfDemo.lastEstimate.boundaries.map((x) => x.role).sort());
+      };
+      // The paper's lee-cpf: the ego lane only.
+      assert.equal(await page.eval(() => document.querySelector('#params input[name="adjacent_lanes"]').checked), false);
+      assert.deepEqual(await roles(), ['ego-left', 'ego-right']);
+      await page.click('#params input[name="adjacent_lanes"]');
+      await idle(page);
+      assert.deepEqual(await roles(), ['ego-left', 'ego-right', 'left-adjacent', 'right-adjacent']);
+      assert.deepEqual(await page.errors(), []);
+      await page.close();
+    });
+
     test(`${N}: danescu-stereo tracks left/right image pairs and side-by-side images`, async () => {
       const page = await b.open(`${b.base}/?source=test-road&tracker=danescu-stereo`);
       // The test road's camera is not a stereo rig: the page says so and keeps going.
