@@ -11,7 +11,16 @@ use lanepf::synth::draw_scenario;
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     let member = draw_scenario(&a[2], a[3].parse().unwrap()).unwrap();
-    let run = run_member(&member, &[a[1].clone()], 320, 240, None, 1).unwrap();
+    let run = run_member(
+        &member,
+        &[a[1].clone()],
+        320,
+        240,
+        None,
+        1,
+        &Default::default(),
+    )
+    .unwrap();
     let keys: Vec<&String> = a[4..].iter().collect();
     for (i, (t, e)) in run.truth.iter().zip(&run.outputs[0].1).enumerate() {
         let mut line = format!(

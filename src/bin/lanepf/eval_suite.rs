@@ -2,13 +2,13 @@
 //! into one table, DIR/suite.md and DIR/suite.json (see `lanepf::eval::suite`).
 //!
 //! Each family member (scenario, seed) is rendered once at --width x --height through its own
-//! drawn camera, and every tracker runs on it with its default options, --tracker-seed and the
-//! true ego motion; rows pool the seeds of one tracker and scenario, and with more than one
+//! drawn camera, and every tracker runs on it with its default options (or --options),
+//! --tracker-seed and the true ego motion; rows pool the seeds of one tracker and scenario, and with more than one
 //! scenario an `all` row pools every scenario of the tracker.
 
 use lanepf::eval::suite::{markdown_table, run_member, score_run, CellRow, SuiteCell};
-use lanepf::synth::{draw_scenario, SCENARIOS};
-use lanepf::trackers::TRACKER_IDS;
+use lanepf::synth::{default_camera, draw_scenario, SCENARIOS};
+use lanepf::trackers::{self, TrackerConfig, TRACKER_IDS};
 use lanepf::{Error, Result};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -38,6 +38,10 @@ pub struct Args {
     /// Seed of every tracker's particle filter.
     #[arg(long, default_value_t = 1)]
     tracker_seed: u64,
+    /// Tracker options for every tracker of the run, a JSON object (e.g. `{"adjacent_lanes":
+    /// true}`; an option a tracker does not have is refused); default: each tracker's own.
+    #[arg(long)]
+    options: Option<String>,
     /// Output folder (suite.md, suite.json).
     #[arg(long)]
     out: PathBuf,
@@ -45,6 +49,38 @@ pub struct Args {
 
 /// Largest number of seeds one run accepts.
 const MAX_SEEDS: u64 = 10_000;
+
+/// Parses --options: a JSON object of tracker options (none: the defaults).
+fn parse_options(text: Option<&str>) -> Result<BTreeMap<String, serde_json::Value>> {
+    let Some(text) = text else {
+        return Ok(BTreeMap::new());
+    };
+    serde_json::from_str(text).map_err(|e| {
+        Error::Config(format!(
+            "--options must be a JSON object of tracker options: {e}"
+        ))
+    })
+}
+
+/// Builds each tracker of `ids` once with `options` on the default camera, so that an option a
+/// tracker does not take is refused before anything is rendered or written.
+fn check_options(
+    ids: &[String],
+    options: &BTreeMap<String, serde_json::Value>,
+    width: usize,
+    height: usize,
+) -> Result<()> {
+    let config = TrackerConfig {
+        camera: default_camera(width, height)?.to_file(),
+        particles: None,
+        seed: 1,
+        options: options.clone(),
+    };
+    for id in ids {
+        trackers::create(id, &config)?;
+    }
+    Ok(())
+}
 
 /// Parses `A..B` (inclusive) or `A` into the seeds.
 fn parse_seeds(text: &str) -> Result<std::ops::RangeInclusive<u64>> {
@@ -115,6 +151,8 @@ pub fn run(args: Args) -> Result<()> {
     if args.frames == Some(0) {
         return Err(Error::parameter("--frames", 0, "must be at least 1"));
     }
+    let options = parse_options(args.options.as_deref())?;
+    check_options(&ids, &options, args.width, args.height)?;
     std::fs::create_dir_all(&args.out).map_err(io_error(&args.out))?;
     let mut cells: BTreeMap<(String, String), SuiteCell> = BTreeMap::new();
     let started = Instant::now();
@@ -128,6 +166,7 @@ pub fn run(args: Args) -> Result<()> {
                 args.height,
                 args.frames,
                 args.tracker_seed,
+                &options,
             )?;
             for (id, output) in &run.outputs {
                 let score = score_run(&run.truth, output)?;
@@ -167,6 +206,7 @@ pub fn run(args: Args) -> Result<()> {
         "height": args.height,
         "frames": args.frames,
         "tracker_seed": args.tracker_seed,
+        "options": options,
         "rows": rows
             .iter()
             .map(|(tracker, scenario, row)| serde_json::json!({

@@ -8,6 +8,7 @@ use crate::eval::synthetic::evaluate;
 use crate::lane::LaneEstimate;
 use crate::synth::{Eye, FamilyMember};
 use crate::trackers::{self, EgoMotion, TrackerConfig};
+use std::collections::BTreeMap;
 use std::time::Instant;
 
 /// The truth of a member's frames and every tracker's output on them.
@@ -21,7 +22,7 @@ pub struct MemberRun {
 
 /// Renders `member` at `width` x `height` for its own number of frames (at most `max_frames`
 /// when given) and runs each tracker of `ids` on every frame, built on the member's camera
-/// with `tracker_seed` and its default options.
+/// with `tracker_seed` and `options` (the tracker options; empty: each tracker's defaults).
 ///
 /// # Errors
 /// An unknown tracker id, an unusable size, or a tracker's error on a frame.
@@ -32,6 +33,7 @@ pub fn run_member(
     height: usize,
     max_frames: Option<u32>,
     tracker_seed: u64,
+    options: &BTreeMap<String, serde_json::Value>,
 ) -> Result<MemberRun> {
     let mut scene = member.scene(width, height)?;
     let camera = scene.camera().to_file();
@@ -39,7 +41,7 @@ pub fn run_member(
         camera,
         particles: None,
         seed: tracker_seed,
-        options: Default::default(),
+        options: options.clone(),
     };
     let mut trackers = ids
         .iter()

@@ -17,7 +17,16 @@ fn pooled(
     for name in scenarios {
         for seed in seeds.clone() {
             let member = draw_scenario(name, seed).unwrap();
-            let run = run_member(&member, &ids, 320, 240, Some(frames), 1).unwrap();
+            let run = run_member(
+                &member,
+                &ids,
+                320,
+                240,
+                Some(frames),
+                1,
+                &Default::default(),
+            )
+            .unwrap();
             for (cell, (_, output)) in cells.iter_mut().zip(&run.outputs) {
                 cell.add(&score_run(&run.truth, output).unwrap());
             }
@@ -67,7 +76,16 @@ fn lane_changes_are_reported_once_on_drawn_lane_change_roads() {
         let mut total = crate::eval::lane_changes::LaneChangeCounts::default();
         for seed in 1..=3 {
             let member = draw_scenario("lane-change", seed).unwrap();
-            let run = run_member(&member, &[id.to_string()], 320, 240, None, 1).unwrap();
+            let run = run_member(
+                &member,
+                &[id.to_string()],
+                320,
+                240,
+                None,
+                1,
+                &Default::default(),
+            )
+            .unwrap();
             let output = &run.outputs[0].1;
             let score = score_run(&run.truth, output).unwrap();
             total = total + score.lane_changes;
