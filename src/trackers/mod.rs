@@ -2,7 +2,7 @@
 //! builds them by id from a configuration.
 //!
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
-//! `config.rs` the [`TrackerConfig`], `defaults.rs` / `ranges.rs` every option's default and
+//! `config.rs` the [`TrackerConfig`], `options.rs` the typed [`TrackerOptions`], `defaults.rs` / `ranges.rs` every option's default and
 //! range, `ego_motion.rs`, `layer.rs`, `stage_times.rs` the types the trait speaks,
 //! `lane_change.rs` the lane-change rule trackers share, `relock.rs` the detector proposal, and
 //! one folder per paper.
@@ -24,6 +24,7 @@ pub mod lee;
 pub mod liu;
 #[cfg(test)]
 mod option_fuzz;
+mod options;
 mod ranges;
 mod registry;
 pub mod relock;
@@ -38,8 +39,9 @@ pub use defaults::default_options;
 pub use ego_motion::EgoMotion;
 pub use hypothesis::{spread_indices, Hypothesis};
 pub use layer::{Layer, PlaneAxes};
+pub use options::{Options, TrackerOptions};
 pub use ranges::{option_ranges, OptionRange};
-pub use registry::{create, TRACKER_IDS};
+pub use registry::{build, create, TRACKER_IDS};
 pub(crate) use stage_times::now;
 pub use stage_times::StageTimes;
 pub use tracker::Tracker;

@@ -15,7 +15,10 @@ fn config_defaults_and_validation() {
         r#"{{"camera": {CAMERA}, "particles": 0, "sigma": 2}}"#
     ))
     .unwrap();
-    assert_eq!(c.options["sigma"], serde_json::json!(2));
+    let Options::ByName(options) = &c.options else {
+        panic!("JSON gives options by name")
+    };
+    assert_eq!(options["sigma"], serde_json::json!(2));
     let e = c.validate().unwrap_err().to_string();
     assert!(e.contains("`particles` = 0"), "{e}");
     let e = TrackerConfig::from_json_str(r#"{"particles": 10}"#).unwrap_err();

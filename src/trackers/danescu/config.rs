@@ -186,16 +186,21 @@ impl DanescuConfig {
     /// # Errors
     /// [`Error::Config`] for an unknown option or a wrong type; [`Error::Parameter`] naming
     /// the option for a value out of range.
-    pub fn from_options(
-        options: &std::collections::BTreeMap<String, serde_json::Value>,
-        id: &str,
-    ) -> Result<Self> {
-        let c: Self = super::super::parse_options(id, options)?;
-        c.check()?;
+    pub fn from_options(options: &crate::trackers::Options, id: &str) -> Result<Self> {
+        let c: Self = options.read(id, |t| match t {
+            crate::trackers::TrackerOptions::DanescuMono(c) if id == super::ID_MONO => Some(c),
+            crate::trackers::TrackerOptions::DanescuStereo(c) if id == super::ID_STEREO => Some(c),
+            _ => None,
+        })?;
+        c.validate()?;
         Ok(c)
     }
 
-    fn check(&self) -> Result<()> {
+    /// Checks every value.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] naming the first bad value.
+    pub fn validate(&self) -> Result<()> {
         crate::trackers::ranges::check_ranges(super::ID_MONO, self)?;
         if !(0.0..1.0).contains(&self.init_fraction) {
             return Err(Error::parameter(
