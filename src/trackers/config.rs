@@ -10,9 +10,9 @@ use std::collections::BTreeMap;
 /// Largest accepted particle count.
 pub const MAX_PARTICLES: usize = 200_000;
 
-/// What every tracker is built from: the camera, the particle budget, the seed, and
-/// tracker-specific options (checked by the tracker itself). From JSON the options come by
-/// name beside the other keys; from Rust, typed ([`TrackerConfig::new`]).
+/// What every tracker is built from: the camera, the particle budget, the seed, and the
+/// tracker's own options (checked by the tracker itself). In JSON the options are keys beside
+/// these; in Rust they may instead be typed, naming the tracker (`TrackerConfig::new`).
 #[derive(Debug, Clone, Deserialize)]
 pub struct TrackerConfig {
     /// The camera (the `camera.json` format); the frames given to `step` must have its size.
