@@ -299,7 +299,7 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     let first = layers.get(0);
     let field = |k: &str| js_sys::Reflect::get(&first, &k.into()).unwrap();
     assert_eq!(field("kind").as_string().unwrap(), "histogram");
-    let values: js_sys::Array = field("values").dyn_into().unwrap();
+    let values: js_sys::Float32Array = field("values").dyn_into().unwrap();
     assert_eq!(values.length(), 320);
     assert_eq!(field("start").as_f64(), Some(-8.0));
     // A wrong buffer throws, and the tracker carries on.

@@ -179,9 +179,10 @@ impl JsTracker {
     /// and road edges; danescu-stereo: those and `{ kind: 'plane', name, width, height, x_axis,
     /// x0, dx, y_axis, y0, dy, values }` for the 3-D density image and its column maxima;
     /// grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres left).
+    /// Each layer's `values` is a `Float32Array`.
     #[wasm_bindgen(unchecked_return_type = "Layer[]")]
     pub fn layers(&self) -> Result<JsValue, Thrown> {
-        super::to_js_value(&self.inner.layers())
+        super::layers::to_js(&self.inner.layers())
     }
 
     /// At most `max` particles spread over the cloud, each drawn as the boundaries it stands

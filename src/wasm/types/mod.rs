@@ -224,7 +224,8 @@ export interface HistogramLayer {
   axis: string;
   start: number;
   step: number;
-  values: number[];
+  /** One value per bin. */
+  values: Float32Array;
 }
 
 /** Values on a road grid: row r at x0 + r cell metres ahead, column c at y0 - c cell (y left). */
@@ -237,7 +238,7 @@ export interface GridLayer {
   y0: number;
   cell: number;
   /** values[r * width + c] */
-  values: number[];
+  values: Float32Array;
 }
 
 /** Values on another plane: column c at x0 + (c + 0.5) dx, row r at y0 + (r + 0.5) dy. */
@@ -253,7 +254,7 @@ export interface PlaneLayer {
   y0: number;
   dy: number;
   /** values[r * width + c] */
-  values: number[];
+  values: Float32Array;
 }
 
 /** A picture of one of a tracker's cues (`Tracker.layers()`). */
