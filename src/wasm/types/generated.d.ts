@@ -32,6 +32,165 @@ export interface TrackerBaseConfig {
 }
 
 /**
+ * A camera as written in a `camera.json` file: plain numbers, checked when a camera, scene
+ * or tracker is built from them (`from_file`). Unknown fields are refused.
+ *
+ * A field marked optional takes its default when left out.
+ */
+export interface CameraConfig {
+  /**
+   * Image width, pixels (1 to 16384; width x height at most 2^26).
+   */
+  width: number;
+  /**
+   * Image height, pixels (1 to 16384).
+   */
+  height: number;
+  /**
+   * Focal length along x, pixels (> 0).
+   */
+  fx: number;
+  /**
+   * Focal length along y, pixels (> 0).
+   */
+  fy: number;
+  /**
+   * Principal point x, pixels.
+   */
+  cx: number;
+  /**
+   * Principal point y, pixels.
+   */
+  cy: number;
+  /**
+   * Height of the optical centre above the road, metres (> 0, at most 100).
+   */
+  height_m: number;
+  /**
+   * Pitch, degrees, positive when the camera looks down at the road (|pitch| <= 80).
+   */
+  pitch_deg: number;
+  /**
+   * Yaw, degrees, positive when the camera looks left of the car's forward axis (|yaw| <=
+   * 80; 0 when left out).
+   */
+  yaw_deg?: number;
+  /**
+   * Roll, degrees, positive when the camera's right side dips (ISO 8855; |roll| <= 80; 0
+   * when left out).
+   */
+  roll_deg?: number;
+  /**
+   * Radial distortion k1 (0 when left out).
+   */
+  k1?: number;
+  /**
+   * Radial distortion k2 (0 when left out).
+   */
+  k2?: number;
+  /**
+   * Tangential distortion p1 (0 when left out).
+   */
+  p1?: number;
+  /**
+   * Tangential distortion p2 (0 when left out).
+   */
+  p2?: number;
+  /**
+   * Radial distortion k3 (0 when left out).
+   */
+  k3?: number;
+  /**
+   * Stereo baseline (distance from the left to the right camera), metres (> 0); needed by
+   * danescu-stereo.
+   */
+  baseline_m?: number;
+}
+
+/**
+ * The car's motion at a frame: its timestamp, speed and yaw rate (the frame interval is the
+ * difference of consecutive timestamps). All three fields are required.
+ *
+ * Every field is required when the object is given.
+ */
+export interface EgoMotion {
+  /**
+   * Frame timestamp, seconds.
+   */
+  t_s: number;
+  /**
+   * Speed, metres per second (|speed| <= 150).
+   */
+  speed_mps: number;
+  /**
+   * Yaw rate, radians per second, positive turning left (|yaw rate| <= 5).
+   */
+  yaw_rate: number;
+}
+
+/**
+ * Options of the straight test road (all optional; a field left out takes its default).
+ *
+ * A field left out takes its default.
+ */
+export interface TestRoadOptions {
+  /**
+   * Lane width W, metres.
+   *
+   * @defaultValue `3.6`
+   */
+  lane_width_m?: number;
+  /**
+   * Marking width m, metres.
+   *
+   * @defaultValue `0.15`
+   */
+  marking_width_m?: number;
+  /**
+   * Dash length L of the right marking, metres.
+   *
+   * @defaultValue `3`
+   */
+  dash_length_m?: number;
+  /**
+   * Dash period P (dash + gap), metres.
+   *
+   * @defaultValue `12`
+   */
+  dash_period_m?: number;
+  /**
+   * Speed v, metres per second.
+   *
+   * @defaultValue `20`
+   */
+  speed_mps?: number;
+  /**
+   * Frames per second.
+   *
+   * @defaultValue `30`
+   */
+  fps?: number;
+  /**
+   * Sway amplitude A, metres.
+   *
+   * @defaultValue `0.4`
+   */
+  sway_amplitude_m?: number;
+  /**
+   * Sway period T, seconds.
+   *
+   * @defaultValue `6`
+   */
+  sway_period_s?: number;
+  /**
+   * Farthest road distance drawn and reported, metres.
+   *
+   * @defaultValue `80`
+   */
+  max_distance_m?: number;
+}
+
+/**
  * Lee's dark-light-dark (DLD) marking detector (eqs. 21-24): averaging window and threshold.
  *
  * Every field is required when the object is given.

@@ -48,42 +48,6 @@ export type ScenarioName =
   | 'worn-markings' | 'night' | 'width-change' | 'pitch-bumps' | 'multi-lane' | 'urban'
   | 'random';
 
-/** A camera in the `camera.json` format. Unknown fields are refused. */
-export interface CameraConfig {
-  /** Image width, pixels (1 to 16384). */
-  width: number;
-  /** Image height, pixels (1 to 16384; width * height at most 2^26). */
-  height: number;
-  /** Focal length along x, pixels (> 0). */
-  fx: number;
-  /** Focal length along y, pixels (> 0). */
-  fy: number;
-  /** Principal point x, pixels. */
-  cx: number;
-  /** Principal point y, pixels. */
-  cy: number;
-  /** Height of the optical centre above the road, metres (> 0, at most 100). */
-  height_m: number;
-  /** Pitch, degrees, positive looking down at the road (|pitch| <= 80). */
-  pitch_deg: number;
-  /** Yaw, degrees, positive looking left of the car's axis (default 0, |yaw| <= 80). */
-  yaw_deg?: number;
-  /** Roll, degrees, positive when the camera's right side dips (default 0, |roll| <= 80). */
-  roll_deg?: number;
-  /** Radial distortion k1 (default 0). */
-  k1?: number;
-  /** Radial distortion k2 (default 0). */
-  k2?: number;
-  /** Tangential distortion p1 (default 0). */
-  p1?: number;
-  /** Tangential distortion p2 (default 0). */
-  p2?: number;
-  /** Radial distortion k3 (default 0). */
-  k3?: number;
-  /** Stereo baseline, metres (> 0); needed by danescu-stereo. */
-  baseline_m?: number | null;
-}
-
 /** Options of `new Scene(name, options)`. */
 export interface SceneOptions {
   /** Seed of texture, noise and every random choice (whole number, default 1). */
@@ -105,38 +69,6 @@ export interface SceneOptions {
 export interface ScenarioInfo {
   name: ScenarioName;
   description: string;
-}
-
-/** Options of `new TestRoad(camera, options)` (all optional). */
-export interface TestRoadOptions {
-  /** Lane width, metres (default 3.6). */
-  lane_width_m?: number;
-  /** Marking width, metres (default 0.15). */
-  marking_width_m?: number;
-  /** Dash length of the right marking, metres (default 3). */
-  dash_length_m?: number;
-  /** Dash period (dash + gap), metres (default 12). */
-  dash_period_m?: number;
-  /** Speed, metres per second (default 20). */
-  speed_mps?: number;
-  /** Frames per second (default 30). */
-  fps?: number;
-  /** Sway amplitude, metres (default 0.4). */
-  sway_amplitude_m?: number;
-  /** Sway period, seconds (default 6). */
-  sway_period_s?: number;
-  /** Farthest road distance drawn and reported, metres (default 80). */
-  max_distance_m?: number;
-}
-
-/** The car's motion at a frame (`setEgoMotion`); all three fields are required. */
-export interface EgoMotion {
-  /** Frame timestamp, seconds. */
-  t_s: number;
-  /** Speed, metres per second (|speed| <= 150). */
-  speed_mps: number;
-  /** Yaw rate, radians per second, positive turning left (|yaw rate| <= 5). */
-  yaw_rate: number;
 }
 
 /** Which boundary a polyline is. */

@@ -21,12 +21,15 @@ mod parse;
 mod render;
 
 use crate::camera::CameraFile;
+use crate::synth::TestRoadConfig;
 use crate::trackers::adachi::config::AdachiConfig;
 use crate::trackers::danescu::config::DanescuConfig;
 use crate::trackers::danescu::elevation::CurbConfig;
 use crate::trackers::lee::config::LeeConfig;
 use crate::trackers::liu::config::LiuConfig;
-use crate::trackers::{option_ranges, OptionRange, TrackerConfig, TrackerOptions, TRACKER_IDS};
+use crate::trackers::{
+    option_ranges, EgoMotion, OptionRange, TrackerConfig, TrackerOptions, TRACKER_IDS,
+};
 use crate::vision::{
     CannyConfig, DensityConfig, DisparityConfig, DldConfig, HGradientConfig, TopViewConfig,
 };
@@ -44,8 +47,10 @@ struct Spec {
     rust: &'static str,
     file: &'static str,
     shape: Shape,
-    /// Its default value as JSON (every field, as serde writes it), when it has one.
+    /// A value as JSON with every field, as serde writes it, when there is one.
     sample: Option<fn() -> Value>,
+    /// Whether `sample`'s values are the defaults a left-out field takes (shown in the docs).
+    defaults: bool,
     /// Deserialises JSON as the Rust type does (for the checks).
     parse: Option<fn(Value) -> Result<(), String>>,
 }
@@ -73,6 +78,7 @@ macro_rules! options {
             file: $file,
             shape: Shape::Interface($ts),
             sample: Some(sample::<$rust>),
+            defaults: true,
             parse: Some(parses::<$rust>),
         }
     };
@@ -85,12 +91,23 @@ macro_rules! inline {
             file: $file,
             shape: Shape::Inline,
             sample: None,
+            defaults: false,
             parse: None,
         }
     };
 }
 
-/// A camera file in a tracker config (the camera's own type is declared by hand).
+/// A camera with every field (distortion and baseline too, which serialise only when set).
+fn camera_sample() -> Value {
+    let mut camera = crate::synth::default_camera(320, 240)
+        .expect("a camera")
+        .to_file();
+    (camera.k1, camera.k2, camera.p1, camera.p2, camera.k3) = (0.01, 0.001, 0.0001, 0.0001, 0.001);
+    camera.baseline_m = Some(0.3);
+    json(&camera)
+}
+
+/// A tracker config: its camera and seed (particles has no default but the tracker's).
 fn base_sample() -> Value {
     let camera = json(
         &crate::synth::default_camera(320, 240)
@@ -111,15 +128,19 @@ fn specs() -> Vec<Spec> {
             file: "src/trackers/config.rs",
             shape: Shape::Interface("TrackerBaseConfig"),
             sample: Some(base_sample),
+            defaults: true,
             parse: Some(parses::<TrackerConfig>),
         },
         Spec {
             rust: "CameraFile",
             file: "src/camera/file.rs",
-            shape: Shape::External("CameraConfig"),
-            sample: None,
+            shape: Shape::Interface("CameraConfig"),
+            sample: Some(camera_sample),
+            defaults: false,
             parse: Some(parses::<CameraFile>),
         },
+        options!(EgoMotion, "src/trackers/ego_motion.rs", "EgoMotion"),
+        options!(TestRoadConfig, "src/synth/test_road.rs", "TestRoadOptions"),
         options!(DldConfig, "src/vision/dld.rs", "DldConfig"),
         options!(CannyConfig, "src/vision/canny.rs", "CannyConfig"),
         options!(TopViewConfig, "src/vision/ipm.rs", "TopViewConfig"),
@@ -250,7 +271,7 @@ fn generate() -> Result<String, String> {
             continue;
         };
         let (def, _) = &types[s.rust];
-        let defaults = s.sample.map(|f| f());
+        let defaults = s.sample.filter(|_| s.defaults).map(|f| f());
         let ids = ids_of(s.rust);
         let (heading, ranges) = if let Some(first) = ids.first() {
             let ranges = option_ranges(first).map_err(|e| e.to_string())?;
@@ -272,19 +293,22 @@ fn generate() -> Result<String, String> {
             (heading, ranges)
         } else if s.rust == "TrackerConfig" {
             (Vec::new(), Vec::new())
-        } else if def.serde.default {
-            (
-                vec![String::new(), "A field left out takes its default.".into()],
-                Vec::new(),
-            )
         } else {
-            (
-                vec![
-                    String::new(),
-                    "Every field is required when the object is given.".into(),
-                ],
-                Vec::new(),
-            )
+            let Body::Struct(fields) = &def.body else {
+                return Err(format!("{ts}: not a struct"));
+            };
+            let left_out = fields
+                .iter()
+                .filter(|f| optional(def.serde.default, f))
+                .count();
+            let note = if left_out == fields.len() {
+                "A field left out takes its default."
+            } else if left_out == 0 {
+                "Every field is required when the object is given."
+            } else {
+                "A field marked optional takes its default when left out."
+            };
+            (vec![String::new(), note.to_string()], Vec::new())
         };
         let container_default = def.serde.default;
         let extra = |f: &Field| {

@@ -14,8 +14,6 @@ pub enum Shape {
     Interface(&'static str),
     /// A unit enum written out where it is used, as a union of its names.
     Inline,
-    /// A type of this name declared elsewhere (the hand-kept part).
-    External(&'static str),
 }
 
 /// Every Rust type the rendered ones refer to, by Rust name.
@@ -37,7 +35,7 @@ pub fn ts_type(ty: &Ty, types: &Types) -> Result<String, String> {
         },
         Ty::Option(t) => ts_type(t, types)?,
         Ty::Named(name) => match types.get(name.as_str()) {
-            Some((_, Shape::Interface(ts) | Shape::External(ts))) => (*ts).to_string(),
+            Some((_, Shape::Interface(ts))) => (*ts).to_string(),
             Some((def, Shape::Inline)) => match &def.body {
                 Body::Enum(variants) => variants
                     .iter()
