@@ -115,6 +115,12 @@ export interface LaneEstimate {
    * widths (danescu-mono, danescu-stereo); absent for the others.
    */
   delimiters?: Delimiter[];
+  /** The effective sample size of the particles after the frame's weighing (lee-cpf: stage 1's;
+   *  `state['lee.ess2']` is stage 2's), particles; absent from a scene's truth. */
+  ess?: number;
+  /** adachi-mmpf only: the model probabilities P(r) of the lane configurations r = 1..4
+   *  (`state['adachi.p1']` ..), summing to 1. */
+  model_probabilities?: [number, number, number, number];
 }
 
 /** The named values of a scene's ground truth (`Scene.truth(f).state`). */
