@@ -7,7 +7,7 @@ PORT ?= 8080
 WASM_TEST_ENV := CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUNNER=wasm-bindgen-test-runner \
                  CHROMEDRIVER=/usr/bin/chromedriver WASM_BINDGEN_TEST_TIMEOUT=120
 
-.PHONY: demo test test-all test-slow setup pkg lint lint-rust lint-js test-native test-wasm test-chromium test-browser \
+.PHONY: demo test test-all test-slow setup pkg types lint lint-rust lint-js test-native test-wasm test-chromium test-browser \
         fuzz-wasm bench bench-browser
 
 ## Build everything and serve the demo on http://127.0.0.1:$(PORT)/
@@ -30,6 +30,11 @@ setup:
 pkg:
 	bash scripts/setup.sh --no-browser
 	bash scripts/build-pkg.sh
+
+## Regenerates src/wasm/types/generated.d.ts (the tracker configs' TypeScript) from the Rust
+## types; `cargo test` fails while the committed file is stale.
+types:
+	LANEPF_BLESS=1 cargo test --lib typegen
 
 ## rustfmt and clippy, then the JavaScript: the demo type-checked against the package's .d.ts
 ## (tsc, www/tsconfig*.json) and ESLint (eslint.config.js).

@@ -11,7 +11,7 @@
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
 use lanepf::trackers::adachi::config::AdachiConfig;
 use lanepf::trackers::adachi::AdachiTracker;
-use lanepf::trackers::TrackerConfig;
+use lanepf::trackers::{TrackerConfig, TrackerOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -24,7 +24,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .split(',')
         .collect();
     let camera = default_camera(640, 480)?;
-    let cam = serde_json::to_string(&camera.to_file())?;
     println!("| scenario | seeds x frames | estimator | q RMSE (m) | RMS of dq - dq_true (m) |");
     println!("|---|---|---|---|---|");
     for name in names {
@@ -35,8 +34,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let (mut n, mut nd) = (0.0, 0.0);
         for seed in 1..=seeds {
             let mut scene = Scene::new(scenario(name)?, camera.clone(), seed)?;
-            let config =
-                TrackerConfig::from_json_str(&format!(r#"{{"camera": {cam}, "seed": {seed}}}"#))?;
+            let config = TrackerConfig::new(
+                camera.to_file(),
+                TrackerOptions::AdachiMmpf(AdachiConfig::default()),
+            )
+            .with_seed(seed);
             let mut tracker = AdachiTracker::new(&config)?;
             let mut rgba = vec![0u8; 640 * 480 * 4];
             let mut prev: Option<(f64, [f64; 3])> = None; // (truth, estimates)

@@ -12,7 +12,8 @@
 //! `--new-only` skips the previous approach.
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
-use lanepf::trackers::{create, EgoMotion, TrackerConfig};
+use lanepf::trackers::danescu::config::DanescuConfig;
+use lanepf::trackers::{build, EgoMotion, TrackerConfig, TrackerOptions};
 
 #[derive(Default)]
 struct Sums {
@@ -36,16 +37,17 @@ struct Sums {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().collect();
+    // The options every run starts from: the defaults, or `--config`'s object read into the
+    // typed config (an unknown option is an error here).
     let mut extra = String::new();
+    let mut base = DanescuConfig::default();
     if let Some(k) = args.iter().position(|a| a == "--config") {
         let json = args
             .get(k + 1)
             .ok_or("--config needs a JSON object")?
             .clone();
-        let options: serde_json::Map<String, serde_json::Value> = serde_json::from_str(&json)?;
-        for (key, value) in options {
-            extra.push_str(&format!(", {}: {value}", serde_json::Value::String(key)));
-        }
+        base = serde_json::from_str(&json)?;
+        extra = format!(", options {json}");
         args.drain(k..k + 2);
     }
     let models: &[bool] = if let Some(k) = args.iter().position(|a| a == "--new-only") {
@@ -75,10 +77,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .to_vec()
     };
     let camera = default_camera(640, 480)?;
-    let cam = serde_json::to_string(&camera.to_file())?;
     println!(
         "{id}: {seeds} seeds x {frames} frames, N = 500, 640x480, first 30 frames of each run skipped{}",
-        if extra.is_empty() { String::new() } else { format!(", options{extra}") }
+        extra
     );
     println!();
     println!("| scenario | model | offset RMSE (m) | psi RMSE (rad) | C_H RMSE (1/m) | W_0 RMSE (m) | W_0 MAE (mm, %) | W_l RMSE | C_V RMSE (1/m) | pitch RMSE (mrad) | roll RMSE (mrad) | Y_0 RMSE (cm) | W_L MAE (mm) | W_R MAE (mm) | valid | ESS (median) | ms/frame (median) |");
@@ -88,10 +89,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut s = Sums::default();
             for seed in 1..=seeds {
                 let mut scene = Scene::new(scenario(name)?, camera.clone(), seed)?;
-                let config = TrackerConfig::from_json_str(&format!(
-                    r#"{{"camera": {cam}, "seed": {seed}, "marking_widths": {marking_widths}{extra}}}"#
-                ))?;
-                let mut tracker = create(&id, &config)?;
+                let options = DanescuConfig {
+                    marking_widths,
+                    ..base.clone()
+                };
+                let options = match id.as_str() {
+                    "danescu-stereo" => TrackerOptions::DanescuStereo(options),
+                    "danescu-mono" => TrackerOptions::DanescuMono(options),
+                    other => return Err(format!("{other} is not a Danescu tracker").into()),
+                };
+                let config = TrackerConfig::new(camera.to_file(), options).with_seed(seed);
+                let mut tracker = build(&config)?;
                 let mut rgba = vec![0; 640 * 480 * 4];
                 let mut right = vec![0; 640 * 480 * 4];
                 for f in 0..frames {

@@ -7,8 +7,9 @@
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
 use lanepf::trackers::lee::clothoid::Curve;
+use lanepf::trackers::lee::config::{LeeConfig, Variant};
 use lanepf::trackers::lee::LeeTracker;
-use lanepf::trackers::TrackerConfig;
+use lanepf::trackers::{TrackerConfig, TrackerOptions};
 
 #[derive(Default)]
 struct Sums {
@@ -41,25 +42,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .to_vec()
     };
     let camera = default_camera(640, 480)?;
-    let cam = serde_json::to_string(&camera.to_file())?;
     println!("{seeds} seeds x {frames} frames, {particles} particles per filter, 640x480, first 10 frames of each run skipped");
     println!();
     println!("| scenario | filter | offset RMSE (m) | heading RMSE (deg) | heading error sd (deg) | width RMSE (m) | centre error at 30 m (m) | valid | ms/frame |");
     println!("|---|---|---|---|---|---|---|---|---|");
     for name in &names {
         for (variant, kalman, label) in [
-            ("cascade", true, "CPF + Kalman"),
-            ("cascade", false, "CPF"),
-            ("first-order", false, "PF1 (first-order)"),
-            ("full-model", false, "PF full model"),
+            (Variant::Cascade, true, "CPF + Kalman"),
+            (Variant::Cascade, false, "CPF"),
+            (Variant::FirstOrder, false, "PF1 (first-order)"),
+            (Variant::FullModel, false, "PF full model"),
         ] {
             let mut s = Sums::default();
             for seed in 1..=seeds {
                 let mut scene = Scene::new(scenario(name)?, camera.clone(), seed)?;
-                let config = TrackerConfig::from_json_str(&format!(
-                    r#"{{"camera": {cam}, "seed": {seed}, "particles": {particles},
-                        "variant": "{variant}", "kalman": {kalman}}}"#
-                ))?;
+                let lee = LeeConfig {
+                    variant,
+                    kalman,
+                    ..LeeConfig::default()
+                };
+                let config = TrackerConfig::new(camera.to_file(), TrackerOptions::LeeCpf(lee))
+                    .with_seed(seed)
+                    .with_particles(particles);
                 let mut tracker = LeeTracker::new(&config)?;
                 let mut rgba = vec![0u8; 640 * 480 * 4];
                 for f in 0..frames {

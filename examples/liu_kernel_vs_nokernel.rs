@@ -6,7 +6,7 @@
 //! `cargo run --release --example liu_kernel_vs_nokernel -- [SEEDS] [FRAMES] [PARTICLES] [SCENARIO...]`
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
-use lanepf::trackers::{create, TrackerConfig};
+use lanepf::trackers::{build, TrackerConfig, TrackerOptions};
 
 #[derive(Default)]
 struct Sums {
@@ -32,7 +32,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .to_vec()
     };
     let camera = default_camera(640, 480)?;
-    let cam = serde_json::to_string(&camera.to_file())?;
     println!("{seeds} seeds x {frames} frames, N = {particles} (+ N' = 50), 640x480, first 10 frames of each run skipped");
     println!();
     println!("| scenario | variant | rho RMSE (px) | theta RMSE (rad) | d RMSE | offset RMSE (m) | heading RMSE (deg) | valid | ms/frame |");
@@ -42,10 +41,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut s = Sums::default();
             for seed in 1..=seeds {
                 let mut scene = Scene::new(scenario(name)?, camera.clone(), seed)?;
-                let config = TrackerConfig::from_json_str(&format!(
-                    r#"{{"camera": {cam}, "seed": {seed}, "particles": {particles}}}"#
-                ))?;
-                let mut tracker = create(id, &config)?;
+                let config = TrackerConfig::new(camera.to_file(), TrackerOptions::defaults(id)?)
+                    .with_seed(seed)
+                    .with_particles(particles);
+                let mut tracker = build(&config)?;
                 let mut rgba = vec![0; 640 * 480 * 4];
                 for f in 0..frames {
                     scene.render(f, Eye::Left, &mut rgba, None)?;

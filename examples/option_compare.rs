@@ -45,7 +45,7 @@ fn run(
         camera: camera.clone(),
         particles: None,
         seed,
-        options: options.clone(),
+        options: trackers::Options::ByName(options.clone()),
     };
     let mut tracker = trackers::create(id, &config)?;
     let mut out = Vec::with_capacity(frames.len());

@@ -23,30 +23,79 @@ use lanepf::camera::CameraFile;
 use lanepf::eval::{evaluate_with, EvalOptions, Format, Metrics};
 use lanepf::image::{read_rgba, write_rgba_png, RgbaFrame};
 use lanepf::lane::{LaneEstimate, Role};
-use lanepf::trackers::{self, TrackerConfig};
+use lanepf::trackers::adachi::config::{AdachiConfig, LaneShape};
+use lanepf::trackers::danescu::config::DanescuConfig;
+use lanepf::trackers::lee::config::LeeConfig;
+use lanepf::trackers::liu::config::LiuConfig;
+use lanepf::trackers::{self, TrackerConfig, TrackerOptions};
 use std::path::{Path, PathBuf};
 
-/// Each row: a tracker id and the options it runs with (JSON; `{}` the defaults), so that a
-/// named option beyond a paper is reported beside the paper's method.
-const TRACKERS: [(&str, &str); 11] = [
-    ("adachi-mmpf", "{}"),
-    ("adachi-mmpf", r#"{"lane_shape": "curved"}"#),
-    ("adachi-mmpf", r#"{"relock_share": 0.05}"#),
-    ("danescu-mono", "{}"),
-    ("danescu-mono", r#"{"relock_share": 0.1}"#),
-    (
-        "danescu-mono",
-        r#"{"relock_share": 0.1, "adjacent_lanes": true}"#,
-    ),
-    ("lee-cpf", "{}"),
-    ("lee-cpf", r#"{"relock_share": 0.05}"#),
-    (
-        "lee-cpf",
-        r#"{"relock_share": 0.05, "adjacent_lanes": true}"#,
-    ),
-    ("liu-ppf", "{}"),
-    ("liu-ppf-nokernel", "{}"),
+/// Each row: the options a tracker runs with (which name the tracker), so that a named option
+/// beyond a paper is reported beside the paper's method; the table names a row by the options
+/// that differ from the defaults.
+const TRACKERS: [fn() -> TrackerOptions; 11] = [
+    || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
+    || {
+        TrackerOptions::AdachiMmpf(AdachiConfig {
+            lane_shape: LaneShape::Curved,
+            ..AdachiConfig::default()
+        })
+    },
+    || {
+        TrackerOptions::AdachiMmpf(AdachiConfig {
+            relock_share: 0.05,
+            ..AdachiConfig::default()
+        })
+    },
+    || TrackerOptions::DanescuMono(DanescuConfig::default()),
+    || {
+        TrackerOptions::DanescuMono(DanescuConfig {
+            relock_share: 0.1,
+            ..DanescuConfig::default()
+        })
+    },
+    || {
+        TrackerOptions::DanescuMono(DanescuConfig {
+            relock_share: 0.1,
+            adjacent_lanes: true,
+            ..DanescuConfig::default()
+        })
+    },
+    || TrackerOptions::LeeCpf(LeeConfig::default()),
+    || {
+        TrackerOptions::LeeCpf(LeeConfig {
+            relock_share: 0.05,
+            ..LeeConfig::default()
+        })
+    },
+    || {
+        TrackerOptions::LeeCpf(LeeConfig {
+            relock_share: 0.05,
+            adjacent_lanes: true,
+            ..LeeConfig::default()
+        })
+    },
+    || TrackerOptions::LiuPpf(LiuConfig::default()),
+    || TrackerOptions::LiuPpfNokernel(LiuConfig::default()),
 ];
+
+/// A row's name: the tracker id, and the options that differ from its defaults as JSON.
+fn row_name(options: &TrackerOptions) -> Res<String> {
+    let id = options.id();
+    let defaults = serde_json::to_value(TrackerOptions::defaults(id)?)?;
+    let serde_json::Value::Object(given) = serde_json::to_value(options)? else {
+        return Err("options serialise to an object".into());
+    };
+    let changed: serde_json::Map<_, _> = given
+        .into_iter()
+        .filter(|(k, v)| defaults.get(k) != Some(v))
+        .collect();
+    Ok(if changed.is_empty() {
+        id.to_string()
+    } else {
+        format!("{id} `{}`", serde_json::Value::Object(changed))
+    })
+}
 const STILL_ITERATIONS: u32 = 5;
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
@@ -195,19 +244,14 @@ fn camera_from_labels(dir: &Path, width: usize, height: usize) -> Res<CameraFile
 }
 
 fn track(
-    (id, options): (&str, &str),
+    options: TrackerOptions,
     camera: &CameraFile,
     frames: &[RgbaFrame],
     names: &[String],
     still: bool,
 ) -> Res<Vec<LaneEstimate>> {
-    let config = TrackerConfig {
-        camera: camera.clone(),
-        particles: None,
-        seed: 1,
-        options: serde_json::from_str(options)?,
-    };
-    let mut tracker = trackers::create(id, &config)?;
+    let config = TrackerConfig::new(camera.clone(), options);
+    let mut tracker = trackers::build(&config)?;
     let mut out = Vec::new();
     for (f, name) in frames.iter().zip(names) {
         let mut e = if still {
@@ -430,8 +474,8 @@ fn main() -> Res<()> {
         let (cam, note) = camera(&run.camera, &frames)?;
         notes.push(format!("- {}: {note}", run.label));
         let mut all = Vec::new();
-        for (k, &row) in TRACKERS.iter().enumerate() {
-            let preds = track(row, &cam, &frames, &names, run.still)?;
+        for (k, row) in TRACKERS.iter().enumerate() {
+            let preds = track(row(), &cam, &frames, &names, run.still)?;
             let valid = preds.iter().filter(|p| p.valid).count();
             let cell = match &run.eval {
                 Some((format, gt)) => {
@@ -446,7 +490,7 @@ fn main() -> Res<()> {
                     100.0 * valid as f64 / preds.len().max(1) as f64
                 ),
             };
-            eprintln!("{} / {} {}: {cell}", run.label, row.0, row.1);
+            eprintln!("{} / {}: {cell}", run.label, row_name(&row())?);
             rows[k].push(cell);
             all.push(preds);
         }
@@ -455,12 +499,8 @@ fn main() -> Res<()> {
             sheet(&out.join(name), &frames, &all, &samples, 4)?;
         }
     }
-    for (k, (id, options)) in TRACKERS.iter().enumerate() {
-        let name = if *options == "{}" {
-            id.to_string()
-        } else {
-            format!("{id} `{options}`")
-        };
+    for (k, options) in TRACKERS.iter().enumerate() {
+        let name = row_name(&options())?;
         table += &format!("| {name} | {} |\n", rows[k].join(" | "));
     }
     let report = format!("{table}\nCameras:\n{}\n", notes.join("\n"));

@@ -15,6 +15,16 @@ features=(--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-e
 out=pkg/web
 rm -rf "$out"
 wasm-bindgen --target web --out-dir "$out" --out-name lanepf "$wasm"
+# The Tracker class takes its id as a type parameter, so that `new Tracker('lee-cpf', config)`
+# checks config against lee-cpf's options (TrackerConfig<Id>, src/wasm/types/generated.d.ts):
+# wasm-bindgen declares no generic classes, so the one line is added here, and the build fails if
+# wasm-bindgen's declaration ever changes shape.
+dts="$out/lanepf.d.ts"
+if [ "$(grep -c '^export class Tracker {$' "$dts")" != 1 ]; then
+  echo "[build-pkg] $dts: no single 'export class Tracker {' line to make generic" >&2
+  exit 1
+fi
+sed -i 's/^export class Tracker {$/export class Tracker<Id extends TrackerId = TrackerId> {/' "$dts"
 node_modules/.bin/wasm-opt -O3 "${features[@]}" "$out/lanepf_bg.wasm" -o "$out/lanepf_bg.wasm"
 rm -f "$out/.gitignore"
 # What builds before the committed bundler entry generated the `bundler` target there.

@@ -285,6 +285,18 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
         .as_f64()
         .unwrap();
     assert_eq!(q.to_bits(), 0x3fb8_d07f_c081_deef, "{q}");
+    // The typed fields: the ESS as `state` holds it, the model probabilities P(1..4).
+    let get = |k: &str| js_sys::Reflect::get(&last, &k.into()).unwrap();
+    let state = get("state");
+    let adachi_ess = js_sys::Reflect::get(&state, &"adachi.ess".into()).unwrap();
+    assert_eq!(get("ess").as_f64(), adachi_ess.as_f64());
+    assert!(get("ess").as_f64().is_some_and(|e| e > 0.0 && e <= 400.0));
+    let p: Vec<f64> = js_sys::Array::from(&get("model_probabilities"))
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(p.len(), 4);
+    assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-9, "{p:?}");
     // The cloud: 400 particles of (r, q, w, weight), weights summing to 1.
     assert_eq!(tracker.particle_stride(), 4);
     let cloud = tracker.particles().to_vec();
@@ -299,7 +311,7 @@ fn adachi_tracker_runs_in_the_browser_with_the_native_result() {
     let first = layers.get(0);
     let field = |k: &str| js_sys::Reflect::get(&first, &k.into()).unwrap();
     assert_eq!(field("kind").as_string().unwrap(), "histogram");
-    let values: js_sys::Array = field("values").dyn_into().unwrap();
+    let values: js_sys::Float32Array = field("values").dyn_into().unwrap();
     assert_eq!(values.length(), 320);
     assert_eq!(field("start").as_f64(), Some(-8.0));
     // A wrong buffer throws, and the tracker carries on.

@@ -46,7 +46,7 @@ export function beliefPanels(trackerId, particles, stride, estimate, layers = nu
   const r = rows(particles, stride);
   const st = estimate?.state ?? {};
   if (trackerId === 'adachi-mmpf') {
-    const p = [1, 2, 3, 4].map((k) => st[`adachi.p${k}`]);
+    const p = estimate?.model_probabilities ?? [NaN, NaN, NaN, NaN];
     // The vote histogram as the tracker binned it (its own bins, not re-binned).
     const votes = layers?.find((l) => l.kind === 'histogram');
     /** @type {Panel[]} */

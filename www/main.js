@@ -233,8 +233,7 @@ function draw(frame, result, redraw = false) {
   const layer = layers?.[controls.setLayers(layers)];
   el('cues-figure').hidden = !layer;
   if (layer) {
-    const st = estimate?.state ?? {};
-    const probabilities = 'adachi.p1' in st ? [1, 2, 3, 4].map((r) => st[`adachi.p${r}`]) : null;
+    const probabilities = estimate?.model_probabilities ?? null;
     drawLayer(cues, layer, { hypotheses: result?.hypotheses, probabilities });
     el('cues-caption').textContent = layer.name;
   }

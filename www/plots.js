@@ -7,8 +7,6 @@
 // and resampling ticks are what the tracker reported (`Tracker.resamplings()`).
 
 const RAD_TO_DEG = 180 / Math.PI;
-// lee-cpf: stage 1's ESS, the one its resampling tests against N_thr.
-const ESS_KEYS = ['lee.ess1', 'danescu.ess', 'adachi.ess', 'liu.ess', 'lee.ess2'];
 
 /** @typedef {import('../pkg/web/lanepf.js').LaneEstimate} LaneEstimate */
 /**
@@ -37,10 +35,7 @@ export const SERIES = [
   { name: 'heading', unit: 'deg', of: (e) => e.heading_rad * RAD_TO_DEG, raw: (e) => e.state?.['lee.raw.psi'] * RAD_TO_DEG },
   { name: 'curvature', unit: '1/km', of: (e) => e.curvature_per_m * 1000 },
   { name: 'lane width', unit: 'm', of: (e) => e.lane_width_m },
-  { name: 'ESS', unit: 'particles', of: (e) => {
-    const key = ESS_KEYS.find((k) => k in (e.state ?? {}));
-    return key === undefined ? undefined : e.state?.[key];
-  }, truth: false },
+  { name: 'ESS', unit: 'particles', of: (e) => e.ess, truth: false },
   { name: 'time', unit: 'ms/frame', of: (e, r) => r?.trackMs, truth: false },
 ];
 

@@ -131,14 +131,17 @@ function calibrate(rgba, width, height, want) {
 }
 
 /**
- * A result that carries the frame's pixels (and a top view) back, transferred, not copied.
+ * A result that carries the frame's pixels (and a top view and the cue layers) back,
+ * transferred, not copied.
  * @param {Frame} frame
- * @param {{ top?: { rgba: Uint8ClampedArray<ArrayBuffer> } | null } & Record<string, unknown>} result
+ * @param {{ top?: { rgba: Uint8ClampedArray<ArrayBuffer> } | null,
+ *   layers?: import('../pkg/web/lanepf.js').Layer[] | null } & Record<string, unknown>} result
  */
 function reply(frame, result) {
   /** @type {Transferable[]} */
   const transfer = [frame.data.buffer];
   if (result.top) transfer.push(result.top.rgba.buffer);
+  for (const layer of result.layers ?? []) transfer.push(layer.values.buffer);
   return { result: { frame, ...result }, transfer };
 }
 

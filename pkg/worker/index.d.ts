@@ -64,8 +64,9 @@ export interface TrackResult {
 export class TrackerWorker {
   /** Starts the worker with no tracker yet (`open` builds one); for a worker of your own. */
   static connect(options?: TrackerWorkerOptions): Promise<TrackerWorker>;
-  /** Starts the worker and builds the tracker; rejects with the constructor's Error. */
-  static create(id: TrackerId, config: TrackerConfig, options?: TrackerWorkerOptions): Promise<TrackerWorker>;
+  /** Starts the worker and builds the tracker; rejects with the constructor's Error. `config`
+   *  takes tracker `id`'s options (`TrackerConfig<Id>`), as `new Tracker(id, config)` does. */
+  static create<Id extends TrackerId>(id: Id, config: TrackerConfig<Id>, options?: TrackerWorkerOptions): Promise<TrackerWorker>;
   private constructor(worker: Worker);
   /** The package's version, as the worker reports it. */
   readonly version: string;
@@ -91,7 +92,7 @@ export class TrackerWorker {
   /** The resampling decisions of the last `step` / `advance`, as the filters made them. */
   resamplings(): Promise<ResampleDecision[]>;
   /** Replaces the tracker in the same worker (same wasm instance); rejects as `create` does. */
-  open(id: TrackerId, config: TrackerConfig): Promise<this>;
+  open<Id extends TrackerId>(id: Id, config: TrackerConfig<Id>): Promise<this>;
   /** Frees the tracker, keeping the worker. */
   close(): Promise<void>;
   /** Sends a request to an op of a worker of your own (`serve({ op(args, ctx) { ... } })`). */

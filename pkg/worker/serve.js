@@ -62,6 +62,8 @@ const ops = {
     const transfer = [];
     if (result.frame) transfer.push(frame.data.buffer);
     if (result.particles) transfer.push(result.particles.buffer);
+    // Each layer's values are a Float32Array of their own: transferred, not copied.
+    for (const layer of result.layers ?? []) transfer.push(layer.values.buffer);
     return { result, transfer };
   },
   beginFrame({ frame, options }) {
@@ -86,7 +88,8 @@ const ops = {
     return { result: need().hypotheses(max) };
   },
   layers() {
-    return { result: need().layers() };
+    const layers = need().layers();
+    return { result: layers, transfer: layers.map((l) => l.values.buffer) };
   },
   resamplings() {
     return { result: need().resamplings() };

@@ -13,49 +13,52 @@ use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// A camera as written in a `camera.json` file: plain numbers, not yet validated.
-/// [`super::Camera::from_file`] checks it.
+/// A camera as written in a `camera.json` file: plain numbers, checked when a camera, scene
+/// or tracker is built from them ([`super::Camera::from_file`]). Unknown fields are refused.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraFile {
-    /// Image width, pixels.
+    /// Image width, pixels (1 to 16384; width x height at most 2^26).
     pub width: usize,
-    /// Image height, pixels.
+    /// Image height, pixels (1 to 16384).
     pub height: usize,
-    /// Focal length along x, pixels.
+    /// Focal length along x, pixels (> 0).
     pub fx: f64,
-    /// Focal length along y, pixels.
+    /// Focal length along y, pixels (> 0).
     pub fy: f64,
     /// Principal point x, pixels.
     pub cx: f64,
     /// Principal point y, pixels.
     pub cy: f64,
-    /// Height of the optical centre above the road, metres.
+    /// Height of the optical centre above the road, metres (> 0, at most 100).
     pub height_m: f64,
-    /// Pitch, degrees, positive when the camera looks down at the road.
+    /// Pitch, degrees, positive when the camera looks down at the road (|pitch| <= 80).
     pub pitch_deg: f64,
-    /// Yaw, degrees, positive when the camera looks left of the car's forward axis.
+    /// Yaw, degrees, positive when the camera looks left of the car's forward axis (|yaw| <=
+    /// 80; 0 when left out).
     #[serde(default)]
     pub yaw_deg: f64,
-    /// Roll, degrees, positive when the camera's right side dips (ISO 8855).
+    /// Roll, degrees, positive when the camera's right side dips (ISO 8855; |roll| <= 80; 0
+    /// when left out).
     #[serde(default)]
     pub roll_deg: f64,
-    /// Radial distortion k1.
+    /// Radial distortion k1 (0 when left out).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub k1: f64,
-    /// Radial distortion k2.
+    /// Radial distortion k2 (0 when left out).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub k2: f64,
-    /// Tangential distortion p1.
+    /// Tangential distortion p1 (0 when left out).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub p1: f64,
-    /// Tangential distortion p2.
+    /// Tangential distortion p2 (0 when left out).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub p2: f64,
-    /// Radial distortion k3.
+    /// Radial distortion k3 (0 when left out).
     #[serde(default, skip_serializing_if = "is_zero")]
     pub k3: f64,
-    /// Stereo baseline (distance from the left to the right camera), metres.
+    /// Stereo baseline (distance from the left to the right camera), metres (> 0); needed by
+    /// danescu-stereo.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub baseline_m: Option<f64>,
 }

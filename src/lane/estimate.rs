@@ -149,7 +149,38 @@ impl Boundary {
     }
 }
 
+/// The `state` keys of each tracker's effective sample size after a frame's weighing, in the
+/// order [`LaneEstimate::ess`] reads them (lee-cpf's stage 1 before its stage 2).
+const ESS_KEYS: [&str; 5] = [
+    "lee.ess1",
+    "danescu.ess",
+    "adachi.ess",
+    "liu.ess",
+    "lee.ess2",
+];
+
 impl LaneEstimate {
+    /// The effective sample size of the tracker's particles after the frame's weighing
+    /// (lee-cpf: stage 1's), in particles; `None` for the ground truth. Read from `state`
+    /// (`lee.ess1`, `adachi.ess`, `liu.ess`, `danescu.ess`), so the command line's JSON is
+    /// unchanged; JavaScript results carry it as `ess`.
+    pub fn ess(&self) -> Option<f64> {
+        ESS_KEYS.iter().find_map(|k| self.state.get(*k).copied())
+    }
+
+    /// adachi-mmpf's model probabilities P(r) of the four lane configurations r = 1..4 (they sum
+    /// to 1); `None` for the other trackers. Read from `state` (`adachi.p1` .. `adachi.p4`);
+    /// JavaScript results carry them as `model_probabilities`.
+    pub fn model_probabilities(&self) -> Option<[f64; 4]> {
+        let p = |k: &str| self.state.get(k).copied();
+        Some([
+            p("adachi.p1")?,
+            p("adachi.p2")?,
+            p("adachi.p3")?,
+            p("adachi.p4")?,
+        ])
+    }
+
     /// Lateral position of the ego-lane centre `x` metres ahead (the mean of the ego
     /// boundaries), if both reach that far.
     pub fn ego_centre_at(&self, x: f64) -> Option<f64> {

@@ -22,7 +22,7 @@ use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
 use crate::math;
 use serde::{Deserialize, Serialize};
 
-/// Parameters of the test road (all optional in JSON; defaults in [`TestRoadConfig::default`]).
+/// Options of the straight test road (all optional; a field left out takes its default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct TestRoadConfig {

@@ -1,6 +1,7 @@
 //! What every tracker is built from ([`TrackerConfig`]) and the reader of a tracker's own
-//! options.
+//! options by name.
 
+use super::options::{Options, TrackerOptions};
 use crate::camera::{Camera, CameraFile};
 use crate::error::{Error, Result};
 use serde::Deserialize;
@@ -9,21 +10,23 @@ use std::collections::BTreeMap;
 /// Largest accepted particle count.
 pub const MAX_PARTICLES: usize = 200_000;
 
-/// What every tracker is built from: the camera, the particle budget, the seed, and
-/// tracker-specific options (checked by the tracker itself).
+/// What every tracker is built from: the camera, the particle budget, the seed, and the
+/// tracker's own options (checked by the tracker itself). In JSON the options are keys beside
+/// these; in Rust they may instead be typed, naming the tracker (`TrackerConfig::new`).
 #[derive(Debug, Clone, Deserialize)]
 pub struct TrackerConfig {
-    /// The camera (the `camera.json` format).
+    /// The camera (the `camera.json` format); the frames given to `step` must have its size.
     pub camera: CameraFile,
-    /// Number of particles N; `None`: the tracker's own default.
+    /// Number of particles N (1 to 200000); left out: the tracker's own default.
     #[serde(default)]
     pub particles: Option<usize>,
-    /// RNG seed: the same seed gives the same run natively and in the browser.
+    /// Seed of the random generator: the same seed gives the same run natively and in the
+    /// browser.
     #[serde(default = "default_seed")]
     pub seed: u64,
-    /// Tracker-specific options by name.
+    /// The tracker's own options: by name (JSON) or typed.
     #[serde(flatten)]
-    pub options: BTreeMap<String, serde_json::Value>,
+    pub options: Options,
 }
 
 fn default_seed() -> u64 {
@@ -31,6 +34,31 @@ fn default_seed() -> u64 {
 }
 
 impl TrackerConfig {
+    /// A configuration with typed options (which name the tracker: build it with
+    /// [`super::build`]), the tracker's default particle count and seed 1.
+    pub fn new(camera: CameraFile, options: TrackerOptions) -> Self {
+        Self {
+            camera,
+            particles: None,
+            seed: default_seed(),
+            options: Options::Typed(Box::new(options)),
+        }
+    }
+
+    /// The same configuration with `particles` particles.
+    #[must_use]
+    pub fn with_particles(mut self, particles: usize) -> Self {
+        self.particles = Some(particles);
+        self
+    }
+
+    /// The same configuration with seed `seed`.
+    #[must_use]
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
     /// Parses a JSON configuration.
     ///
     /// # Errors

@@ -25,7 +25,8 @@ fn object(particles: usize, config: Value) -> Result<Value> {
 /// [`Error::UnknownTracker`] for an id not in [`super::TRACKER_IDS`].
 pub fn default_options(id: &str) -> Result<Value> {
     let entry = super::registry::entry(id)?;
-    let config = (entry.defaults)().map_err(|e| Error::Config(format!("{id} defaults: {e}")))?;
+    let config = serde_json::to_value((entry.defaults)())
+        .map_err(|e| Error::Config(format!("{id} defaults: {e}")))?;
     object(entry.particles, config)
 }
 

@@ -4,15 +4,15 @@ use crate::error::{Error, Result};
 use serde::Deserialize;
 
 /// The car's motion at a frame: its timestamp, speed and yaw rate (the frame interval is the
-/// difference of consecutive timestamps).
+/// difference of consecutive timestamps). All three fields are required.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct EgoMotion {
     /// Frame timestamp, seconds.
     pub t_s: f64,
-    /// Speed, metres per second.
+    /// Speed, metres per second (|speed| <= 150).
     pub speed_mps: f64,
-    /// Yaw rate, radians per second, positive turning left.
+    /// Yaw rate, radians per second, positive turning left (|yaw rate| <= 5).
     pub yaw_rate: f64,
 }
 

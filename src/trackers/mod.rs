@@ -2,14 +2,14 @@
 //! builds them by id from a configuration.
 //!
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
-//! `config.rs` the [`TrackerConfig`], `defaults.rs` / `ranges.rs` every option's default and
-//! range, `ego_motion.rs`, `layer.rs` the types the trait speaks (and the filter core's
-//! [`StageTimes`]), `lane_change.rs` the lane-change rule trackers share, `relock.rs` the
-//! detector proposal, `adjacent_lanes.rs` the neighbouring lanes found beside an ego lane, and
-//! one folder per paper. Each paper's tracker is its image cues, its models and its frame
-//! schedule: a [`crate::filter::Schedule`] whose operations it implements
-//! ([`crate::filter::Scheduled`]) and the filter core's stepper runs, whole (`step`) or one
-//! step at a time (`begin_frame`, `advance`).
+//! `config.rs` the [`TrackerConfig`], `options.rs` the typed [`TrackerOptions`],
+//! `defaults.rs` / `ranges.rs` every option's default and range, `ego_motion.rs`, `layer.rs`
+//! the types the trait speaks (and the filter core's [`StageTimes`]), `lane_change.rs` the
+//! lane-change rule trackers share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the
+//! neighbouring lanes found beside an ego lane, and one folder per paper. Each paper's tracker
+//! is its image cues, its models and its frame schedule: a [`crate::filter::Schedule`] whose
+//! operations it implements ([`crate::filter::Scheduled`]) and the filter core's stepper runs,
+//! whole (`step`) or one step at a time (`begin_frame`, `advance`).
 //!
 //! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
 //! `danescu-stereo`, `danescu-mono`. An id is listed in [`TRACKER_IDS`] only once its tracker
@@ -29,6 +29,7 @@ pub mod lee;
 pub mod liu;
 #[cfg(test)]
 mod option_fuzz;
+mod options;
 mod ranges;
 mod registry;
 pub mod relock;
@@ -44,8 +45,9 @@ pub use defaults::default_options;
 pub use ego_motion::EgoMotion;
 pub use hypothesis::{spread_indices, Hypothesis};
 pub use layer::{Layer, PlaneAxes};
+pub use options::{Options, TrackerOptions};
 pub use ranges::{option_ranges, OptionRange};
-pub use registry::{create, TRACKER_IDS};
+pub use registry::{build, create, TRACKER_IDS};
 pub use tracker::Tracker;
 pub(crate) use tracker::{advance_scheduled, check_frame};
 

@@ -3,7 +3,8 @@
 //! look an id up here, so a new tracker is one entry.
 
 use super::ranges::{ADACHI, DANESCU, LEE, LIU};
-use super::{adachi, danescu, lee, liu, OptionRange, Tracker, TrackerConfig};
+use super::TrackerOptions;
+use super::{adachi, danescu, lee, liu, OptionRange, Options, Tracker, TrackerConfig};
 use crate::error::{Error, Result};
 
 /// One tracker of the registry.
@@ -14,8 +15,8 @@ pub(crate) struct Entry {
     pub build: fn(&TrackerConfig) -> Result<Box<dyn Tracker>>,
     /// The default particle count.
     pub particles: usize,
-    /// The tracker's options with their defaults, as JSON.
-    pub defaults: fn() -> serde_json::Result<serde_json::Value>,
+    /// The tracker's options with their defaults.
+    pub defaults: fn() -> TrackerOptions,
     /// The ranges of its numeric options, in groups.
     pub ranges: &'static [&'static [OptionRange]],
 }
@@ -26,14 +27,14 @@ pub(crate) const REGISTRY: [Entry; 6] = [
         id: adachi::ID,
         build: |c| Ok(Box::new(adachi::AdachiTracker::new(c)?)),
         particles: adachi::DEFAULT_PARTICLES,
-        defaults: || serde_json::to_value(adachi::config::AdachiConfig::default()),
+        defaults: || TrackerOptions::AdachiMmpf(Default::default()),
         ranges: ADACHI,
     },
     Entry {
         id: danescu::ID_MONO,
         build: |c| Ok(Box::new(danescu::DanescuTracker::new(c, danescu::ID_MONO)?)),
         particles: danescu::DEFAULT_PARTICLES,
-        defaults: || serde_json::to_value(danescu::config::DanescuConfig::default()),
+        defaults: || TrackerOptions::DanescuMono(Default::default()),
         ranges: DANESCU,
     },
     Entry {
@@ -45,28 +46,28 @@ pub(crate) const REGISTRY: [Entry; 6] = [
             )?))
         },
         particles: danescu::DEFAULT_PARTICLES,
-        defaults: || serde_json::to_value(danescu::config::DanescuConfig::default()),
+        defaults: || TrackerOptions::DanescuStereo(Default::default()),
         ranges: DANESCU,
     },
     Entry {
         id: lee::ID,
         build: |c| Ok(Box::new(lee::LeeTracker::new(c)?)),
         particles: lee::DEFAULT_PARTICLES,
-        defaults: || serde_json::to_value(lee::config::LeeConfig::default()),
+        defaults: || TrackerOptions::LeeCpf(Default::default()),
         ranges: LEE,
     },
     Entry {
         id: liu::ID,
         build: |c| Ok(Box::new(liu::LiuTracker::new(c, true)?)),
         particles: liu::DEFAULT_PARTICLES,
-        defaults: || serde_json::to_value(liu::config::LiuConfig::default()),
+        defaults: || TrackerOptions::LiuPpf(Default::default()),
         ranges: LIU,
     },
     Entry {
         id: liu::ID_NOKERNEL,
         build: |c| Ok(Box::new(liu::LiuTracker::new(c, false)?)),
         particles: liu::DEFAULT_PARTICLES,
-        defaults: || serde_json::to_value(liu::config::LiuConfig::default()),
+        defaults: || TrackerOptions::LiuPpfNokernel(Default::default()),
         ranges: LIU,
     },
 ];
@@ -109,6 +110,22 @@ pub(crate) fn entry(id: &str) -> Result<&'static Entry> {
 pub fn create(id: &str, config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
     config.validate()?;
     (entry(id)?.build)(config)
+}
+
+/// Builds the tracker that `config`'s typed options name ([`TrackerConfig::new`]), checking
+/// them as [`create`] checks options by name.
+///
+/// # Errors
+/// As [`create`]; [`Error::Config`] for options by name, which do not say which tracker they
+/// are for (use [`create`]).
+pub fn build(config: &TrackerConfig) -> Result<Box<dyn Tracker>> {
+    match &config.options {
+        // The tracker reads and checks its typed options as it reads named ones.
+        Options::Typed(options) => create(options.id(), config),
+        Options::ByName(_) => Err(Error::Config(
+            "options by name do not say which tracker they are for: use create(id, config)".into(),
+        )),
+    }
 }
 
 #[cfg(test)]

@@ -15,7 +15,10 @@ fn config_defaults_and_validation() {
         r#"{{"camera": {CAMERA}, "particles": 0, "sigma": 2}}"#
     ))
     .unwrap();
-    assert_eq!(c.options["sigma"], serde_json::json!(2));
+    let Options::ByName(options) = &c.options else {
+        panic!("JSON gives options by name")
+    };
+    assert_eq!(options["sigma"], serde_json::json!(2));
     let e = c.validate().unwrap_err().to_string();
     assert!(e.contains("`particles` = 0"), "{e}");
     let e = TrackerConfig::from_json_str(r#"{"particles": 10}"#).unwrap_err();
@@ -87,6 +90,39 @@ fn every_tracker_steps_one_step_at_a_time_to_the_same_result() {
             // first frame every tracker resamples.
             assert_eq!(decisions, whole.resamplings(), "{id} frame {f}");
             assert!(f == 0 || !decisions.is_empty(), "{id} frame {f}");
+        }
+    }
+}
+
+/// The typed result fields read from `state`: every tracker's ESS (at most its particle count),
+/// adachi-mmpf's model probabilities (summing to 1) and nobody else's; the truth has neither.
+#[test]
+fn every_tracker_reports_its_ess_and_adachi_its_model_probabilities() {
+    use crate::synth::Eye;
+    let (c, mut scene) = fixture("highway-curve");
+    let mut rgba = vec![0; 320 * 240 * 4];
+    let mut right = vec![0; 320 * 240 * 4];
+    for id in TRACKER_IDS {
+        let mut tracker = create(id, &c).unwrap();
+        for f in 0..2 {
+            scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+            if tracker.is_stereo() {
+                scene.render(f, Eye::Right, &mut right, None).unwrap();
+                tracker.set_right(&right, 320, 240).unwrap();
+            }
+            let e = tracker.step(&rgba, 320, 240).unwrap();
+            let n = (tracker.particles().len() / tracker.particle_stride()) as f64;
+            let ess = e.ess().unwrap_or_else(|| panic!("{id}: no ESS"));
+            assert!(ess > 0.0 && ess <= n + 1e-6, "{id}: ESS {ess} of {n}");
+            match e.model_probabilities() {
+                Some(p) => {
+                    assert_eq!(*id, "adachi-mmpf");
+                    assert!((p.iter().sum::<f64>() - 1.0).abs() < 1e-9, "{p:?}");
+                }
+                None => assert_ne!(*id, "adachi-mmpf"),
+            }
+            let truth = scene.truth(f);
+            assert_eq!((truth.ess(), truth.model_probabilities()), (None, None));
         }
     }
 }

@@ -17,7 +17,7 @@ use crate::error::{require_finite, require_positive, Error, Result};
 use crate::image::{Image, ImageView};
 use serde::{Deserialize, Serialize};
 
-/// Canny parameters.
+/// A Canny edge detector: smoothing and the two hysteresis thresholds.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CannyConfig {

@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 /// Radius of the triangular kernel (11 x 11 cells).
 pub const KERNEL_RADIUS: usize = 5;
 
-/// The discrete lateral space.
+/// Danescu's discrete lateral space (the 3-D density image) and its density threshold.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DensityConfig {

@@ -55,7 +55,7 @@ pub const MAX_DISPARITY: usize = 256;
 /// Largest accepted census or aggregation radius.
 pub const MAX_RADIUS: usize = 7;
 
-/// Stereo matcher parameters.
+/// The census stereo matcher.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DisparityConfig {

@@ -25,7 +25,7 @@ pub const RISING: u8 = 1;
 /// Edge-map value of a falling edge e_f.
 pub const FALLING: u8 = 2;
 
-/// DLD parameters.
+/// Lee's dark-light-dark (DLD) marking detector (eqs. 21-24): averaging window and threshold.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DldConfig {

@@ -27,7 +27,7 @@ use crate::error::{require_positive, Error, Result};
 use crate::image::{Image, ImageView};
 use serde::{Deserialize, Serialize};
 
-/// Parameters of the variable-width gradient.
+/// Danescu's variable-width horizontal gradient: the kernel follows a marking's width.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct HGradientConfig {

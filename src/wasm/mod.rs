@@ -12,6 +12,7 @@ mod camera;
 mod deprecation;
 mod error;
 mod estimate;
+mod layers;
 mod object;
 mod scene;
 mod step_input;

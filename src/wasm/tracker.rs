@@ -58,7 +58,7 @@ pub fn tracker_ids() -> Vec<String> {
 /// in `new Tracker(id, { camera, ...options })`); throws for an unknown id.
 #[wasm_bindgen(
     js_name = trackerDefaults,
-    unchecked_return_type = "Omit<TrackerConfig, 'camera' | 'seed'> & { particles: number }"
+    unchecked_return_type = "TrackerDefaults"
 )]
 pub fn tracker_defaults(
     #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: JsValue,
@@ -70,11 +70,14 @@ pub fn tracker_defaults(
 #[wasm_bindgen(js_class = Tracker)]
 impl JsTracker {
     /// `new Tracker(id, { camera, particles?, seed?, ...options })`; throws an `Error` for an
-    /// unknown id (listing the available ones) or a bad configuration.
+    /// unknown id (listing the available ones) or a bad configuration. The options are tracker
+    /// `id`'s (`TrackerOptionsById[id]`): with a literal id, another tracker's option is a type
+    /// error.
     #[wasm_bindgen(constructor)]
     pub fn new(
-        #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: JsValue,
-        #[wasm_bindgen(unchecked_param_type = "TrackerConfig")] config: JsValue,
+        // `Id` is the class's type parameter, declared by scripts/build-pkg.sh.
+        #[wasm_bindgen(unchecked_param_type = "Id")] id: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "TrackerConfig<Id>")] config: JsValue,
     ) -> Result<JsTracker, Thrown> {
         let id = args::name(&id, "tracker id")?;
         let (options, size) = read_config(&config)?;
@@ -101,7 +104,7 @@ impl JsTracker {
     }
 
     /// The tracker's id.
-    #[wasm_bindgen(getter)]
+    #[wasm_bindgen(getter, unchecked_return_type = "Id")]
     pub fn id(&self) -> String {
         self.inner.id().to_string()
     }
@@ -175,9 +178,10 @@ impl JsTracker {
     /// and road edges; danescu-stereo: those and `{ kind: 'plane', name, width, height, x_axis,
     /// x0, dx, y_axis, y0, dy, values }` for the 3-D density image and its column maxima;
     /// grid row r is x0 + r cell metres ahead, column c is y0 - c cell metres left).
+    /// Each layer's `values` is a `Float32Array`.
     #[wasm_bindgen(unchecked_return_type = "Layer[]")]
     pub fn layers(&self) -> Result<JsValue, Thrown> {
-        super::to_js_value(&self.inner.layers())
+        super::layers::to_js(&self.inner.layers())
     }
 
     /// At most `max` particles spread over the cloud, each drawn as the boundaries it stands

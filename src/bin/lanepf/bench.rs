@@ -7,7 +7,7 @@
 //! ground truth before each frame.
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
-use lanepf::trackers::{self, EgoMotion, StageTimes, TrackerConfig, TRACKER_IDS};
+use lanepf::trackers::{self, EgoMotion, StageTimes, TrackerConfig, TrackerOptions, TRACKER_IDS};
 use lanepf::{Error, Result};
 use std::time::Instant;
 
@@ -92,12 +92,8 @@ pub fn run(args: Args) -> Result<()> {
         let mut frame = vec![0u8; w * h * 4];
         let mut right = vec![0u8; w * h * 4];
         for id in &ids {
-            let config = TrackerConfig::from_json_str(&format!(
-                r#"{{"camera": {}, "seed": 1}}"#,
-                serde_json::to_string(&camera.to_file())
-                    .map_err(|e| Error::Config(e.to_string()))?
-            ))?;
-            let mut tracker = trackers::create(id, &config)?;
+            let config = TrackerConfig::new(camera.to_file(), TrackerOptions::defaults(id)?);
+            let mut tracker = trackers::build(&config)?;
             let mut times = Vec::with_capacity(args.frames as usize);
             let mut stages = StageTimes::default();
             for i in 0..args.frames {

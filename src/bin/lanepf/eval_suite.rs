@@ -74,7 +74,7 @@ fn check_options(
         camera: default_camera(width, height)?.to_file(),
         particles: None,
         seed: 1,
-        options: options.clone(),
+        options: trackers::Options::ByName(options.clone()),
     };
     for id in ids {
         trackers::create(id, &config)?;

@@ -41,7 +41,7 @@ pub fn run_member(
         camera,
         particles: None,
         seed: tracker_seed,
-        options: options.clone(),
+        options: trackers::Options::ByName(options.clone()),
     };
     let mut trackers = ids
         .iter()

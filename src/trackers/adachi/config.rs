@@ -119,10 +119,11 @@ impl AdachiConfig {
     ///
     /// # Errors
     /// [`Error::Config`] for an unknown option or a wrong type.
-    pub fn from_options(
-        options: &std::collections::BTreeMap<String, serde_json::Value>,
-    ) -> Result<Self> {
-        let config: Self = crate::trackers::parse_options(super::ID, options)?;
+    pub fn from_options(options: &crate::trackers::Options) -> Result<Self> {
+        let config: Self = options.read(super::ID, |t| match t {
+            crate::trackers::TrackerOptions::AdachiMmpf(c) => Some(c),
+            _ => None,
+        })?;
         config.validate()?;
         Ok(config)
     }

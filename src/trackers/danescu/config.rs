@@ -31,19 +31,20 @@ pub struct DanescuConfig {
     pub diffusion: [f64; 11],
     /// The generic initialisation distribution: uniform lane width (inner edges), metres.
     pub init_width_m: [f64; 2],
-    /// ... uniform |X_CW| up to this, metres.
+    /// The generic initialisation distribution: uniform |X_CW| up to this, metres.
     pub init_offset_m: f64,
-    /// ... uniform |psi| up to this, radians.
+    /// The generic initialisation distribution: uniform |psi| up to this, radians.
     pub init_yaw_rad: f64,
-    /// ... uniform |C_H| up to this, 1/m.
+    /// The generic initialisation distribution: uniform |C_H| up to this, 1/m.
     pub init_curvature: f64,
-    /// ... uniform |W_l| up to this.
+    /// The generic initialisation distribution: uniform |W_l| up to this.
     pub init_width_rate: f64,
-    /// ... uniform marking widths W_L, W_R, metres.
+    /// The generic initialisation distribution: uniform marking widths W_L, W_R, metres.
     pub init_marking_m: [f64; 2],
-    /// ... uniform |alpha - calibrated pitch| up to this, radians (stereo only).
+    /// The generic initialisation distribution: uniform |alpha - calibrated pitch| up to this,
+    /// radians (stereo only).
     pub init_pitch_rad: f64,
-    /// ... uniform |Y_0| up to this, metres (stereo only).
+    /// The generic initialisation distribution: uniform |Y_0| up to this, metres (stereo only).
     pub init_height_m: f64,
     /// Validation (Sec. VII-D): the lane width W(Z) must stay in this range over the mapped
     /// distances, metres.
@@ -106,12 +107,16 @@ pub struct DanescuConfig {
     pub cluster_threshold_m: f64,
     /// MBSAS: at most this many clusters S.
     pub max_clusters: usize,
-    /// A frame is valid when, on each side, at least `valid_support` of the estimate's
-    /// inner-edge points are within this many pixels of a road edge ...
+    /// Validity: a frame is valid when, on each side, at least `valid_support` of the
+    /// estimate's inner-edge points are within this many pixels of a road edge (and its
+    /// cluster holds `valid_cluster_share` of the particles).
     pub valid_distance_px: f64,
-    /// ... (0.15 by default: a dashed line of 3 m dashes every 12 m gives about 0.25) ...
+    /// Validity: the share of the estimate's inner-edge points on each side that must be
+    /// within `valid_distance_px` of a road edge (a dashed line of 3 m dashes every 12 m gives
+    /// about 0.25).
     pub valid_support: f64,
-    /// ... and its cluster holds at least this share of the resampled particles.
+    /// Validity: the estimate's MBSAS cluster holds at least this share of the resampled
+    /// particles.
     pub valid_cluster_share: f64,
     /// Share of the particles replaced, after the drift, each frame the auto-calibration's
     /// line detector finds an ego pair, by draws around that pair on the road (X_CW, psi and
@@ -192,16 +197,21 @@ impl DanescuConfig {
     /// # Errors
     /// [`Error::Config`] for an unknown option or a wrong type; [`Error::Parameter`] naming
     /// the option for a value out of range.
-    pub fn from_options(
-        options: &std::collections::BTreeMap<String, serde_json::Value>,
-        id: &str,
-    ) -> Result<Self> {
-        let c: Self = super::super::parse_options(id, options)?;
-        c.check()?;
+    pub fn from_options(options: &crate::trackers::Options, id: &str) -> Result<Self> {
+        let c: Self = options.read(id, |t| match t {
+            crate::trackers::TrackerOptions::DanescuMono(c) if id == super::ID_MONO => Some(c),
+            crate::trackers::TrackerOptions::DanescuStereo(c) if id == super::ID_STEREO => Some(c),
+            _ => None,
+        })?;
+        c.validate()?;
         Ok(c)
     }
 
-    fn check(&self) -> Result<()> {
+    /// Checks every value.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] naming the first bad value.
+    pub fn validate(&self) -> Result<()> {
         crate::trackers::ranges::check_ranges(super::ID_MONO, self)?;
         if !(0.0..1.0).contains(&self.init_fraction) {
             return Err(Error::parameter(

@@ -112,11 +112,14 @@ impl LiuConfig {
     /// # Errors
     /// [`Error::Config`] for an unknown option or a wrong type; [`Error::Parameter`] for a bad
     /// value.
-    pub fn from_options(
-        id: &str,
-        options: &std::collections::BTreeMap<String, serde_json::Value>,
-    ) -> Result<Self> {
-        let config: Self = crate::trackers::parse_options(id, options)?;
+    pub fn from_options(id: &str, options: &crate::trackers::Options) -> Result<Self> {
+        let config: Self = options.read(id, |t| match t {
+            crate::trackers::TrackerOptions::LiuPpf(c) if id == super::ID => Some(c),
+            crate::trackers::TrackerOptions::LiuPpfNokernel(c) if id == super::ID_NOKERNEL => {
+                Some(c)
+            }
+            _ => None,
+        })?;
         config.validate()?;
         Ok(config)
     }
