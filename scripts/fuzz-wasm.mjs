@@ -316,6 +316,9 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
       case 'camera': return R.pick([
         () => call('projectRoad', R.chance(0.8) ? R.float(-5, 80) : hostileValue(), R.chance(0.8) ? R.float(-10, 10) : hostileValue()),
         () => call('roadPoint', R.chance(0.8) ? R.float(0, m.w) : hostileValue(), R.chance(0.8) ? R.float(0, m.h) : hostileValue()),
+        // (Typed arrays only: the binding's glue, not lanepf, handles other values for `xy`.)
+        () => call('projectRoadPoints', Float64Array.from({ length: R.int(0, 9) },
+          () => (R.chance(0.8) ? R.float(-20, 80) : R.pick([NaN, Infinity, -Infinity, 1e308, -0])))),
         () => call('toJSON'),
       ])();
       default: return R.pick([

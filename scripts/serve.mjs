@@ -1,6 +1,7 @@
 // Static server for the lanepf demo: http://127.0.0.1:PORT/ serves www/, /pkg/ serves pkg/.
 // It honours HTTP Range requests (video seeking needs them; other units and multiple ranges
-// get the whole file, as RFC 9110 allows), serves .wasm as application/wasm, binds to
+// get the whole file, as RFC 9110 allows), sends an ETag (size and modification time) and
+// answers a matching If-None-Match with 304 (a warm reload), serves .wasm as application/wasm, binds to
 // 127.0.0.1 only, answers only requests whose Host is localhost, 127.0.0.1 or [::1] with its
 // port (a DNS-rebinding page names another host), refuses paths and symbolic links that lead
 // outside those two folders, and sends a Content-Security-Policy, nosniff and X-Frame-Options.
@@ -113,15 +114,23 @@ async function handle(req, res, mounts, port, csp) {
     file = await realInside(file, mounts);
   } catch { fail(404, 'not found\n'); return; }
   if (!file) { fail(403, 'forbidden: a link out of the served folder\n'); return; }
+  // A validator, so that a reload revalidates (304) instead of fetching every file again: the
+  // browser then keeps its cached copies, and Chromium its compiled WebAssembly with them.
+  const etag = `"${stat.size.toString(16)}-${Math.floor(stat.mtimeMs).toString(16)}"`;
   const headers = {
     ...secure,
     'Content-Type': types[extname(file).toLowerCase()] ?? 'application/octet-stream',
-    'Accept-Ranges': 'bytes', 'Cache-Control': 'no-cache',
+    'Accept-Ranges': 'bytes', 'Cache-Control': 'no-cache', ETag: etag,
     // Cross-origin isolation (the page loads nothing from elsewhere, so it costs nothing):
     // without it Firefox rounds performance.now() to whole milliseconds, and the demo's
     // ms/frame readings (a tracker step takes 2-40 ms) would be mostly rounding.
     'Cross-Origin-Opener-Policy': 'same-origin', 'Cross-Origin-Embedder-Policy': 'require-corp',
   };
+  const match = req.headers['if-none-match'];
+  if (match && match.split(',').some((t) => t.trim().replace(/^W\//, '') === etag)) {
+    res.writeHead(304, headers).end();
+    return;
+  }
   const range = parseRange(req.headers.range, stat.size);
   if (range === 'bad') {
     fail(416, '', { 'Content-Range': `bytes */${stat.size}` });

@@ -12,20 +12,22 @@ export const CLIP = {
 
 /** @typedef {import('../pkg/web/lanepf.js').CameraConfig} CameraConfig */
 
-/** @type {CameraConfig | null} */
+/** @type {Promise<CameraConfig> | null} */
 let clipCamera = null;
 
 /**
- * The bundled clip's camera (fetched once from the page's own files).
+ * The bundled clip's camera (fetched once from the page's own files; a failed fetch is tried
+ * again on the next call).
  * @returns {Promise<CameraConfig>}
  */
-export async function loadClipCamera() {
-  if (clipCamera) return clipCamera;
-  const res = await fetch(CLIP.camera);
-  if (!res.ok) throw new Error(`cannot load ${CLIP.camera}: HTTP ${res.status}`);
-  const camera = await res.json();
-  clipCamera = camera;
-  return camera;
+export function loadClipCamera() {
+  clipCamera ??= (async () => {
+    const res = await fetch(CLIP.camera);
+    if (!res.ok) throw new Error(`cannot load ${CLIP.camera}: HTTP ${res.status}`);
+    return /** @type {CameraConfig} */ (await res.json());
+  })();
+  clipCamera.catch(() => { clipCamera = null; });
+  return clipCamera;
 }
 
 /**
@@ -75,8 +77,19 @@ export const CALTECH = {
   height_m: 2.1798, pitch_deg: 14.0, yaw_deg: 0.0, roll_deg: 0.0,
 };
 
-/** Camera presets for the calibration panel: { key: { label, camera } }. */
-export async function loadPresets() {
+/** @type {Promise<Record<string, { label: string, camera: CameraConfig }>> | null} */
+let presetsLoading = null;
+
+/**
+ * Camera presets for the calibration panel: { key: { label, camera } }, their files fetched
+ * side by side, once (boot.js starts this while the page's modules load).
+ */
+export function loadPresets() {
+  presetsLoading ??= fetchPresets();
+  return presetsLoading;
+}
+
+async function fetchPresets() {
   const files = {
     'udacity-640': ['Udacity clip (640x360)', CLIP.camera],
     'udacity-1280': ['Udacity project video (1280x720)', 'clips/udacity-1280x720.camera.json'],
@@ -86,9 +99,11 @@ export async function loadPresets() {
   };
   /** @type {Record<string, { label: string, camera: CameraConfig }>} */
   const presets = { caltech: { label: 'Caltech Lanes (640x480)', camera: CALTECH } };
-  for (const [key, [label, url]] of Object.entries(files)) {
+  const fetched = await Promise.all(Object.entries(files).map(async ([key, [label, url]]) => {
     const res = await fetch(url);
-    if (res.ok) presets[key] = { label, camera: await res.json() };
-  }
+    return res.ok ? { key, label, camera: /** @type {CameraConfig} */ (await res.json()) } : null;
+  }));
+  // (In the files' order, as the panel's menu lists them.)
+  for (const p of fetched) if (p) presets[p.key] = { label: p.label, camera: p.camera };
   return presets;
 }

@@ -70,6 +70,14 @@ import { byId, context2d } from './dom.js';
 /** @param {string} id */
 const el = (id) => byId(id, HTMLElement);
 
+/**
+ * A point of the page's start-up on the performance timeline (`lanepf:NAME`, ms since
+ * navigation), read by `scripts/bench-first-frame.mjs`.
+ * @param {string} name
+ * @param {Record<string, number>} [detail]
+ */
+const mark = (name, detail) => performance.mark(`lanepf:${name}`, { detail });
+
 /** Particles drawn per frame (spread over the cloud). */
 const DRAWN_PARTICLES = 80;
 
@@ -405,6 +413,9 @@ async function stepFrame() {
   const t2 = performance.now();
   record(frame, result, result.resamplings);
   draw(frame, result);
+  if (demo.frames === 1 && !performance.getEntriesByName('lanepf:first-frame').length) {
+    mark('first-frame', { source: t1 - t0, worker: t2 - t1, track: result.trackMs ?? NaN });
+  }
   // Where a frame's time goes (ms): reading it, the worker's round trip, drawing it here.
   demo.frameMs = { source: t1 - t0, worker: t2 - t1, page: performance.now() - t2 };
   await autoCalibrate(result.calibration);
@@ -595,6 +606,7 @@ async function openSource(next, name) {
   // A video picks its reader as it opens: WebCodecs where it can, else seeking (video-select.js).
   if (next instanceof VideoFile) next = await next.pick();
   else await next.open();
+  mark('video');
   state.source?.close();
   state.source = next;
   state.sourceName = name;
@@ -615,6 +627,7 @@ async function openSource(next, name) {
     note = ' · camera: as you calibrated it for this source';
   }
   await startAuto(next, saved);
+  mark('calibrator');
   autoToggle.checked = auto.mode === 'auto';
   autoToggle.disabled = auto.mode === 'off';
   showAuto();
@@ -696,8 +709,10 @@ async function main() {
   client = await connectWorker();
   const hello = /** @type {{ version: string, trackers: TrackerId[], scenarios: import('../pkg/web/lanepf.js').ScenarioInfo[] }} */ (
     await client.request('hello'));
+  mark('hello');
   const { version, trackers, scenarios } = hello;
   const cameraPanel = new Calibration(document, byId('view', HTMLCanvasElement), await loadPresets());
+  mark('presets');
   calibration = cameraPanel;
   demo.calibration = cameraPanel;
   cameraPanel.onRedraw = () => {
@@ -723,6 +738,7 @@ async function main() {
   controls.lastSource = first;
   // A source or tracker that fails to open leaves a message, not a dead page.
   await run(async () => openSource(await sourceFor(first, scenarios), first));
+  mark('tracker');
 
   controls.onSource = (value) => run(async () => openSource(await sourceFor(value, scenarios), value));
   controls.onFiles = (files) => run(async () => {

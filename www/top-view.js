@@ -16,21 +16,21 @@ export function topViewTable(cameraConfig) {
   const cols = Math.round((2 * TOP.yHalf) / TOP.cell);
   const lut = new Int32Array(rows * cols).fill(-1);
   const { width, height } = camera;
+  // Every cell's centre, projected in one call (NaN: behind the camera).
+  const xy = new Float64Array(2 * rows * cols);
   for (let r = 0; r < rows; r++) {
     const x = TOP.xMax - (r + 0.5) * TOP.cell;
     for (let c = 0; c < cols; c++) {
-      const y = TOP.yHalf - (c + 0.5) * TOP.cell;
-      let uv;
-      try {
-        uv = camera.projectRoad(x, y);
-      } catch {
-        uv = null;
-      }
-      if (!uv || uv.length < 2) continue;
-      const u = Math.round(uv[0]);
-      const v = Math.round(uv[1]);
-      if (u >= 0 && u < width && v >= 0 && v < height) lut[r * cols + c] = v * width + u;
+      xy[2 * (r * cols + c)] = x;
+      xy[2 * (r * cols + c) + 1] = TOP.yHalf - (c + 0.5) * TOP.cell;
     }
+  }
+  const uv = camera.projectRoadPoints(xy);
+  for (let i = 0; i < rows * cols; i++) {
+    // (NaN fails every comparison below.)
+    const u = Math.round(uv[2 * i]);
+    const v = Math.round(uv[2 * i + 1]);
+    if (u >= 0 && u < width && v >= 0 && v < height) lut[i] = v * width + u;
   }
   camera.free();
   return { lut, rows, cols, width, height };

@@ -4,12 +4,16 @@
 // codec; otherwise the seeking <video> reader of media-source.js. The label says which.
 import { VideoSource } from './media-source.js';
 import { WebCodecsVideoSource } from './webcodecs-source.js';
+import { takePrefetched } from './prefetch.js';
 
 /**
- * The bytes of a video given by URL (the bundled clip), as a Blob.
+ * The bytes of a video given by URL (the bundled clip), as a Blob: boot.js's prefetch of it
+ * when there is one.
  * @param {string} url
  */
 async function fetchBlob(url) {
+  const early = takePrefetched(url);
+  if (early) return early;
   const res = await fetch(url);
   if (!res.ok) throw new Error(`cannot load ${url}: HTTP ${res.status}`);
   return res.blob();

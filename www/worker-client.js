@@ -7,10 +7,18 @@
 // its pixels back on `err.frame`.
 import { TrackerWorker } from '../pkg/worker/index.js';
 
-/** Starts the demo's worker and the wasm module in it (no tracker yet). */
+/** @type {Promise<TrackerWorker> | null} */
+let connecting = null;
+
+/**
+ * Starts the demo's worker and the wasm module in it (no tracker yet), once: boot.js starts it
+ * while the page's other modules load, main.js takes the same worker.
+ */
 export function connectWorker() {
-  const worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
-  return TrackerWorker.connect({ worker });
+  connecting ??= TrackerWorker.connect({
+    worker: new Worker(new URL('./worker.js', import.meta.url), { type: 'module' }),
+  });
+  return connecting;
 }
 
 /**

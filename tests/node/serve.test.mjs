@@ -1,5 +1,5 @@
 // The demo server: Range requests, wasm MIME type, cross-origin isolation, no escape from www/
-// and pkg/ (by name or by symbolic link), the Host check, the security headers.
+// and pkg/ (by name or by symbolic link), the Host check, the security headers, revalidation.
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { request } from 'node:http';
@@ -70,6 +70,31 @@ test('security headers on every response; Range units other than bytes and multi
       assert.equal(r.body, whole.body, range);
     }
     assert.equal((await rawGet(port, '/index.html', { Range: 'bytes=999999-' })).status, 416);
+  } finally {
+    server.close();
+  }
+});
+
+test('a reload revalidates: a matching If-None-Match gets 304 without a body, another ETag the file', async () => {
+  const server = await serve(0);
+  const { port } = server.address();
+  try {
+    const whole = await rawGet(port, '/pkg/web/lanepf_bg.wasm');
+    assert.equal(whole.status, 200);
+    const etag = whole.headers.etag;
+    assert.match(etag ?? '', /^"[0-9a-f]+-[0-9a-f]+"$/);
+    assert.equal(whole.headers['cache-control'], 'no-cache');
+    const again = await rawGet(port, '/pkg/web/lanepf_bg.wasm', { 'If-None-Match': etag });
+    assert.equal(again.status, 304);
+    assert.equal(again.body, '');
+    assert.equal(again.headers.etag, etag);
+    assert.match(again.headers['content-security-policy'] ?? '', /script-src 'self'/);
+    assert.equal((await rawGet(port, '/pkg/web/lanepf_bg.wasm', { 'If-None-Match': `W/${etag}, "x"` })).status, 304);
+    const other = await rawGet(port, '/pkg/web/lanepf_bg.wasm', { 'If-None-Match': '"0-0"' });
+    assert.equal(other.status, 200);
+    assert.equal(other.body, whole.body);
+    // Another file has another tag.
+    assert.notEqual((await rawGet(port, '/index.html')).headers.etag, etag);
   } finally {
     server.close();
   }

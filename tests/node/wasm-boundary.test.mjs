@@ -152,6 +152,13 @@ test('sizes and indices must be whole numbers in range, never strings, never wra
   throwsKind(() => cam.projectRoad('10', 0), 'LanepfInputError', /x/);
   throwsKind(() => cam.roadPoint(80, null), 'LanepfInputError', /v/);
   assert.equal(cam.projectRoad(10, 0).length, 2);
+  // Many points in one call: the same pixels, NaN where projectRoad throws (behind the camera).
+  const many = cam.projectRoadPoints(new Float64Array([10, 0, 25.5, -3.2, -5, 1]));
+  assert.deepEqual([...many.slice(0, 2)], [...cam.projectRoad(10, 0)]);
+  assert.deepEqual([...many.slice(2, 4)], [...cam.projectRoad(25.5, -3.2)]);
+  assert.ok(Number.isNaN(many[4]) && Number.isNaN(many[5]), `behind the camera: ${many.slice(4)}`);
+  throwsKind(() => cam.projectRoad(-5, 1), 'LanepfInputError', /behind/);
+  throwsKind(() => cam.projectRoadPoints(new Float64Array([1, 2, 3])), 'LanepfInputError', /pairs/);
   for (const o of [tracker, calibrator, road, cam]) o.free();
 });
 

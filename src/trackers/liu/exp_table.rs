@@ -15,35 +15,32 @@ pub const RANGE: f64 = 32.0;
 /// Table nodes per unit of the argument.
 const PER_UNIT: f64 = 64.0;
 
+/// Table entries: the nodes i h for i < 32 / h, and the (0, 0) entry at a = 32.
+const LEN: usize = RANGE as usize * PER_UNIT as usize + 1;
+/// The index of the last entry (a clamped index is at most this, so reads need no bounds check).
+const LAST: u32 = LEN as u32 - 1;
+
 /// The table.
 #[derive(Debug, Clone)]
 pub struct ExpTable {
     /// (exp(-i h), exp(-(i + 1) h) - exp(-i h)) per node i; the last entry, at a = 32, is
-    /// (0, 0) so that every larger argument reads 0 without a branch.
-    segments: Vec<[f64; 2]>,
+    /// (0, 0) so that every larger argument reads 0 without a branch. (Fixed-size, so that an
+    /// index clamped to [`LAST`] reads without a bounds check.)
+    segments: Box<[[f64; 2]; LEN]>,
     /// The same in f32, for the parabolic sums.
-    segments32: Vec<[f32; 2]>,
+    segments32: Box<[[f32; 2]; LEN]>,
 }
 
 impl Default for ExpTable {
     fn default() -> Self {
-        let n = (RANGE * PER_UNIT) as usize;
         let node = |i: usize| math::exp(-(i as f64) / PER_UNIT);
-        let mut segments: Vec<[f64; 2]> =
-            (0..n).map(|i| [node(i), node(i + 1) - node(i)]).collect();
-        segments.push([0.0, 0.0]);
-        let segments32 = segments
-            .iter()
-            .enumerate()
-            .map(|(i, _)| {
-                if i + 1 == segments.len() {
-                    [0.0, 0.0]
-                } else {
-                    let (a, b) = (node(i) as f32, node(i + 1) as f32);
-                    [a, b - a]
-                }
-            })
-            .collect();
+        let mut segments = Box::new([[0.0f64; 2]; LEN]);
+        let mut segments32 = Box::new([[0.0f32; 2]; LEN]);
+        for i in 0..LEN - 1 {
+            segments[i] = [node(i), node(i + 1) - node(i)];
+            let (a, b) = (node(i) as f32, node(i + 1) as f32);
+            segments32[i] = [a, b - a];
+        }
         Self {
             segments,
             segments32,
@@ -58,7 +55,7 @@ impl ExpTable {
         let t = a * PER_UNIT;
         // `as` saturates: negative and NaN arguments give 0, huge ones the last entry. (A u32
         // index converts in a few instructions, a usize one in many; the value is the same.)
-        let i = (t as u32).min(self.segments.len() as u32 - 1);
+        let i = (t as u32).min(LAST);
         let [value, slope] = self.segments[i as usize];
         value + (t - f64::from(i)) * slope
     }
@@ -69,9 +66,31 @@ impl ExpTable {
     #[inline]
     pub fn neg_exp32(&self, a: f32) -> f32 {
         let t = a * PER_UNIT as f32;
-        let i = (t as u32).min(self.segments32.len() as u32 - 1);
+        let i = (t as u32).min(LAST);
         let [value, slope] = self.segments32[i as usize];
         value + (t - i as f32) * slope
+    }
+
+    /// [`ExpTable::neg_exp32`] of the first three lanes of a WebAssembly SIMD vector, by the
+    /// same operations lane by lane (the fourth lane of the answer is unspecified).
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    #[inline]
+    pub fn neg_exp_v3(&self, a: core::arch::wasm32::v128) -> core::arch::wasm32::v128 {
+        use core::arch::wasm32::*;
+        let t = f32x4_mul(a, f32x4_splat(PER_UNIT as f32));
+        // `as u32` saturates as this conversion does (negative and NaN give 0).
+        let i = u32x4_min(u32x4_trunc_sat_f32x4(t), u32x4_splat(LAST));
+        let entry = |k: u32| self.segments32[k.min(LAST) as usize];
+        let (s0, s1, s2) = (
+            entry(u32x4_extract_lane::<0>(i)),
+            entry(u32x4_extract_lane::<1>(i)),
+            entry(u32x4_extract_lane::<2>(i)),
+        );
+        let frac = f32x4_sub(t, f32x4_convert_u32x4(i));
+        f32x4_add(
+            f32x4(s0[0], s1[0], s2[0], 0.0),
+            f32x4_mul(frac, f32x4(s0[1], s1[1], s2[1], 0.0)),
+        )
     }
 
     /// [`ExpTable::neg_exp32`] of four lanes, by the same operations lane by lane (the index
@@ -79,9 +98,8 @@ impl ExpTable {
     #[inline]
     pub fn neg_exp_x4(&self, a: F32x4) -> F32x4 {
         let t = a.mul(F32x4::splat(PER_UNIT as f32));
-        let last = self.segments32.len() - 1;
-        let (i, i_f32) = t.index_below(last as u32);
-        let [s0, s1, s2, s3] = i.map(|k| self.segments32[(k as usize).min(last)]);
+        let (i, i_f32) = t.index_below(LAST);
+        let [s0, s1, s2, s3] = i.map(|k| self.segments32[(k.min(LAST)) as usize]);
         let frac = t.sub(i_f32);
         F32x4::from_array([s0[0], s1[0], s2[0], s3[0]])
             .add(frac.mul(F32x4::from_array([s0[1], s1[1], s2[1], s3[1]])))

@@ -30,7 +30,8 @@
 //! from the row's (the nodes are within 2 rows; the error is below 1e-6 rad), and each
 //! pixel's G_pi in f32 (added to an f64 sum): rounding of 6e-8 against the table's 3e-5.
 //! Natively the 3-node rule runs four pixels per SSE2 operation ([`super::lanes`]), gathered
-//! across rows; WebAssembly one pixel at a time (faster there); both give the same bits.
+//! across rows; WebAssembly one pixel at a time, its three nodes in three lanes of a `simd128`
+//! vector (measured faster there than four pixels per vector); all give the same bits.
 
 //! Validity (Sec. IV-A, in metres): at the bottom row and at y_m, each boundary lies at least
 //! `min_spacing_m` to the right of its left neighbour, and neighbouring spacings differ by less
@@ -231,8 +232,8 @@ impl PpfModel {
         let nodes = self.node_offsets.len();
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
-        // Four lanes natively; in WebAssembly one pixel at a time, which measured faster
-        // there (see `super::lanes`).
+        // Four pixels in four lanes natively; in WebAssembly one pixel at a time (its three
+        // nodes in three lanes), which measured faster there (see `super::lanes`).
         let lanes = self.kernel && nodes == 3 && !cfg!(target_arch = "wasm32");
         let mut batch = lanes.then(Batch::default);
         for y in self.far_rows() {
@@ -272,6 +273,17 @@ impl PpfModel {
                     }
                 }
             } else {
+                #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+                if self.kernel && nodes == 3 {
+                    sum = self.parabolic_pixels_v3(
+                        sum,
+                        pixels,
+                        theta as f32,
+                        &node_x[..3],
+                        &node_theta[..3],
+                    );
+                    continue;
+                }
                 sum = self.parabolic_pixels(
                     sum,
                     pixels,
@@ -348,6 +360,55 @@ impl PpfModel {
                 let arg = dx * dx * inv_2var + 0.5 * dt * dt * px.precision;
                 g += self.node_weights[k] * self.exp.neg_exp32(arg);
             }
+            sum += f64::from(px.weight * g);
+        }
+        sum
+    }
+
+    /// [`PpfModel::parabolic_pixels`] with the 3-node rule in WebAssembly: a pixel's three
+    /// nodes in three lanes of one SIMD vector (each lane the scalar code's IEEE operations in
+    /// its order, no fused multiply-add), the nodes' terms then added in node order as the
+    /// scalar loop adds them, so the bits are those of the one-pixel-at-a-time path.
+    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+    #[inline]
+    fn parabolic_pixels_v3(
+        &self,
+        mut sum: f64,
+        pixels: &[MaskPixel],
+        theta: f32,
+        node_x: &[f32],
+        node_theta: &[f32],
+    ) -> f64 {
+        use core::arch::wasm32::*;
+        let inv_2var = f32x4_splat((0.5 / self.var_x) as f32);
+        let half = f32x4_splat(0.5);
+        let xs = f32x4(node_x[0], node_x[1], node_x[2], 0.0);
+        let ts = f32x4(node_theta[0], node_theta[1], node_theta[2], 0.0);
+        let ws = f32x4(
+            self.node_weights[0],
+            self.node_weights[1],
+            self.node_weights[2],
+            0.0,
+        );
+        for px in pixels {
+            let dtheta = fold32(theta - px.theta);
+            if 0.5 * dtheta * dtheta * px.precision >= SKIP {
+                continue;
+            }
+            let dx = f32x4_sub(xs, f32x4_splat(px.x));
+            let dt = f32x4_add(f32x4_splat(dtheta), ts);
+            let arg = f32x4_add(
+                f32x4_mul(f32x4_mul(dx, dx), inv_2var),
+                f32x4_mul(
+                    f32x4_mul(f32x4_mul(half, dt), dt),
+                    f32x4_splat(px.precision),
+                ),
+            );
+            let terms = f32x4_mul(ws, self.exp.neg_exp_v3(arg));
+            let mut g = 0.0f32;
+            g += f32x4_extract_lane::<0>(terms);
+            g += f32x4_extract_lane::<1>(terms);
+            g += f32x4_extract_lane::<2>(terms);
             sum += f64::from(px.weight * g);
         }
         sum
