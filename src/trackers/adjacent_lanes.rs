@@ -83,32 +83,22 @@ pub fn adjacent_boundaries(
     images: WorkingImages<'_>,
 ) -> Vec<Boundary> {
     let mut out = Vec::new();
-    let flats: Vec<Option<FlatBoundary>> = [Role::EgoLeft, Role::EgoRight]
-        .iter()
-        .map(|r| {
-            ego.iter()
-                .find(|b| b.role == *r)
-                .and_then(|b| FlatBoundary::new(camera, b))
-        })
-        .collect();
-    let ego_width = match (&flats[0], &flats[1]) {
+    let [left, right] = [Role::EgoLeft, Role::EgoRight].map(|r| {
+        ego.iter()
+            .find(|b| b.role == r)
+            .and_then(|b| FlatBoundary::new(camera, b))
+    });
+    let ego_width = match (&left, &right) {
         (Some(l), Some(r)) => Some(l.y_at(10.0) - r.y_at(10.0)),
         _ => None,
     };
-    for (ego_role, role, side) in [
-        (Role::EgoLeft, Role::LeftAdjacent, 1.0),
-        (Role::EgoRight, Role::RightAdjacent, -1.0),
+    for (flat, role, side) in [
+        (&left, Role::LeftAdjacent, 1.0),
+        (&right, Role::RightAdjacent, -1.0),
     ] {
-        let Some(boundary) = ego.iter().find(|b| b.role == ego_role) else {
-            continue;
-        };
-        let Some(flat) = FlatBoundary::new(camera, boundary) else {
-            continue;
-        };
-        if let Some(d) = best_width(camera, images, &flat, side, ego_width) {
-            if let Some(b) = flat.shifted(camera, side * d, role) {
-                out.push(b);
-            }
+        let Some(flat) = flat else { continue };
+        if let Some(d) = best_width(camera, images, flat, side, ego_width) {
+            out.extend(flat.shifted(camera, side * d, role));
         }
     }
     out
