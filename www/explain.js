@@ -49,6 +49,7 @@ export const TRACKERS = {
       { path: 'ess_threshold', label: 'N_thr / N: resample below', min: 0, max: 1, step: 0.05 },
       { path: 'kalman', label: 'Kalman smoothing', kind: 'bool' },
       RELOCK,
+      { path: 'curvature_prior_sd', label: 'curvature prior σ of δ (1/m; 0: off): far-stage bends need evidence (ours, beyond the paper)', min: 0, max: 0.02, step: 0.0005 },
       ADJACENT,
     ],
   },

@@ -106,6 +106,15 @@ pub struct LeeConfig {
     /// that lets a cloud stuck on a wrong lane re-lock (ours, beyond the paper; 0: off, the
     /// paper's filter).
     pub relock_share: f64,
+    /// Standard deviation, 1/m, of a zero-mean Gaussian prior on the curvature delta,
+    /// multiplied into stage 2's weights: p(c, delta | z) ~ N(f; 1, sigma_far^2) N(delta; 0,
+    /// sd^2) (ours, beyond the paper, whose curvature is uniform within `max_curvature`; 0: off,
+    /// the paper's filter). Where the far band holds little of the markings (a low camera
+    /// looking level, low contrast near the horizon), a uniform prior lets the curve follow
+    /// whatever edges are there: a barrier's top, a seam, roadside texture. Highway design
+    /// keeps radii above a few hundred metres (delta under about 0.003 /m); 0.004 makes a 250 m
+    /// radius cost half a nat and a 67 m one seven.
+    pub curvature_prior_sd: f64,
     /// Report the lanes beside the ego lane (`left-adjacent`, `right-adjacent`) where the
     /// bottom-up detector's markings run beside an ego boundary at a lane's width
     /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, which follows the ego lane
@@ -164,6 +173,7 @@ impl Default for LeeConfig {
             start_fresh: 0.2,
             lost_restart: 2,
             relock_share: 0.0,
+            curvature_prior_sd: 0.0,
             adjacent_lanes: false,
             kalman: true,
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],

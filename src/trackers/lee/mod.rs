@@ -23,7 +23,11 @@
 //! them a cold start on a dashed-line scene locked half a lane off, at the width limit, from
 //! about half of its start frames (see `a_cold_start_finds_the_lane_from_almost_any_frame`).
 //! With a positive `relock_share` (ours, off by default) a share of stage 1's particles is drawn each
-//! frame around the ego pair a bottom-up line detector finds ([`super::relock`]).
+//! frame around the ego pair a bottom-up line detector finds ([`super::relock`]). With a
+//! positive `curvature_prior_sd` (ours, off by default) stage 2 weighs each (c, delta) by a
+//! zero-mean Gaussian prior on delta too, so that a bend needs far-band evidence to win: the
+//! paper's uniform curvature let the far stage follow a barrier's top or shadow edges where
+//! the band held little of the markings (a low, level camera; `shadows`).
 //!
 //! Lane changes (our addition; the paper shows the lateral offset jumping by a lane width at
 //! each change, Fig. 10, without saying how): when the stage-1 estimate of y0 leaves
@@ -159,6 +163,8 @@ struct FarModel<'a> {
     spiral: f64,
     first: Option<LaneState>,
     near: Option<&'a LikelihoodMap>,
+    /// Standard deviation of the curvature prior (`curvature_prior_sd`; 0: none).
+    curvature_sd: f64,
 }
 
 impl MeasurementModel<LaneState> for FarModel<'_> {
@@ -180,7 +186,14 @@ impl MeasurementModel<LaneState> for FarModel<'_> {
             self.measurement
                 .near_log_likelihood(&lane, Some(&curve), map)
         });
-        far + near
+        // The curvature prior N(delta; 0, sd^2) (ours; `curvature_prior_sd`).
+        let prior = if self.curvature_sd > 0.0 {
+            let z = lane.delta / self.curvature_sd;
+            -0.5 * z * z
+        } else {
+            0.0
+        };
+        far + near + prior
     }
 }
 
@@ -797,6 +810,7 @@ impl Scheduled for LeeTracker {
                     spiral,
                     first: Some(self.stages.estimate),
                     near: None,
+                    curvature_sd: self.config.curvature_prior_sd,
                 };
                 stage2.weigh(&model, &());
             }
@@ -808,6 +822,7 @@ impl Scheduled for LeeTracker {
                 spiral,
                 first: None,
                 near: Some(&self.map),
+                curvature_sd: self.config.curvature_prior_sd,
             };
             self.stage1.weigh(&model, &());
         } else {
@@ -906,5 +921,7 @@ impl Scheduled for LeeTracker {
     }
 }
 
+#[cfg(test)]
+mod curvature_prior_tests;
 #[cfg(test)]
 mod tests;

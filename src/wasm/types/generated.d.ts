@@ -1159,6 +1159,20 @@ export interface LeeOptions {
    */
   relock_share?: number;
   /**
+   * Standard deviation, 1/m, of a zero-mean Gaussian prior on the curvature delta,
+   * multiplied into stage 2's weights: p(c, delta | z) ~ N(f; 1, sigma_far^2) N(delta; 0,
+   * sd^2) (ours, beyond the paper, whose curvature is uniform within `max_curvature`; 0: off,
+   * the paper's filter). Where the far band holds little of the markings (a low camera
+   * looking level, low contrast near the horizon), a uniform prior lets the curve follow
+   * whatever edges are there: a barrier's top, a seam, roadside texture. Highway design
+   * keeps radii above a few hundred metres (delta under about 0.003 /m); 0.004 makes a 250 m
+   * radius cost half a nat and a 67 m one seven.
+   *
+   * Range: 0 to 1.
+   * @defaultValue `0`
+   */
+  curvature_prior_sd?: number;
+  /**
    * Report the lanes beside the ego lane (`left-adjacent`, `right-adjacent`) where the
    * bottom-up detector's markings run beside an ego boundary at a lane's width
    * (`adjacent_lanes`; ours, beyond the paper, which follows the ego lane
