@@ -574,6 +574,83 @@ fn track_takes_the_seed_once_and_the_camera_only_from_camera() {
     assert_ne!(from_file, other);
 }
 
+/// `--preset real-roads` is the paper's defaults with our options for real roads, and the
+/// options of --config replace a preset's values.
+#[test]
+fn track_starts_from_a_preset_and_the_config_replaces_its_values() {
+    let out = temp("preset");
+    let d = out.join("scene");
+    let (code, _, err) = lanepf(&[
+        "synth",
+        "--scenario",
+        "multi-lane",
+        "--frames",
+        "4",
+        "--width",
+        "320",
+        "--height",
+        "240",
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let run = |preset: Option<&str>, config: Option<&str>, name: &str| {
+        let pred = out.join(format!("{name}.jsonl"));
+        let mut args: Vec<String> = [
+            "track",
+            "--tracker",
+            "lee-cpf",
+            "--camera",
+            d.join("camera.json").to_str().unwrap(),
+            "--frames",
+            d.join("frames").to_str().unwrap(),
+            "--out",
+            pred.to_str().unwrap(),
+        ]
+        .map(String::from)
+        .to_vec();
+        if let Some(p) = preset {
+            args.extend(["--preset".into(), p.into()]);
+        }
+        if let Some(text) = config {
+            let path = out.join(format!("{name}.json"));
+            std::fs::write(&path, text).unwrap();
+            args.extend(["--config".into(), path.display().to_string()]);
+        }
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, _, err) = lanepf(&refs);
+        let lines: Vec<serde_json::Value> = std::fs::read_to_string(&pred)
+            .unwrap_or_default()
+            .lines()
+            .map(|l| {
+                let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
+                v["ms"] = 0.into();
+                v
+            })
+            .collect();
+        (code, err, lines)
+    };
+    let (code, err, _) = run(Some("real"), None, "unknown");
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("unknown preset `real`: use one of paper, real-roads"),
+        "{err}"
+    );
+    let (code, err, paper) = run(None, None, "paper");
+    assert_eq!(code, 0, "{err}");
+    let (_, _, named_paper) = run(Some("paper"), None, "named-paper");
+    let (_, _, roads) = run(Some("real-roads"), None, "roads");
+    let ours = r#"{"relock_share": 0.05, "curvature_prior_sd": 0.004, "adjacent_lanes": true}"#;
+    let (_, _, by_hand) = run(None, Some(ours), "by-hand");
+    let off = r#"{"relock_share": 0, "curvature_prior_sd": 0, "adjacent_lanes": false}"#;
+    let (_, _, replaced) = run(Some("real-roads"), Some(off), "replaced");
+    assert_eq!(paper.len(), 4);
+    assert_eq!(named_paper, paper);
+    assert_ne!(roads, paper);
+    assert_eq!(roads, by_hand);
+    assert_eq!(replaced, paper);
+}
+
 /// Issue 19: `eval` reads at most 256 MiB a file, 1 MiB a line and 5000 points a polyline, and
 /// resamples a polyline to at most 50 000 points, each with a clear error; ground truth in
 /// another format than `--format` says which format it looks like.

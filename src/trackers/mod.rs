@@ -3,7 +3,8 @@
 //!
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
 //! `config.rs` the [`TrackerConfig`], `options.rs` the typed [`TrackerOptions`],
-//! `defaults.rs` / `ranges.rs` every option's default and range, `ego_motion.rs`, `layer.rs`
+//! `defaults.rs` / `ranges.rs` every option's default and range, `presets.rs` the named
+//! option sets (`paper`, `real-roads`), `ego_motion.rs`, `layer.rs`
 //! the types the trait speaks (and the filter core's [`StageTimes`]), `lane_change.rs` the
 //! lane-change rule trackers share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the
 //! neighbouring lanes found beside an ego lane, and one folder per paper. Each paper's tracker
@@ -30,6 +31,7 @@ pub mod liu;
 #[cfg(test)]
 mod option_fuzz;
 mod options;
+mod presets;
 mod ranges;
 mod registry;
 pub mod relock;
@@ -46,6 +48,7 @@ pub use ego_motion::EgoMotion;
 pub use hypothesis::{spread_indices, Hypothesis};
 pub use layer::{Layer, PlaneAxes};
 pub use options::{Options, TrackerOptions};
+pub use presets::{Preset, PRESET_NAMES};
 pub use ranges::{option_ranges, OptionRange};
 pub use registry::{build, create, TRACKER_IDS};
 pub use tracker::Tracker;

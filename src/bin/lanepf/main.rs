@@ -3,6 +3,7 @@
 //! ```text
 //! lanepf synth --scenario NAME --seed N [--reference] --frames N [--width W --height H] [--stereo] --out DIR
 //! lanepf track --tracker ID --camera FILE --frames DIR [--right DIR] [--seed N] [--config FILE]
+//!              [--preset paper|real-roads]
 //!              [--still K] --out FILE.jsonl
 //!     (--camera auto estimates the camera from the frames first, as `calibrate` does)
 //! lanepf calibrate --frames DIR [--intrinsics FILE | --hfov DEG] [--lane-width M] [--stills]

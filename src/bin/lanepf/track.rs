@@ -3,7 +3,7 @@
 use super::frames;
 use lanepf::camera::CameraFile;
 use lanepf::image::{read_rgba, RgbaFrame};
-use lanepf::trackers::{self, TrackerConfig};
+use lanepf::trackers::{self, Preset, TrackerConfig, TrackerOptions};
 use lanepf::{Error, Result};
 use std::io::Write;
 use std::path::PathBuf;
@@ -34,6 +34,11 @@ pub struct Args {
     /// comes from --camera only).
     #[arg(long)]
     config: Option<PathBuf>,
+    /// Named option set the options start from: `paper` (each paper's filter, the default) or
+    /// `real-roads` (our options beyond the papers for real footage); --config's options
+    /// replace its values.
+    #[arg(long, default_value = "paper")]
+    preset: String,
     /// JSON-lines file of the car's motion, one line per frame in frame order, with `t`
     /// (seconds), `speed_mps` and `yaw_rate` (rad/s, positive left) at the top level or in
     /// `state` (the `gt.jsonl` of `lanepf synth` works); used by trackers with an ego-motion
@@ -50,6 +55,7 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<()> {
+    let preset: Preset = args.preset.parse()?;
     if args.camera != "auto" && args.calibration.intrinsics.is_some() {
         return Err(Error::Config(
             "--intrinsics is for --camera auto; with a camera file the file's intrinsics are used"
@@ -102,6 +108,15 @@ pub fn run(args: Args) -> Result<()> {
     options
         .entry("seed")
         .or_insert(args.seed.unwrap_or(1).into());
+    if preset != Preset::Paper {
+        let base = serde_json::to_value(TrackerOptions::preset(&args.tracker, preset)?)
+            .map_err(|e| Error::Config(e.to_string()))?;
+        if let serde_json::Value::Object(base) = base {
+            for (key, value) in base {
+                options.entry(key).or_insert(value);
+            }
+        }
+    }
     let config = TrackerConfig::from_json_str(&serde_json::Value::Object(options).to_string())?;
     let mut tracker = trackers::create(&args.tracker, &config)?;
     match (&args.right, tracker.is_stereo()) {
