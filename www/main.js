@@ -525,9 +525,11 @@ async function finishStepping() {
 async function openTracker({ keepLog = false } = {}) {
   state.inFrame = null;
   const trackerId = state.trackerId;
-  // (The worker's trackerDefaults(id).)
-  const defaults = trackerId ? /** @type {Record<string, unknown>} */ (await client.request('defaults', { trackerId })) : null;
-  panel.show(trackerId, defaults);
+  // (The worker's trackerDefaults(id) and trackerPreset(id, 'real-roads').)
+  const presets = trackerId
+    ? /** @type {{ paper: Record<string, unknown>, realRoads: Record<string, unknown> }} */ (await client.request('defaults', { trackerId }))
+    : null;
+  panel.show(trackerId, presets?.paper ?? null, presets?.realRoads ?? null);
   const options = { ...panel.changedOptions(), seed: panel.seedValue() };
   const camera = state.camera;
   if (!camera) throw new Error('No camera yet: open a source first.');
@@ -611,6 +613,8 @@ async function openSource(next, name) {
   state.source = next;
   state.sourceName = name;
   showTruthControls(next instanceof SceneSource || next instanceof TestRoadSource);
+  // Real footage starts from our real-roads options, the simulator from the paper's.
+  panel.usePreset(state.hasTruth ? 'paper' : 'real-roads');
   demo.ended = false;
   demo.source = name;
   let note = '';

@@ -1,7 +1,9 @@
 // @ts-check
 // The teaching panel: the chosen tracker's paper in a few sentences, sliders for the parameters
-// the paper names, the seed, and a button back to the defaults. It calls `onChange(options,
-// seed)` when the person lets go of a slider.
+// the paper names, the seed, and two presets: the paper's defaults, and our options beyond the
+// papers for real footage (`trackerPreset(id, 'real-roads')`), which the page picks for the
+// clip, your media and the webcam, and the paper's for the simulator. It calls
+// `onChange(options, seed)` when the person lets go of a slider or picks a preset.
 import { byId } from './dom.js';
 import { TRACKERS, getPath, setPath } from './explain.js';
 
@@ -14,6 +16,8 @@ export class ParamsPanel {
     this.form = byId('params', HTMLFormElement, doc);
     this.seed = byId('seed', HTMLInputElement, doc);
     this.reset = byId('params-reset', HTMLButtonElement, doc);
+    this.realRoadsButton = byId('params-real-roads', HTMLButtonElement, doc);
+    this.presetText = byId('params-preset', HTMLElement, doc);
     /** @type {(options: Record<string, unknown>, seed: number) => void} */
     this.onChange = () => {};
     /** The tracker shown (null: none) and the one whose options are kept. */
@@ -25,11 +29,20 @@ export class ParamsPanel {
     this.defaults = {};
     /** @type {Record<string, unknown>} */
     this.options = {};
+    /** The preset the options start from. @type {'paper' | 'real-roads'} */
+    this.preset = 'paper';
+    /** The shown tracker's real-roads options. @type {Record<string, unknown> | null} */
+    this.realRoads = null;
     this.form.addEventListener('submit', (e) => e.preventDefault());
     this.seed.addEventListener('change', () => this.changed());
     this.reset.addEventListener('click', () => {
-      this.options = {};
-      this.show(this.id, this.defaults);
+      this.usePreset('paper');
+      this.show(this.id, this.defaults, this.realRoads);
+      this.changed();
+    });
+    this.realRoadsButton.addEventListener('click', () => {
+      this.usePreset('real-roads');
+      this.show(this.id, this.defaults, this.realRoads);
       this.changed();
     });
   }
@@ -49,22 +62,39 @@ export class ParamsPanel {
   }
 
   /**
-   * Shows tracker `id` (null: none) with its `defaults` (trackerDefaults(id)); with no defaults
-   * yet (the module still loading) the sliders are there but disabled, so the page does not move
-   * when they come.
+   * Starts the options afresh from `preset` when the panel next shows a tracker: the person's
+   * own changes are dropped.
+   * @param {'paper' | 'real-roads'} preset
+   */
+  usePreset(preset) {
+    this.preset = preset;
+    this.defaultsId = null;
+  }
+
+  /**
+   * Shows tracker `id` (null: none) with its `defaults` (trackerDefaults(id)) and its
+   * `realRoads` options (trackerPreset(id, 'real-roads')); with no defaults yet (the module
+   * still loading) the sliders are there but disabled, so the page does not move when they
+   * come. A new tracker starts from the current preset.
    * @param {string | null} id
    * @param {Record<string, unknown> | null} defaults
+   * @param {Record<string, unknown> | null} [realRoads]
    */
-  show(id, defaults) {
+  show(id, defaults, realRoads = null) {
     this.id = id;
     const info = id ? TRACKERS[id] : null;
     this.section.hidden = !info;
     if (!info) return;
-    if (this.defaultsId !== id) {
-      this.defaultsId = id;
-      this.options = {};
-    }
     this.defaults = defaults;
+    this.realRoads = realRoads;
+    if (this.defaultsId !== id && defaults) {
+      this.defaultsId = id;
+      this.options = this.preset === 'real-roads' && realRoads ? this.trim(realRoads) : {};
+    }
+    const ours = Object.keys(this.trim(realRoads ?? {}));
+    this.presetText.textContent = this.preset === 'real-roads'
+      ? `Options: real roads (ours, beyond the paper: ${ours.join(', ')}), then your changes.`
+      : 'Options: the paper’s filter, then your changes.';
     this.title.textContent = info.title;
     this.text.replaceChildren(...info.text.map((t) => Object.assign(this.doc.createElement('p'), { textContent: t })));
     const current = defaults ? { ...defaults, ...this.options } : null;

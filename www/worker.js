@@ -10,7 +10,7 @@
 // back with the answer, or on the Error when the op throws (serve.js hands it back).
 import { serve } from '../pkg/worker/serve.js';
 import {
-  version, trackerIds, trackerDefaults, scenarios, Calibrator, Scene, TestRoad, Tracker,
+  version, trackerIds, trackerDefaults, trackerPreset, scenarios, Calibrator, Scene, TestRoad, Tracker,
 } from '../pkg/web/lanepf.js';
 import { topViewTable, topView } from './top-view.js';
 import { weightsByGroup, weighing } from './particle-weights.js';
@@ -157,7 +157,7 @@ serve({
     return { result: { version: version(), trackers: trackerIds(), scenarios: scenarios() } };
   },
   defaults({ trackerId }) {
-    return { result: trackerDefaults(trackerId) };
+    return { result: { paper: trackerDefaults(trackerId), realRoads: trackerPreset(trackerId, 'real-roads') } };
   },
   openTestRoad({ camera, options }) {
     road?.free();

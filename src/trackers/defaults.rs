@@ -1,7 +1,7 @@
 //! Every option of a tracker with its default value: what a settings panel starts from, and
 //! the documentation of the options in one machine-readable object.
 
-use super::{Error, Result};
+use super::{Error, Preset, Result};
 use serde_json::{Map, Value};
 
 fn object(particles: usize, config: Value) -> Result<Value> {
@@ -24,9 +24,18 @@ fn object(particles: usize, config: Value) -> Result<Value> {
 /// # Errors
 /// [`Error::UnknownTracker`] for an id not in [`super::TRACKER_IDS`].
 pub fn default_options(id: &str) -> Result<Value> {
+    preset_options(id, Preset::Paper)
+}
+
+/// Every option of tracker `id` with its value in `preset`, `particles` included, as
+/// [`default_options`] gives the defaults (the `paper` preset).
+///
+/// # Errors
+/// [`Error::UnknownTracker`] for an id not in [`super::TRACKER_IDS`].
+pub fn preset_options(id: &str, preset: Preset) -> Result<Value> {
     let entry = super::registry::entry(id)?;
-    let config = serde_json::to_value((entry.defaults)())
-        .map_err(|e| Error::Config(format!("{id} defaults: {e}")))?;
+    let config = serde_json::to_value(super::TrackerOptions::preset(id, preset)?)
+        .map_err(|e| Error::Config(format!("{id} options: {e}")))?;
     object(entry.particles, config)
 }
 

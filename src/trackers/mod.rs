@@ -43,7 +43,7 @@ pub(crate) use crate::filter::now;
 pub use crate::filter::StageTimes;
 pub(crate) use config::parse_options;
 pub use config::{TrackerConfig, MAX_PARTICLES};
-pub use defaults::default_options;
+pub use defaults::{default_options, preset_options};
 pub use ego_motion::EgoMotion;
 pub use hypothesis::{spread_indices, Hypothesis};
 pub use layer::{Layer, PlaneAxes};

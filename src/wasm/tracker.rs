@@ -67,6 +67,23 @@ pub fn tracker_defaults(
     super::to_js_value(&trackers::default_options(&id).map_err(error::config)?)
 }
 
+/// Every option of tracker `id` with its value in the named `preset`, `particles` included:
+/// `paper` gives each paper's filter (the same as `trackerDefaults(id)`), `real-roads` our
+/// options beyond the papers that measured better on real footage (the re-lock proposal, the
+/// neighbouring lanes, lee-cpf's curvature prior). Pass them on to `new Tracker(id, { camera,
+/// ...options })`; throws for an unknown id or preset.
+#[wasm_bindgen(js_name = trackerPreset, unchecked_return_type = "TrackerDefaults")]
+pub fn tracker_preset(
+    #[wasm_bindgen(unchecked_param_type = "TrackerId")] id: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "TrackerPreset")] preset: JsValue,
+) -> Result<JsValue, Thrown> {
+    let id = args::name(&id, "tracker id")?;
+    let preset: trackers::Preset = args::name(&preset, "preset")?
+        .parse()
+        .map_err(error::config)?;
+    super::to_js_value(&trackers::preset_options(&id, preset).map_err(error::config)?)
+}
+
 #[wasm_bindgen(js_class = Tracker)]
 impl JsTracker {
     /// `new Tracker(id, { camera, particles?, seed?, ...options })`; throws an `Error` for an

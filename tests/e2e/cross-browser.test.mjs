@@ -694,6 +694,36 @@ for (const driver of DRIVERS) {
       await page.close();
     });
 
+    test(`${N}: real footage starts from the real-roads options, the simulator from the paper's, and both buttons switch`, async () => {
+      const page = await b.open(`${b.base}/?source=clip&tracker=lee-cpf`);
+      await running(page);
+      const values = () => page.eval(() => Object.fromEntries([...document.querySelectorAll('#params input')]
+        .map((i) => [i.name, i.type === 'checkbox' ? i.checked : Number(i.value)])));
+      // The bundled clip: our options beyond the paper, named on the panel.
+      let v = await values();
+      assert.equal(v.relock_share, 0.05);
+      assert.equal(v.curvature_prior_sd, 0.004);
+      assert.equal(v.adjacent_lanes, true);
+      assert.match(await text(page, '#params-preset'), /real roads \(ours.*relock_share.*\)/);
+      // Back to the paper's filter, and to real roads again, with the buttons.
+      await page.click('#params-reset');
+      await page.waitFor(() => document.querySelector('#params input[name="relock_share"]').value === '0');
+      v = await values();
+      assert.equal(v.adjacent_lanes, false);
+      assert.equal(v.curvature_prior_sd, 0);
+      assert.match(await text(page, '#params-preset'), /the paper’s filter/);
+      await page.click('#params-real-roads');
+      await page.waitFor(() => document.querySelector('#params input[name="relock_share"]').value === '0.05');
+      // Another tracker keeps the preset: danescu-mono's real-roads options.
+      await page.select('#tracker', 'danescu-mono');
+      await page.waitFor(() => document.querySelector('#params input[name="relock_share"]')?.value === '0.1');
+      // A simulator scene starts from the paper's.
+      await page.select('#source', 'highway-straight');
+      await page.waitFor(() => document.querySelector('#params input[name="relock_share"]')?.value === '0');
+      assert.deepEqual(await page.errors(), []);
+      await page.close();
+    });
+
     test(`${N}: danescu-stereo tracks left/right image pairs and side-by-side images`, async () => {
       const page = await b.open(`${b.base}/?source=test-road&tracker=danescu-stereo`);
       // The test road's camera is not a stereo rig: the page says so and keeps going.

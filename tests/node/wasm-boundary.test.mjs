@@ -6,7 +6,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import init, {
-  Calibrator, Camera, Scene, TestRoad, Tracker, trackerDefaults, trackerIds,
+  Calibrator, Camera, Scene, TestRoad, Tracker, trackerDefaults, trackerIds, trackerPreset,
 } from '../../pkg/web/lanepf.js';
 
 const wasm = await init({ module_or_path: readFileSync(new URL('../../pkg/web/lanepf_bg.wasm', import.meta.url)) });
@@ -98,6 +98,22 @@ test('ids and names must be strings', () => {
   throwsKind(() => new Tracker(5, { camera }), 'LanepfConfigError', /tracker id.*string.*number/);
   assert.equal(trackerIds().length, 6);
   assert.ok(trackerDefaults('lee-cpf').particles > 0);
+});
+
+test('a preset is a tracker\'s options: paper its defaults, real-roads ours beside them', () => {
+  for (const id of trackerIds()) {
+    assert.deepEqual(trackerPreset(id, 'paper'), trackerDefaults(id));
+    const roads = trackerPreset(id, 'real-roads');
+    const changed = Object.keys(roads).filter((k) => JSON.stringify(roads[k]) !== JSON.stringify(trackerDefaults(id)[k]));
+    assert.ok(changed.length > 0, id);
+    for (const k of changed) assert.ok(['relock_share', 'curvature_prior_sd', 'adjacent_lanes'].includes(k), `${id}: ${k}`);
+    const tracker = new Tracker(id, { ...roads, camera, particles: 50 });
+    tracker.free();
+  }
+  assert.equal(trackerPreset('lee-cpf', 'real-roads').curvature_prior_sd, 0.004);
+  throwsKind(() => trackerPreset('lee-cpf', 'fast'), 'LanepfConfigError', /unknown preset `fast`: use one of paper, real-roads/);
+  throwsKind(() => trackerPreset('lee-cpf', 5), 'LanepfConfigError', /preset/);
+  throwsKind(() => trackerPreset('kalman', 'paper'), 'LanepfConfigError', /id|tracker/);
 });
 
 test('frames that are not byte arrays of the right length are refused before any copy', () => {

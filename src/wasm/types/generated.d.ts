@@ -9,6 +9,12 @@ export type TrackerId =
   | 'adachi-mmpf' | 'danescu-mono' | 'danescu-stereo' | 'lee-cpf' | 'liu-ppf' | 'liu-ppf-nokernel';
 
 /**
+ * The named option sets `trackerPreset(id, preset)` accepts: `paper` (each paper's filter, the defaults) and `real-roads` (our options beyond the papers for real footage).
+ */
+export type TrackerPreset =
+  | 'paper' | 'real-roads';
+
+/**
  * What every tracker is built from: the camera, the particle budget, the seed, and the
  * tracker's own options (checked by the tracker itself). In JSON the options are keys beside
  * these; in Rust they may instead be typed, naming the tracker (`TrackerConfig::new`).

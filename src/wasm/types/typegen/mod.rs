@@ -266,6 +266,23 @@ fn generate() -> Result<String, String> {
             .collect::<Vec<_>>()
             .join(" | ")
     );
+    out += &render::jsdoc(
+        &[
+            "The named option sets `trackerPreset(id, preset)` accepts: `paper` (each paper's \
+           filter, the defaults) and `real-roads` (our options beyond the papers for real \
+           footage)."
+                .into(),
+        ],
+        "",
+    );
+    out += &format!(
+        "export type TrackerPreset =\n  | {};\n\n",
+        crate::trackers::PRESET_NAMES
+            .iter()
+            .map(|p| format!("'{p}'"))
+            .collect::<Vec<_>>()
+            .join(" | ")
+    );
     for s in &specs {
         let Shape::Interface(ts) = s.shape else {
             continue;
