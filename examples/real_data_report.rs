@@ -1,8 +1,9 @@
 //! The real-data regression report: every mono tracker on every labelled real dataset in
 //! `../shared/data`, and on the Udacity videos by eye, as one tracker x dataset table.
 //!
-//! `cargo run --release --example real_data_report -- [DATA_DIR] [OUT_DIR] [UDACITY_FRAMES]`
-//! (defaults `../shared/data`, `target/real-data`, 300 frames of each Udacity video). Writes
+//! `cargo run --release --example real_data_report -- [DATA_DIR] [OUT_DIR] [UDACITY_FRAMES]
+//! [ROWS]` (defaults `../shared/data`, `target/real-data`, 300 frames of each Udacity video,
+//! every row; ROWS keeps the rows whose name contains it, e.g. `lee-cpf`). Writes
 //! OUT_DIR/report.md (the table, also printed) and OUT_DIR/sheet-<video>-<camera>.png: one
 //! row of sampled frames per tracker with its boundaries drawn (ego-left red, ego-right blue,
 //! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye.
@@ -27,13 +28,13 @@ use lanepf::trackers::adachi::config::{AdachiConfig, LaneShape};
 use lanepf::trackers::danescu::config::DanescuConfig;
 use lanepf::trackers::lee::config::LeeConfig;
 use lanepf::trackers::liu::config::LiuConfig;
-use lanepf::trackers::{self, TrackerConfig, TrackerOptions};
+use lanepf::trackers::{self, Preset, TrackerConfig, TrackerOptions};
 use std::path::{Path, PathBuf};
 
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 11] = [
+const TRACKERS: [fn() -> TrackerOptions; 14] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -75,9 +76,17 @@ const TRACKERS: [fn() -> TrackerOptions; 11] = [
             ..LeeConfig::default()
         })
     },
+    || real_roads("lee-cpf"),
     || TrackerOptions::LiuPpf(LiuConfig::default()),
+    || real_roads("liu-ppf"),
     || TrackerOptions::LiuPpfNokernel(LiuConfig::default()),
+    || real_roads("liu-ppf-nokernel"),
 ];
+
+/// The `real-roads` preset of a registered tracker.
+fn real_roads(id: &str) -> TrackerOptions {
+    TrackerOptions::preset(id, Preset::RealRoads).expect("a registered tracker id")
+}
 
 /// A row's name: the tracker id, and the options that differ from its defaults as JSON.
 fn row_name(options: &TrackerOptions) -> Res<String> {
@@ -361,6 +370,8 @@ fn main() -> Res<()> {
     let data = PathBuf::from(args.get(1).map_or("../shared/data", |s| s.as_str()));
     let out = PathBuf::from(args.get(2).map_or("target/real-data", |s| s.as_str()));
     let udacity_frames: usize = args.get(3).map_or(Ok(300), |s| s.parse())?;
+    // Only the rows whose name contains this text (all when not given).
+    let only = args.get(4).map_or("", |s| s.as_str());
     std::fs::create_dir_all(&out)?;
     let caltech = data.join("caltech-cordova1");
     let culane = data.join("culane/06030819_0755.MP4");
@@ -475,6 +486,9 @@ fn main() -> Res<()> {
         notes.push(format!("- {}: {note}", run.label));
         let mut all = Vec::new();
         for (k, row) in TRACKERS.iter().enumerate() {
+            if !row_name(&row())?.contains(only) {
+                continue;
+            }
             let preds = track(row(), &cam, &frames, &names, run.still)?;
             let valid = preds.iter().filter(|p| p.valid).count();
             let cell = match &run.eval {
@@ -501,7 +515,9 @@ fn main() -> Res<()> {
     }
     for (k, options) in TRACKERS.iter().enumerate() {
         let name = row_name(&options())?;
-        table += &format!("| {name} | {} |\n", rows[k].join(" | "));
+        if name.contains(only) {
+            table += &format!("| {name} | {} |\n", rows[k].join(" | "));
+        }
     }
     let report = format!("{table}\nCameras:\n{}\n", notes.join("\n"));
     std::fs::write(out.join("report.md"), &report)?;
