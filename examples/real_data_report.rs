@@ -78,9 +78,19 @@ const TRACKERS: [fn() -> TrackerOptions; 14] = [
     },
     || real_roads("lee-cpf"),
     || TrackerOptions::LiuPpf(LiuConfig::default()),
-    || real_roads("liu-ppf"),
+    || {
+        TrackerOptions::LiuPpf(LiuConfig {
+            relock_share: 0.1,
+            ..LiuConfig::default()
+        })
+    },
     || TrackerOptions::LiuPpfNokernel(LiuConfig::default()),
-    || real_roads("liu-ppf-nokernel"),
+    || {
+        TrackerOptions::LiuPpfNokernel(LiuConfig {
+            relock_share: 0.1,
+            ..LiuConfig::default()
+        })
+    },
 ];
 
 /// The `real-roads` preset of a registered tracker.

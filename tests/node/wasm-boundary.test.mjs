@@ -105,7 +105,8 @@ test('a preset is a tracker\'s options: paper its defaults, real-roads ours besi
     assert.deepEqual(trackerPreset(id, 'paper'), trackerDefaults(id));
     const roads = trackerPreset(id, 'real-roads');
     const changed = Object.keys(roads).filter((k) => JSON.stringify(roads[k]) !== JSON.stringify(trackerDefaults(id)[k]));
-    assert.ok(changed.length > 0, id);
+    // (liu-ppf's real-roads is its paper's filter: none of our options measured better.)
+    assert.equal(changed.length > 0, !id.startsWith('liu-ppf'), `${id}: ${changed}`);
     for (const k of changed) assert.ok(['relock_share', 'curvature_prior_sd', 'adjacent_lanes'].includes(k), `${id}: ${k}`);
     const tracker = new Tracker(id, { ...roads, camera, particles: 50 });
     tracker.free();
