@@ -508,6 +508,50 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
     assert!(err.contains("lane_width_m"), "{err}");
 }
 
+/// `lanepf track --tracker lee-cpf` on the scene `lanepf synth` wrote to `scene`, with `args`
+/// and, when given, a config file of that text (written to `out/<name>.json`): the exit code,
+/// stderr and the output lines with `ms` zeroed.
+fn track_lee(
+    out: &Path,
+    scene: &Path,
+    name: &str,
+    config: Option<&str>,
+    args: &[&str],
+) -> (i32, String, Vec<serde_json::Value>) {
+    let pred = out.join(format!("{name}.jsonl"));
+    let mut all: Vec<String> = [
+        "track",
+        "--tracker",
+        "lee-cpf",
+        "--camera",
+        scene.join("camera.json").to_str().unwrap(),
+        "--frames",
+        scene.join("frames").to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]
+    .map(String::from)
+    .to_vec();
+    all.extend(args.iter().map(|a| a.to_string()));
+    if let Some(text) = config {
+        let path = out.join(format!("{name}.json"));
+        std::fs::write(&path, text).unwrap();
+        all.extend(["--config".into(), path.display().to_string()]);
+    }
+    let refs: Vec<&str> = all.iter().map(String::as_str).collect();
+    let (code, _, err) = lanepf(&refs);
+    let lines = std::fs::read_to_string(&pred)
+        .unwrap_or_default()
+        .lines()
+        .map(|l| {
+            let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
+            v["ms"] = 0.into();
+            v
+        })
+        .collect();
+    (code, err, lines)
+}
+
 #[test]
 fn track_takes_the_seed_once_and_the_camera_only_from_camera() {
     let out = temp("seed-once");
@@ -526,36 +570,9 @@ fn track_takes_the_seed_once_and_the_camera_only_from_camera() {
         d.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{err}");
-    let (cam, frames) = (d.join("camera.json"), d.join("frames"));
     let run = |config: Option<&str>, seed: Option<&str>, name: &str| {
-        let pred = out.join(format!("{name}.jsonl"));
-        let mut args = vec![
-            "track".to_string(),
-            "--tracker".into(),
-            "lee-cpf".into(),
-            "--camera".into(),
-            cam.display().to_string(),
-            "--frames".into(),
-            frames.display().to_string(),
-            "--out".into(),
-            pred.display().to_string(),
-        ];
-        if let Some(text) = config {
-            let path = out.join(format!("{name}.json"));
-            std::fs::write(&path, text).unwrap();
-            args.extend(["--config".into(), path.display().to_string()]);
-        }
-        if let Some(s) = seed {
-            args.extend(["--seed".into(), s.to_string()]);
-        }
-        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-        let (code, _, err) = lanepf(&refs);
-        let states: Vec<serde_json::Value> = std::fs::read_to_string(&pred)
-            .unwrap_or_default()
-            .lines()
-            .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap()["state"].clone())
-            .collect();
-        (code, err, states)
+        let seed: Vec<&str> = seed.map_or(vec![], |s| vec!["--seed", s]);
+        track_lee(&out, &d, name, config, &seed)
     };
     let (code, err, _) = run(Some(r#"{"seed": 7}"#), Some("7"), "twice");
     assert_eq!(code, 1);
@@ -595,40 +612,8 @@ fn track_starts_from_a_preset_and_the_config_replaces_its_values() {
     ]);
     assert_eq!(code, 0, "{err}");
     let run = |preset: Option<&str>, config: Option<&str>, name: &str| {
-        let pred = out.join(format!("{name}.jsonl"));
-        let mut args: Vec<String> = [
-            "track",
-            "--tracker",
-            "lee-cpf",
-            "--camera",
-            d.join("camera.json").to_str().unwrap(),
-            "--frames",
-            d.join("frames").to_str().unwrap(),
-            "--out",
-            pred.to_str().unwrap(),
-        ]
-        .map(String::from)
-        .to_vec();
-        if let Some(p) = preset {
-            args.extend(["--preset".into(), p.into()]);
-        }
-        if let Some(text) = config {
-            let path = out.join(format!("{name}.json"));
-            std::fs::write(&path, text).unwrap();
-            args.extend(["--config".into(), path.display().to_string()]);
-        }
-        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-        let (code, _, err) = lanepf(&refs);
-        let lines: Vec<serde_json::Value> = std::fs::read_to_string(&pred)
-            .unwrap_or_default()
-            .lines()
-            .map(|l| {
-                let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
-                v["ms"] = 0.into();
-                v
-            })
-            .collect();
-        (code, err, lines)
+        let preset: Vec<&str> = preset.map_or(vec![], |p| vec!["--preset", p]);
+        track_lee(&out, &d, name, config, &preset)
     };
     let (code, err, _) = run(Some("real"), None, "unknown");
     assert_eq!(code, 1);
