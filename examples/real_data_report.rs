@@ -6,7 +6,9 @@
 //! OUT_DIR/report.md (the table, also printed) and OUT_DIR/sheet-<video>-<camera>.png: one
 //! row of sampled frames per tracker with its boundaries drawn (ego-left red, ego-right blue,
 //! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye.
-//! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/.
+//! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/. With the environment
+//! variable `REAL_DATA_ROWS` set, only the rows whose name contains it run (e.g.
+//! `REAL_DATA_ROWS=adachi`).
 //!
 //! Datasets and cameras (a camera the data ships, or `auto`: `lanepf::calib` on the same
 //! frames first, with the known intrinsics where there are some):
@@ -33,7 +35,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 11] = [
+const TRACKERS: [fn() -> TrackerOptions; 12] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -44,6 +46,12 @@ const TRACKERS: [fn() -> TrackerOptions; 11] = [
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
             relock_share: 0.05,
+            ..AdachiConfig::default()
+        })
+    },
+    || {
+        TrackerOptions::AdachiMmpf(AdachiConfig {
+            vote_pair_share: 0.05,
             ..AdachiConfig::default()
         })
     },
@@ -457,6 +465,14 @@ fn main() -> Res<()> {
     table += &format!("\n|---|{}\n", "---|".repeat(runs.len()));
     let mut rows: Vec<Vec<String>> = vec![Vec::new(); TRACKERS.len()];
     let mut notes = Vec::new();
+    let only = std::env::var("REAL_DATA_ROWS").ok();
+    let selected: Vec<bool> = TRACKERS
+        .iter()
+        .map(|row| {
+            let name = row_name(&row())?;
+            Ok(only.as_ref().is_none_or(|o| name.contains(o.as_str())))
+        })
+        .collect::<Res<_>>()?;
     for run in &runs {
         let frames: Vec<RgbaFrame> = run
             .frames
@@ -475,6 +491,9 @@ fn main() -> Res<()> {
         notes.push(format!("- {}: {note}", run.label));
         let mut all = Vec::new();
         for (k, row) in TRACKERS.iter().enumerate() {
+            if !selected[k] {
+                continue;
+            }
             let preds = track(row(), &cam, &frames, &names, run.still)?;
             let valid = preds.iter().filter(|p| p.valid).count();
             let cell = match &run.eval {
@@ -500,6 +519,9 @@ fn main() -> Res<()> {
         }
     }
     for (k, options) in TRACKERS.iter().enumerate() {
+        if !selected[k] {
+            continue;
+        }
         let name = row_name(&options())?;
         table += &format!("| {name} | {} |\n", rows[k].join(" | "));
     }
