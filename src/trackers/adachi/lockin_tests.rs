@@ -96,7 +96,7 @@ fn cold_starts_right(options: &str) -> f64 {
 }
 
 /// Measured 2026-11-26: the start from the vote pairs (default) right from 24 of 24 seeds, the
-/// uniform start we had 18 of 24 (the rest locked on the trap, never valid, as on the video).
+/// uniform start we had 18 of 24 (the rest on a false mode).
 #[test]
 fn a_cold_start_finds_the_lane_beside_the_guard_rail() {
     let pairs = cold_starts_right("");
