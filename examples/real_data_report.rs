@@ -1,13 +1,14 @@
 //! The real-data regression report: every mono tracker on every labelled real dataset in
 //! `../shared/data`, and on the Udacity videos by eye, as one tracker x dataset table.
 //!
-//! `cargo run --release --example real_data_report -- [DATA_DIR] [OUT_DIR] [UDACITY_FRAMES]
-//! [ROWS]` (defaults `../shared/data`, `target/real-data`, 300 frames of each Udacity video,
-//! every row; ROWS keeps the rows whose name contains it, e.g. `lee-cpf`). Writes
+//! `cargo run --release --example real_data_report -- [DATA_DIR] [OUT_DIR] [UDACITY_FRAMES]`
+//! (defaults `../shared/data`, `target/real-data`, 300 frames of each Udacity video). Writes
 //! OUT_DIR/report.md (the table, also printed) and OUT_DIR/sheet-<video>-<camera>.png: one
 //! row of sampled frames per tracker with its boundaries drawn (ego-left red, ego-right blue,
 //! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye.
-//! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/.
+//! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/. With the environment
+//! variable `REAL_DATA_ROWS` set, only the rows whose name contains it run (e.g.
+//! `REAL_DATA_ROWS=adachi`).
 //!
 //! Datasets and cameras (a camera the data ships, or `auto`: `lanepf::calib` on the same
 //! frames first, with the known intrinsics where there are some):
@@ -34,7 +35,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 14] = [
+const TRACKERS: [fn() -> TrackerOptions; 15] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -45,6 +46,12 @@ const TRACKERS: [fn() -> TrackerOptions; 14] = [
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
             relock_share: 0.05,
+            ..AdachiConfig::default()
+        })
+    },
+    || {
+        TrackerOptions::AdachiMmpf(AdachiConfig {
+            vote_pair_share: 0.05,
             ..AdachiConfig::default()
         })
     },
@@ -380,8 +387,6 @@ fn main() -> Res<()> {
     let data = PathBuf::from(args.get(1).map_or("../shared/data", |s| s.as_str()));
     let out = PathBuf::from(args.get(2).map_or("target/real-data", |s| s.as_str()));
     let udacity_frames: usize = args.get(3).map_or(Ok(300), |s| s.parse())?;
-    // Only the rows whose name contains this text (all when not given).
-    let only = args.get(4).map_or("", |s| s.as_str());
     std::fs::create_dir_all(&out)?;
     let caltech = data.join("caltech-cordova1");
     let culane = data.join("culane/06030819_0755.MP4");
@@ -478,6 +483,14 @@ fn main() -> Res<()> {
     table += &format!("\n|---|{}\n", "---|".repeat(runs.len()));
     let mut rows: Vec<Vec<String>> = vec![Vec::new(); TRACKERS.len()];
     let mut notes = Vec::new();
+    let only = std::env::var("REAL_DATA_ROWS").ok();
+    let selected: Vec<bool> = TRACKERS
+        .iter()
+        .map(|row| {
+            let name = row_name(&row())?;
+            Ok(only.as_ref().is_none_or(|o| name.contains(o.as_str())))
+        })
+        .collect::<Res<_>>()?;
     for run in &runs {
         let frames: Vec<RgbaFrame> = run
             .frames
@@ -496,7 +509,7 @@ fn main() -> Res<()> {
         notes.push(format!("- {}: {note}", run.label));
         let mut all = Vec::new();
         for (k, row) in TRACKERS.iter().enumerate() {
-            if !row_name(&row())?.contains(only) {
+            if !selected[k] {
                 continue;
             }
             let preds = track(row(), &cam, &frames, &names, run.still)?;
@@ -524,10 +537,11 @@ fn main() -> Res<()> {
         }
     }
     for (k, options) in TRACKERS.iter().enumerate() {
-        let name = row_name(&options())?;
-        if name.contains(only) {
-            table += &format!("| {name} | {} |\n", rows[k].join(" | "));
+        if !selected[k] {
+            continue;
         }
+        let name = row_name(&options())?;
+        table += &format!("| {name} | {} |\n", rows[k].join(" | "));
     }
     let report = format!("{table}\nCameras:\n{}\n", notes.join("\n"));
     std::fs::write(out.join("report.md"), &report)?;

@@ -142,6 +142,8 @@ pub(super) const ADACHI: &[&[OptionRange]] = &[&[
     r("max_curvature_per_m", 0.0, 0.05),
     r("shape_gain", 0.01, 1.0),
     r("relock_share", 0.0, 0.5),
+    r("start_pair_share", 0.0, 1.0),
+    r("vote_pair_share", 0.0, 0.5),
 ]];
 
 pub(super) const DANESCU: &[&[OptionRange]] = &[

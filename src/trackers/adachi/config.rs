@@ -80,6 +80,17 @@ pub struct AdachiConfig {
     /// lets a cloud stuck on a wrong lane re-lock (ours, beyond the paper; 0: off, the
     /// paper's filter; see [`crate::trackers::relock`]).
     pub relock_share: f64,
+    /// Share of the initial particles (first frame, and after a reset) drawn around the ego
+    /// pairs the first frame's vote histogram forms ([`super::pairs`]), the rest uniform; their
+    /// model r uniform. The paper leaves the start open; 0 gives the uniform start we had until
+    /// 2026-11-26, which locks in on false modes (see [`super::pairs`]).
+    pub start_pair_share: f64,
+    /// Share of the particles redrawn each frame around the ego pairs of the frame's vote
+    /// histogram ([`super::pairs`]), model r uniform: a data-driven proposal from the paper's
+    /// own cue that lets a locked or lost cloud find the lane again (ours, beyond the paper;
+    /// 0: off, the paper's filter). It also finds a false lane where that is the likelihood's
+    /// maximum (a guard rail's foot beside a line: RESULTS, *Accuracy on real data*).
+    pub vote_pair_share: f64,
 }
 
 impl Default for AdachiConfig {
@@ -110,6 +121,8 @@ impl Default for AdachiConfig {
             max_curvature_per_m: 0.012,
             shape_gain: 0.5,
             relock_share: 0.0,
+            start_pair_share: 0.5,
+            vote_pair_share: 0.0,
         }
     }
 }

@@ -574,6 +574,27 @@ export interface AdachiOptions {
    * @defaultValue `0`
    */
   relock_share?: number;
+  /**
+   * Share of the initial particles (first frame, and after a reset) drawn around the ego
+   * pairs the first frame's vote histogram forms (`pairs`), the rest uniform; their
+   * model r uniform. The paper leaves the start open; 0 gives the uniform start we had until
+   * 2026-11-26, which locks in on false modes (see `pairs`).
+   *
+   * Range: 0 to 1.
+   * @defaultValue `0.5`
+   */
+  start_pair_share?: number;
+  /**
+   * Share of the particles redrawn each frame around the ego pairs of the frame's vote
+   * histogram (`pairs`), model r uniform: a data-driven proposal from the paper's
+   * own cue that lets a locked or lost cloud find the lane again (ours, beyond the paper;
+   * 0: off, the paper's filter). It also finds a false lane where that is the likelihood's
+   * maximum (a guard rail's foot beside a line: RESULTS, *Accuracy on real data*).
+   *
+   * Range: 0 to 0.5.
+   * @defaultValue `0`
+   */
+  vote_pair_share?: number;
 }
 
 /**
