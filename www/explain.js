@@ -66,7 +66,9 @@ export const TRACKERS = {
       { path: 'sigma_w_m', label: 'σ_w: random walk of w (m)', min: 0.002, max: 0.15, step: 0.002 },
       { path: 'beta', label: 'β: weight of the noise histogram', min: 0.05, max: 3, step: 0.05 },
       { path: 'edge_threshold', label: 'edge threshold', min: 10, max: 300, step: 5 },
+      { path: 'start_pair_share', label: 'start: share drawn around the vote histogram’s lane pairs (ours; 0: uniform)', min: 0, max: 1, step: 0.05 },
       RELOCK,
+      { path: 'vote_pair_share', label: 'vote-pair share: particles redrawn each frame around those pairs (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 },
     ],
   },
   'danescu-stereo': {
