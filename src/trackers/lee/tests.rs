@@ -31,8 +31,8 @@ pub(super) fn run(name: &str, frames: u32, extra: &str) -> Vec<(LaneEstimate, Le
 }
 
 /// Runs the tracker (400 particles, seed 2, `extra` options) over the first `frames` frames of
-/// member `seed` of the family `name` (all of them when it has fewer) at 320x240, given the member's own camera; returns
-/// (truth, estimate) pairs.
+/// member `seed` of the family `name` (all of them when it has fewer) at 320x240, given the
+/// member's own camera; returns (truth, estimate) pairs.
 pub(super) fn run_member(
     name: &str,
     seed: u64,
@@ -180,7 +180,7 @@ fn valid_rate(out: &[(LaneEstimate, LeeEstimate)]) -> f64 {
 /// 3 members and lower on at least 1, and under 0.35 m on average over them. When written:
 /// seed 3 0.104 against PF1's 0.197 m, seed 2 0.320 against 0.320, seed 1 0.453 against
 /// 0.126 (2 lanes of 3.82 m, a camera 1.18 m high: stage 2 locks a false curve on frame 0,
-/// delta -0.0068 on the straight road, and is still 0.3-0.4 m off 30 m ahead in the bend);
+/// delta -0.0068 on the straight road, and is still 0.4-0.55 m off 30 m ahead in the bend);
 /// mean 0.292. On these members the curve stage helps on one road in three (RESULTS, the
 /// known failures on fresh roads).
 #[test]
