@@ -18,11 +18,16 @@
 //! available ones.
 
 pub mod adachi;
+#[cfg(test)]
+#[path = "adachi/fresh_road_tests.rs"]
+mod adachi_fresh_road_tests;
 pub mod adjacent_lanes;
 mod config;
 pub mod danescu;
 mod defaults;
 mod ego_motion;
+#[cfg(test)]
+pub(crate) mod fresh_roads;
 mod hypothesis;
 pub mod lane_change;
 mod layer;
