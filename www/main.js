@@ -538,10 +538,15 @@ async function openTracker({ keepLog = false } = {}) {
   // (An id from the menu or the URL: the tracker refuses an unknown one with a LanepfConfigError.)
   if (trackerId) await client.open(/** @type {TrackerId} */ (trackerId), withCamera(options, camera));
   else await client.close();
-  // The comparison tracker: its own defaults, the same camera and seed.
+  // The comparison tracker: the same preset (its own options in it), camera and seed.
+  const compareId = trackerId ? state.compareId : '';
+  const compare = compareId && panel.preset === 'real-roads'
+    ? /** @type {{ realRoads: Record<string, unknown> }} */ (await client.request('defaults', { trackerId: compareId })).realRoads
+    : {};
   await client.request('openCompare', {
-    trackerId: trackerId ? state.compareId : '', config: withCamera({ seed: options.seed }, camera),
+    trackerId: compareId, config: withCamera({ ...compare, seed: options.seed }, camera),
   });
+  demo.compareOptions = compare;
   controls.setStepNames(trackerId ? client.stepNames : []);
   showNames();
   el('plots-caption').textContent = plotsCaption(trackerId, state.hasTruth, plots.length,

@@ -92,9 +92,9 @@ export class ParamsPanel {
       this.options = this.preset === 'real-roads' && realRoads ? this.trim(realRoads) : {};
     }
     const ours = Object.keys(this.trim(realRoads ?? {}));
-    this.presetText.textContent = this.preset === 'real-roads'
-      ? `Options: real roads (ours, beyond the paper: ${ours.join(', ')}), then your changes.`
-      : 'Options: the paper’s filter, then your changes.';
+    this.presetText.textContent = this.preset === 'paper' ? 'Options: the paper’s filter, then your changes.'
+      : ours.length ? `Options: real roads (ours, beyond the paper: ${ours.join(', ')}), then your changes.`
+        : 'Options: real roads, which for this tracker is the paper’s filter (none of our options measured better), then your changes.';
     this.title.textContent = info.title;
     this.text.replaceChildren(...info.text.map((t) => Object.assign(this.doc.createElement('p'), { textContent: t })));
     const current = defaults ? { ...defaults, ...this.options } : null;

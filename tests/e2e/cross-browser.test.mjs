@@ -717,9 +717,13 @@ for (const driver of DRIVERS) {
       // Another tracker keeps the preset: danescu-mono's real-roads options.
       await page.select('#tracker', 'danescu-mono');
       await page.waitFor(() => document.querySelector('#params input[name="relock_share"]')?.value === '0.1');
-      // A simulator scene starts from the paper's.
+      // A comparison tracker runs the same preset: adachi-mmpf's real-roads options.
+      await page.select('#compare', 'adachi-mmpf');
+      await page.waitFor(() => window.lanepfDemo.compareOptions?.relock_share === 0.05);
+      // A simulator scene starts from the paper's, the comparison tracker too.
       await page.select('#source', 'highway-straight');
       await page.waitFor(() => document.querySelector('#params input[name="relock_share"]')?.value === '0');
+      await page.waitFor(() => Object.keys(window.lanepfDemo.compareOptions ?? { x: 1 }).length === 0);
       assert.deepEqual(await page.errors(), []);
       await page.close();
     });
