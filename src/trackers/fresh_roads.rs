@@ -7,6 +7,7 @@
 //! from seeds 1000 and up, which no test uses.
 
 use super::TrackerConfig;
+use crate::lane::LaneEstimate;
 use crate::synth::{draw_scenario, FamilyMember, Scene};
 
 /// Member `seed` of the family `name` rendered `width` x `height` through its own camera, with
@@ -65,4 +66,65 @@ pub(crate) fn inner_line_m(name: &str, seed: u64) -> f64 {
             _ => 0.0,
         })
         .sum()
+}
+
+/// Lane changes as (frame, direction), +1 to the left as the trackers' `change` flags count.
+pub(crate) type Changes = Vec<(usize, i8)>;
+
+/// The lane changes of a run: the truth's (the evaluator's events, +1 right, turned round) and the flags'
+/// (one per frame, 0: none).
+pub(crate) fn lane_change_events(
+    truth: &[LaneEstimate],
+    flags: impl Iterator<Item = i8>,
+) -> (Changes, Changes) {
+    let truth = crate::eval::lane_changes::truth_lane_changes(truth)
+        .iter()
+        .map(|c| (c.frame, -c.direction))
+        .collect();
+    let events = flags
+        .enumerate()
+        .filter(|&(_, change)| change != 0)
+        .collect();
+    (truth, events)
+}
+
+/// Whether `events` are `truth`'s changes one for one, each in the same direction and within
+/// `frames` frames of it.
+pub(crate) fn changes_match(events: &[(usize, i8)], truth: &[(usize, i8)], frames: usize) -> bool {
+    events.len() == truth.len()
+        && events
+            .iter()
+            .zip(truth)
+            .all(|(e, t)| e.1 == t.1 && e.0.abs_diff(t.0) <= frames)
+}
+
+/// Boundary accuracy and valid share of tracker `id` (300 particles, tracker `seed`, `options`
+/// appended to the config's JSON) on the reference `occlusion` road (scene `scene_seed`,
+/// 320x240, the default camera), from 10 to 50 frames after its blackout.
+pub(crate) fn after_blackout(id: &str, options: &str, scene_seed: u64, seed: u64) -> (f64, f64) {
+    use crate::synth::{default_camera, scenario, Eye};
+    let camera = default_camera(320, 240).unwrap();
+    let config = scenario("occlusion").unwrap();
+    let end = (config.blackouts[0][1] * config.ego.fps).ceil() as u32;
+    let mut scene = Scene::new(config, camera.clone(), scene_seed).unwrap();
+    let extra = format!(r#", "particles": 300, "seed": {seed} {options}"#);
+    let mut tracker = super::create(id, &config_for(&scene, &extra)).unwrap();
+    let mut rgba = vec![0; 320 * 240 * 4];
+    let (mut gt, mut out) = (Vec::new(), Vec::new());
+    for f in 0..end + 50 {
+        scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+        let e = tracker.step(&rgba, 320, 240).unwrap();
+        if f >= end + 10 {
+            gt.push(scene.truth(f));
+            out.push(e);
+        }
+    }
+    let preds: Vec<Option<&LaneEstimate>> = out.iter().map(Some).collect();
+    let accuracy = crate::eval::synthetic::evaluate(&gt, &preds)
+        .unwrap()
+        .boundaries
+        .accuracy
+        .unwrap_or(0.0);
+    let valid = out.iter().filter(|e| e.valid).count() as f64 / out.len() as f64;
+    (accuracy, valid)
 }

@@ -84,9 +84,8 @@ fn vanishing_point(camera: &Camera) -> [f64; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::eval::synthetic::evaluate;
-    use crate::lane::LaneEstimate;
     use crate::synth::{default_camera, scenario, Eye, Scene};
+    use crate::trackers::fresh_roads::after_blackout;
 
     /// On rendered roads the detector finds the ego lane of the truth. Measured (2026-11-25,
     /// 640x480, the default camera, 80 frames, seeds 1-2, also on `multi-lane`): found in 74
@@ -134,41 +133,6 @@ mod tests {
         }
     }
 
-    /// Boundary accuracy and valid share of tracker `id` (seed `seed`, `options`) on the
-    /// frames of `occlusion` from 10 frames after its blackout to the end (320x240).
-    fn after_blackout(id: &str, options: &str, seed: u64) -> (f64, f64) {
-        let camera = default_camera(320, 240).unwrap();
-        let config = scenario("occlusion").unwrap();
-        let fps = config.ego.fps;
-        let end = (config.blackouts[0][1] * fps).ceil() as u32;
-        let frames = end + 50;
-        let mut scene = Scene::new(config, camera.clone(), 1).unwrap();
-        let cam = serde_json::to_string(&camera.to_file()).unwrap();
-        let tracker_config = crate::trackers::TrackerConfig::from_json_str(&format!(
-            r#"{{"camera": {cam}, "particles": 300, "seed": {seed} {options}}}"#
-        ))
-        .unwrap();
-        let mut tracker = crate::trackers::create(id, &tracker_config).unwrap();
-        let mut rgba = vec![0; 320 * 240 * 4];
-        let (mut gt, mut out) = (Vec::new(), Vec::new());
-        for f in 0..frames {
-            scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            let e = tracker.step(&rgba, 320, 240).unwrap();
-            if f >= end + 10 {
-                gt.push(scene.truth(f));
-                out.push(e);
-            }
-        }
-        let preds: Vec<Option<&LaneEstimate>> = out.iter().map(Some).collect();
-        let accuracy = evaluate(&gt, &preds)
-            .unwrap()
-            .boundaries
-            .accuracy
-            .unwrap_or(0.0);
-        let valid = out.iter().filter(|e| e.valid).count() as f64 / out.len() as f64;
-        (accuracy, valid)
-    }
-
     /// `occlusion` blacks the camera out for 1 s (frames 150-179). Measured (2026-11-25,
     /// 320x240, 300 particles, scene seed 1, boundary accuracy / valid share over frames
     /// 190-229): adachi-mmpf, the paper's filter, 0.86 / 0.90 with tracker seed 1 and 0.0 / 0.0
@@ -178,7 +142,7 @@ mod tests {
     fn adachi_relocks_after_a_blackout_with_the_detector() {
         for seed in 1..=2 {
             let (accuracy, valid) =
-                after_blackout("adachi-mmpf", r#", "relock_share": 0.05"#, seed);
+                after_blackout("adachi-mmpf", r#", "relock_share": 0.05"#, 1, seed);
             assert!(
                 accuracy >= 0.95 && valid >= 0.95,
                 "seed {seed}: accuracy {accuracy}, valid {valid}"

@@ -3,7 +3,7 @@
 //! reference-road tests in `adachi/mod.rs`; it uses only the tracker's public interface.)
 
 use super::adachi::{AdachiEstimate, AdachiTracker};
-use super::fresh_roads::{config_for, describe, member_scene};
+use super::fresh_roads::{changes_match, config_for, describe, lane_change_events, member_scene};
 use crate::lane::LaneEstimate;
 use crate::synth::Eye;
 
@@ -78,31 +78,15 @@ fn tracks_straight_highways() {
 /// late (RESULTS, the known failures on fresh roads).
 #[test]
 fn lane_changes_are_reported_once_in_the_right_direction() {
-    use crate::eval::lane_changes::truth_lane_changes;
     let mut bad = Vec::new();
     for seed in 1..=3 {
         let out = run_member("lane-change", seed, u32::MAX);
         let gt: Vec<LaneEstimate> = out.iter().map(|(t, _)| t.clone()).collect();
-        // The evaluator's direction is +1 right, the tracker's flag +1 left.
-        let truth: Vec<(usize, i8)> = truth_lane_changes(&gt)
-            .iter()
-            .map(|c| (c.frame, -c.direction))
-            .collect();
-        let events: Vec<(usize, i8)> = out
-            .iter()
-            .enumerate()
-            .filter(|(_, (_, e))| e.change != 0)
-            .map(|(i, (_, e))| (i, e.change))
-            .collect();
+        let (truth, events) = lane_change_events(&gt, out.iter().map(|(_, e)| e.change));
         let line = format!("seed {seed}: events {events:?} truth {truth:?}");
         eprintln!("{line}");
         assert_eq!(truth.len(), 2, "{line}");
-        let matched = events.len() == truth.len()
-            && events
-                .iter()
-                .zip(&truth)
-                .all(|(e, t)| e.1 == t.1 && e.0.abs_diff(t.0) <= 15);
-        if !matched {
+        if !changes_match(&events, &truth, 15) {
             bad.push(line);
         }
     }

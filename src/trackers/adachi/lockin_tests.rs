@@ -4,8 +4,7 @@
 //! filter.
 
 use super::*;
-use crate::eval::synthetic::evaluate;
-use crate::synth::{default_camera, scenario, Eye, Scene};
+use crate::trackers::fresh_roads::after_blackout;
 
 /// H_j of Udacity `project_video` frame 1 (1280x720, the demo camera
 /// `www/clips/udacity-1280x720.camera.json`, default options) as (bin, votes), 501 votes: the
@@ -110,40 +109,6 @@ fn a_cold_start_finds_the_lane_beside_the_guard_rail() {
     assert!(uniform < 0.9, "uniform start {uniform}");
 }
 
-/// Boundary accuracy and valid share of adachi-mmpf (`options`, tracker `seed`) on `occlusion`
-/// (scene `scene_seed`, 320x240, 300 particles) from 10 frames after its blackout to 50
-/// frames after it.
-fn after_blackout(options: &str, scene_seed: u64, seed: u64) -> (f64, f64) {
-    let camera = default_camera(320, 240).unwrap();
-    let config = scenario("occlusion").unwrap();
-    let end = (config.blackouts[0][1] * config.ego.fps).ceil() as u32;
-    let mut scene = Scene::new(config, camera.clone(), scene_seed).unwrap();
-    let cam = serde_json::to_string(&camera.to_file()).unwrap();
-    let tracker_config = TrackerConfig::from_json_str(&format!(
-        r#"{{"camera": {cam}, "particles": 300, "seed": {seed} {options}}}"#
-    ))
-    .unwrap();
-    let mut tracker = AdachiTracker::new(&tracker_config).unwrap();
-    let mut rgba = vec![0; 320 * 240 * 4];
-    let (mut gt, mut out) = (Vec::new(), Vec::new());
-    for f in 0..end + 50 {
-        scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-        let e = tracker.step(&rgba, 320, 240).unwrap();
-        if f >= end + 10 {
-            gt.push(scene.truth(f));
-            out.push(e);
-        }
-    }
-    let preds: Vec<Option<&LaneEstimate>> = out.iter().map(Some).collect();
-    let accuracy = evaluate(&gt, &preds)
-        .unwrap()
-        .boundaries
-        .accuracy
-        .unwrap_or(0.0);
-    let valid = out.iter().filter(|e| e.valid).count() as f64 / out.len() as f64;
-    (accuracy, valid)
-}
-
 /// `occlusion` blacks the camera out for 1 s (frames 150-179). Measured 2026-11-26 (scene
 /// seed 1, 300 particles, boundary accuracy / valid share over frames 190-229): the paper's
 /// filter 0.0 / 0.0 with tracker seeds 1, 2, 3, 5 and 6, 0.91 / 0.95 with seed 4 (its cloud,
@@ -151,10 +116,10 @@ fn after_blackout(options: &str, scene_seed: u64, seed: u64) -> (f64, f64) {
 /// it); with `vote_pair_share` 0.05, 1.0 / 1.0 with all six.
 #[test]
 fn vote_pairs_recover_after_the_blackout() {
-    let paper = after_blackout("", 1, 1);
+    let paper = after_blackout(ID, "", 1, 1);
     assert!(paper.0 < 0.5, "the paper's filter: {paper:?}");
     for seed in 1..=3 {
-        let (accuracy, valid) = after_blackout(r#", "vote_pair_share": 0.05"#, 1, seed);
+        let (accuracy, valid) = after_blackout(ID, r#", "vote_pair_share": 0.05"#, 1, seed);
         assert!(
             accuracy >= 0.95 && valid >= 0.95,
             "seed {seed}: accuracy {accuracy}, valid {valid} (paper {paper:?})"

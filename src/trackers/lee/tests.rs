@@ -2,7 +2,9 @@
 
 use super::*;
 use crate::synth::{default_camera, scenario, Eye, Scene};
-use crate::trackers::fresh_roads::{config_for, describe, inner_line_m, member_scene};
+use crate::trackers::fresh_roads::{
+    changes_match, config_for, describe, inner_line_m, lane_change_events, member_scene,
+};
 
 pub(super) fn config(extra: &str) -> TrackerConfig {
     let cam = serde_json::to_string(&default_camera(320, 240).unwrap().to_file()).unwrap();
@@ -259,22 +261,11 @@ fn tracks_s_curves() {
 /// default 500 it finds the lane). Seeds 2 and 3: both changes, 1 frame late.
 #[test]
 fn lane_changes_jump_by_a_lane_width_and_tracking_continues() {
-    use crate::eval::lane_changes::truth_lane_changes;
     let mut bad = Vec::new();
     for seed in 1..=3 {
         let out = run_member("lane-change", seed, u32::MAX, "");
         let truth_frames: Vec<LaneEstimate> = out.iter().map(|(t, _)| t.clone()).collect();
-        // The evaluator's direction is +1 right, the tracker's flag +1 left.
-        let truth: Vec<(usize, i8)> = truth_lane_changes(&truth_frames)
-            .iter()
-            .map(|c| (c.frame, -c.direction))
-            .collect();
-        let events: Vec<(usize, i8)> = out
-            .iter()
-            .enumerate()
-            .filter(|(_, (_, e))| e.change != 0)
-            .map(|(i, (_, e))| (i, e.change))
-            .collect();
+        let (truth, events) = lane_change_events(&truth_frames, out.iter().map(|(_, e)| e.change));
         let [o, h, _] = rmse(&out, 10);
         let line = format!(
             "seed {seed}: events {events:?} truth {truth:?}, offset {o:.3} heading {:.2} deg",
@@ -282,12 +273,7 @@ fn lane_changes_jump_by_a_lane_width_and_tracking_continues() {
         );
         eprintln!("{line}");
         assert_eq!(truth.len(), 2, "{line}");
-        let matched = events.len() == truth.len()
-            && events
-                .iter()
-                .zip(&truth)
-                .all(|(e, t)| e.1 == t.1 && e.0.abs_diff(t.0) <= 5);
-        if !(matched && o < 0.25 && h < 1f64.to_radians()) {
+        if !(changes_match(&events, &truth, 5) && o < 0.25 && h < 1f64.to_radians()) {
             bad.push(line);
         }
     }
