@@ -112,6 +112,11 @@ impl Stepper {
         self.frame.is_some()
     }
 
+    /// Whether the next frame to begin will be a first frame.
+    pub fn next_is_first(&self) -> bool {
+        self.first_next
+    }
+
     /// Whether the frame in progress is a first frame (false when none is in progress).
     pub fn is_first_frame(&self) -> bool {
         self.frame.is_some_and(|f| f.first)

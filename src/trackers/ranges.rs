@@ -79,6 +79,7 @@ pub(super) const LEE: &[&[OptionRange]] = &[
         r("start_fresh", 0.0, 1.0),
         r("lost_restart", 0.0, 100_000.0),
         r("relock_share", 0.0, 0.5),
+        r("start_pair_share", 0.0, 1.0),
         r("curvature_prior_sd", 0.0, 1.0),
         r("kalman_process_sd[0]", 1e-9, 1.0),
         r("kalman_process_sd[1]", 1e-9, 10.0),
@@ -213,9 +214,11 @@ pub(super) const DANESCU: &[&[OptionRange]] = &[
         r("cluster_threshold_m", 0.01, 10.0),
         r("max_clusters", 1.0, 100.0),
         r("valid_distance_px", 0.1, 100.0),
+        r("valid_distance_m", 0.0, 1.0),
         r("valid_support", 0.0, 1.0),
         r("valid_cluster_share", 0.0, 1.0),
         r("relock_share", 0.0, 0.5),
+        r("start_iterations", 0.0, 1000.0),
     ],
 ];
 

@@ -717,6 +717,7 @@ for (const driver of DRIVERS) {
       // Another tracker keeps the preset: danescu-mono's real-roads options.
       await page.select('#tracker', 'danescu-mono');
       await page.waitFor(() => document.querySelector('#params input[name="relock_share"]')?.value === '0.1');
+      assert.equal(await page.eval(() => document.querySelector('#params input[name="start_iterations"]').value), '10');
       // A comparison tracker runs the same preset: adachi-mmpf's real-roads options.
       await page.select('#compare', 'adachi-mmpf');
       await page.waitFor(() => window.lanepfDemo.compareOptions?.relock_share === 0.05);

@@ -111,6 +111,13 @@ pub struct DanescuConfig {
     /// estimate's inner-edge points are within this many pixels of a road edge (and its
     /// cluster holds `valid_cluster_share` of the particles).
     pub valid_distance_px: f64,
+    /// Validity: the tolerance as a distance on the road, metres, where that is more pixels
+    /// than `valid_distance_px` (ours; 0: pixels only). The tolerance at distance Z is
+    /// max(`valid_distance_px`, f_x `valid_distance_m` / Z): a pixel tolerance alone is
+    /// physically four times tighter through a 1280-pixel camera of 1156 px focal length than
+    /// through a 640-pixel one of 309 px, and a blurred marking's Canny edge on a video frame
+    /// falls a few pixels off the model's edge.
+    pub valid_distance_m: f64,
     /// Validity: the share of the estimate's inner-edge points on each side that must be
     /// within `valid_distance_px` of a road edge (a dashed line of 3 m dashes every 12 m gives
     /// about 0.25).
@@ -124,6 +131,12 @@ pub struct DanescuConfig {
     /// the generic one of `init_fraction` (ours, beyond the paper; 0: off, the paper's
     /// filter; see [`crate::trackers::relock`]).
     pub relock_share: f64,
+    /// Filter rounds on the first frame (and after a reset), each: resample, inject, diffuse
+    /// (no ego motion), weigh on the same frame (ours; 0: the paper's start, whose first frame
+    /// is weighed once from the initial distribution: its most populous cluster then holds
+    /// about a quarter of the cloud, under `valid_cluster_share`, and the first estimate is
+    /// not valid).
+    pub start_iterations: usize,
     /// Report the lanes beside the ego lane (`left-adjacent`, `right-adjacent`) where the
     /// bottom-up detector's markings run beside an ego boundary at a lane's width
     /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, which follows the ego lane
@@ -183,9 +196,11 @@ impl Default for DanescuConfig {
             cluster_threshold_m: 0.4,
             max_clusters: 5,
             valid_distance_px: 2.0,
+            valid_distance_m: 0.0,
             valid_support: 0.15,
             valid_cluster_share: 0.3,
             relock_share: 0.0,
+            start_iterations: 0,
             adjacent_lanes: false,
         }
     }

@@ -775,9 +775,25 @@ impl Scheduled for DanescuTracker {
     fn inject(&mut self, _stage: usize) {
         self.filter.inject(&self.initial);
     }
-    /// Drift by the ego motion and diffusion, then the relock proposal.
-    fn predict(&mut self, _stage: usize, _pass: Pass) {
-        let drift = self.drift;
+    /// `start_iterations` (ours; 0 in the paper's filter).
+    fn start_rounds(&self) -> usize {
+        self.config.start_iterations
+    }
+    /// Drift by the ego motion and diffusion, then the relock proposal. A start round (same
+    /// frame) first injects the R initialisation particles, as a frame's `Inject` does, and
+    /// diffuses without ego motion.
+    fn predict(&mut self, _stage: usize, pass: Pass) {
+        let drift = match pass {
+            Pass::Frame => self.drift,
+            Pass::StartRound { .. } => {
+                self.filter.inject(&self.initial);
+                Motion {
+                    travelled_m: 0.0,
+                    turned_rad: 0.0,
+                    ..self.drift
+                }
+            }
+        };
         self.filter.predict(&drift);
         self.relock(&drift);
     }
@@ -797,5 +813,7 @@ impl Scheduled for DanescuTracker {
     }
 }
 
+#[cfg(test)]
+mod start_tests;
 #[cfg(test)]
 mod tests;

@@ -143,6 +143,8 @@ pub struct Measurement {
     distances_3d: Vec<f64>,
     /// The calibrated pitch (eq. 4's reference).
     pitch: f64,
+    /// Per Z_k: how near a road edge an inner-edge point counts as supported, pixels.
+    support_px: Vec<f64>,
     config: DanescuConfig,
 }
 
@@ -173,17 +175,27 @@ impl Measurement {
         let near = config.near_m.max(bottom + 0.5).min(config.far_m * 0.5);
         let p = config.points;
         let (a, b) = (1.0 / near, 1.0 / config.far_m);
-        let distances = (0..p)
+        let distances: Vec<f64> = (0..p)
             .map(|k| 1.0 / (a + (b - a) * k as f64 / (p - 1) as f64))
             .collect();
         let zb = bottom.max(0.5).min(config.range_3d_m * 0.5);
         let distances_3d = (1..=p)
             .map(|k| zb + (config.range_3d_m - zb) * k as f64 / p as f64)
             .collect();
+        let fx = camera.focal()[0];
+        let support_px = distances
+            .iter()
+            .map(|&z| {
+                config
+                    .valid_distance_px
+                    .max(fx * config.valid_distance_m / z)
+            })
+            .collect();
         Self {
             distances,
             distances_3d,
             pitch: camera.pitch(),
+            support_px,
             config: config.clone(),
         }
     }
@@ -224,8 +236,7 @@ impl Measurement {
         let mut sums = [0.0f64; 6];
         let mut n = 0.0;
         let mut support = [0.0f64; 2];
-        let near = self.config.valid_distance_px;
-        for &z in &self.distances {
+        for (&z, &near) in self.distances.iter().zip(&self.support_px) {
             let x_li = lane.edge_x(Edge::LeftInner, z);
             let x_ri = lane.edge_x(Edge::RightInner, z);
             let x_lo = lane.edge_x(Edge::LeftOuter, z);
@@ -336,6 +347,43 @@ mod tests {
             }
         }
         rgba
+    }
+
+    /// Through a 1280x720 camera (f = 1108 px) a lane 3 cm off the markings has its inner
+    /// edges 7 px from the Canny edges at 5 m and 1 px at 35 m: the 2-pixel tolerance
+    /// supports only the far points, `valid_distance_m` 0.05 (at least 2 px, f 0.05 / Z) all
+    /// of them; the true lane is supported either way.
+    #[test]
+    fn the_validity_tolerance_on_the_road_does_not_shrink_with_the_resolution() {
+        let camera = default_camera(1280, 720).unwrap();
+        let support = |valid_distance_m: f64, xcw: f64| {
+            let config = DanescuConfig {
+                valid_distance_m,
+                ..DanescuConfig::default()
+            };
+            let mut cues = ImageCues::new(&camera, &config).unwrap();
+            cues.begin(&two_stripes(&camera, 1.8, 0.15)).unwrap();
+            cues.finish().unwrap();
+            let lane = Lane3d {
+                w0: 3.6,
+                xcw,
+                alpha: camera.pitch(),
+                gamma: camera.roll(),
+                wl_mark: 0.15,
+                wr_mark: 0.15,
+                ..Lane3d::default()
+            };
+            let m = Measurement::new(&camera, &config);
+            m.distances_of(&camera, &lane, &cues, None).support
+        };
+        for tol in [0.0, 0.05] {
+            let s = support(tol, 0.0);
+            assert!(s.iter().all(|&s| s >= 0.9), "true lane, {tol} m: {s:?}");
+        }
+        let pixels = support(0.0, 0.03);
+        let metres = support(0.05, 0.03);
+        assert!(pixels.iter().all(|&s| s < 0.5), "{pixels:?}");
+        assert!(metres.iter().all(|&s| s >= 0.9), "{metres:?}");
     }
 
     #[test]

@@ -106,6 +106,13 @@ pub struct LeeConfig {
     /// that lets a cloud stuck on a wrong lane re-lock (ours, beyond the paper; 0: off, the
     /// paper's filter).
     pub relock_share: f64,
+    /// Share of the stage-1 particles of a first frame (the start, and after a restart) drawn
+    /// around the ego pair the same bottom-up line detector finds in that frame, the rest
+    /// from the initial distribution (ours: the paper does not say how the filter starts;
+    /// 0.5 by default; 0: the uniform start alone, as before 2026-11-26). The detector then
+    /// runs on first frames only, unless `relock_share` or `adjacent_lanes` needs it on every
+    /// frame.
+    pub start_pair_share: f64,
     /// Standard deviation, 1/m, of a zero-mean Gaussian prior on the curvature delta,
     /// multiplied into stage 2's weights: p(c, delta | z) ~ N(f; 1, sigma_far^2) N(delta; 0,
     /// sd^2) (ours, beyond the paper, whose curvature is uniform within `max_curvature`; 0: off,
@@ -173,6 +180,7 @@ impl Default for LeeConfig {
             start_fresh: 0.2,
             lost_restart: 2,
             relock_share: 0.0,
+            start_pair_share: 0.5,
             curvature_prior_sd: 0.0,
             adjacent_lanes: false,
             kalman: true,

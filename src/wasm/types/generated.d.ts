@@ -891,6 +891,18 @@ export interface DanescuOptions {
    */
   valid_distance_px?: number;
   /**
+   * Validity: the tolerance as a distance on the road, metres, where that is more pixels
+   * than `valid_distance_px` (ours; 0: pixels only). The tolerance at distance Z is
+   * max(`valid_distance_px`, f_x `valid_distance_m` / Z): a pixel tolerance alone is
+   * physically four times tighter through a 1280-pixel camera of 1156 px focal length than
+   * through a 640-pixel one of 309 px, and a blurred marking's Canny edge on a video frame
+   * falls a few pixels off the model's edge.
+   *
+   * Range: 0 to 1.
+   * @defaultValue `0`
+   */
+  valid_distance_m?: number;
+  /**
    * Validity: the share of the estimate's inner-edge points on each side that must be
    * within `valid_distance_px` of a road edge (a dashed line of 3 m dashes every 12 m gives
    * about 0.25).
@@ -918,6 +930,17 @@ export interface DanescuOptions {
    * @defaultValue `0`
    */
   relock_share?: number;
+  /**
+   * Filter rounds on the first frame (and after a reset), each: resample, inject, diffuse
+   * (no ego motion), weigh on the same frame (ours; 0: the paper's start, whose first frame
+   * is weighed once from the initial distribution: its most populous cluster then holds
+   * about a quarter of the cloud, under `valid_cluster_share`, and the first estimate is
+   * not valid).
+   *
+   * Range: 0 to 1000.
+   * @defaultValue `0`
+   */
+  start_iterations?: number;
   /**
    * Report the lanes beside the ego lane (`left-adjacent`, `right-adjacent`) where the
    * bottom-up detector's markings run beside an ego boundary at a lane's width
@@ -1185,6 +1208,18 @@ export interface LeeOptions {
    * @defaultValue `0`
    */
   relock_share?: number;
+  /**
+   * Share of the stage-1 particles of a first frame (the start, and after a restart) drawn
+   * around the ego pair the same bottom-up line detector finds in that frame, the rest
+   * from the initial distribution (ours: the paper does not say how the filter starts;
+   * 0.5 by default; 0: the uniform start alone, as before 2026-11-26). The detector then
+   * runs on first frames only, unless `relock_share` or `adjacent_lanes` needs it on every
+   * frame.
+   *
+   * Range: 0 to 1.
+   * @defaultValue `0.5`
+   */
+  start_pair_share?: number;
   /**
    * Standard deviation, 1/m, of a zero-mean Gaussian prior on the curvature delta,
    * multiplied into stage 2's weights: p(c, delta | z) ~ N(f; 1, sigma_far^2) N(delta; 0,

@@ -1,0 +1,62 @@
+//! `start_pair_share` (ours: the paper does not say how the filter starts) against the
+//! uniform start, on drawn members of the scenario families (320x240, tracker seed 1).
+
+use crate::eval::suite::{run_member, score_run};
+use crate::synth::draw_scenario;
+use std::collections::BTreeMap;
+
+/// lee-cpf's detection rate (share of valid frames) on each member of `scenario` with seeds
+/// `seeds` over its first `frames` frames, starting with `share` of the particles around the
+/// first frame's detected ego pair.
+fn detection_rates(
+    scenario: &str,
+    seeds: std::ops::RangeInclusive<u64>,
+    frames: u32,
+    share: f64,
+) -> Vec<f64> {
+    let mut options = BTreeMap::new();
+    options.insert("start_pair_share".to_string(), serde_json::json!(share));
+    seeds
+        .map(|seed| {
+            let member = draw_scenario(scenario, seed).unwrap();
+            let ids = ["lee-cpf".to_string()];
+            let run = run_member(&member, &ids, 320, 240, Some(frames), 1, &options).unwrap();
+            let score = score_run(&run.truth, &run.outputs[0].1).unwrap();
+            score.report.params.detection_rate.unwrap_or(0.0)
+        })
+        .collect()
+}
+
+/// A uniform start leaves the cloud, on some roads, at the width limit with one boundary on
+/// a marking and the other on bare road, and it stays there (never valid); drawing half of
+/// the start around the detected pair finds most of those lanes. Not all, and not a
+/// guarantee: where eq. 33 itself prefers such a lane (a solid line a lane beyond two dashed
+/// ones) the uniform half can still find it, and which start does depends on the draws
+/// (measured 2026-11-26: `worn-markings` seeds 6 and 13 found, seed 14 lost).
+#[test]
+fn the_start_from_the_detected_pair_finds_lanes_the_uniform_start_misses() {
+    // Members of different families with one seed share the camera and the start of the
+    // road: one family, many seeds.
+    let uniform = detection_rates("worn-markings", 1..=16, 30, 0.0);
+    let pairs = detection_rates("worn-markings", 1..=16, 30, 0.5);
+    println!("uniform {uniform:.2?}\n  pairs {pairs:.2?}");
+    let locked = |rates: &[f64]| rates.iter().filter(|&&r| r < 0.5).count();
+    let mean = |rates: &[f64]| rates.iter().sum::<f64>() / rates.len() as f64;
+    assert!(
+        locked(&uniform) >= 2,
+        "the uniform start's lock-in is gone: {uniform:.2?}"
+    );
+    assert!(
+        locked(&pairs) < locked(&uniform) && mean(&pairs) > mean(&uniform),
+        "{pairs:.2?} against {uniform:.2?}"
+    );
+}
+
+/// `start_pair_share` 0 is the start as it was before the option: the same bits as the
+/// cross-target golden had then (`tests::same_result_as_the_browser_build`'s run).
+#[test]
+fn share_zero_is_the_uniform_start_bit_for_bit() {
+    let out = super::tests::run("highway-curve", 5, r#", "start_pair_share": 0"#);
+    let offset = -out[4].1.state.y0;
+    assert_eq!(offset.to_bits(), 0xbfac_3e05_c519_13f4, "{offset}");
+}
