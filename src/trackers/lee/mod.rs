@@ -356,9 +356,12 @@ impl LeeTracker {
             None
         };
         let smoother = Smoother::new(lee.kalman_process_sd, lee.kalman_measurement_sd);
-        let detector = if lee.relock_share > 0.0 || lee.adjacent_lanes || lee.start_pair_share > 0.0
-        {
+        let detector = if lee.relock_share > 0.0 || lee.adjacent_lanes {
             Some(RelockDetector::new(&camera)?)
+        } else if lee.start_pair_share > 0.0 {
+            // The default start only: where the detector cannot run (frames under 32x16),
+            // the start is the uniform one rather than an error.
+            RelockDetector::new(&camera).ok()
         } else {
             None
         };

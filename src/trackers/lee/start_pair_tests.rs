@@ -60,3 +60,27 @@ fn share_zero_is_the_uniform_start_bit_for_bit() {
     let offset = -out[4].1.state.y0;
     assert_eq!(offset.to_bits(), 0xbfac_3e05_c519_13f4, "{offset}");
 }
+
+/// The default start needs the line detector, which needs frames of at least 32x16: on a
+/// smaller camera the tracker still builds and starts uniformly; asking for the detector by
+/// an option (`relock_share`) is the error it always was.
+#[test]
+fn a_camera_too_small_for_the_detector_starts_uniformly() {
+    use crate::camera::CameraFile;
+    use crate::trackers::{create, TrackerConfig};
+    let camera = CameraFile {
+        pitch_deg: 4.0,
+        ..CameraFile::pinhole(24, 16, 20.0)
+    };
+    let config = |extra: &str| {
+        let cam = serde_json::to_string(&camera).unwrap();
+        TrackerConfig::from_json_str(&format!(r#"{{"camera": {cam} {extra}}}"#)).unwrap()
+    };
+    let mut tracker = create("lee-cpf", &config("")).unwrap();
+    tracker.step(&vec![90; 24 * 16 * 4], 24, 16).unwrap();
+    let err = create("lee-cpf", &config(r#", "relock_share": 0.05"#))
+        .err()
+        .expect("the detector is refused")
+        .to_string();
+    assert!(err.contains("32x16"), "{err}");
+}
