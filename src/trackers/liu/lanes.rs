@@ -1,13 +1,10 @@
-//! Four f32 lanes for liu-ppf's parabolic kernel sums: SSE2 on x86_64 (every x86_64 CPU has
-//! it), four plain floats elsewhere. (WebAssembly runs those sums one pixel at a time, the
-//! pixel's three quadrature nodes in three `simd128` lanes, `PpfModel::parabolic_pixels_v3`:
-//! four pixels in these lanes measured 3 % slower there, the table reads of the four lanes
-//! costing what the arithmetic saves; the node lanes measured 10-13 % faster per frame in Node
-//! than one node at a time.)
+//! Four f32 lanes for liu-ppf's kernel sums: SSE2 on x86_64 (every x86_64 CPU has it),
+//! `simd128` in WebAssembly (on for every wasm32 build, .cargo/config.toml), four plain floats
+//! elsewhere.
 //!
 //! Every operation is the IEEE operation the scalar code performs, lane by lane (no fused
-//! multiply-add, no reordering), so a sum written with these lanes is bit-identical to the
-//! same sum written one pixel at a time, and so to the browser build (tests/web.rs compares
+//! multiply-add, no reordering), and the integer steps of [`F32x4::pow2_neg_trunc`] are exact,
+//! so a sum written with these lanes has the same bits on every target (tests/web.rs compares
 //! liu-ppf in Chromium with the native bits). Masks are lanes of all ones (true) or all zeros
 //! (false).
 
@@ -67,12 +64,17 @@ impl F32x4 {
     pub fn mask_to_array(self) -> [bool; 4] {
         imp::mask_to_array(self.0)
     }
-    /// Lane-wise `(self as usize).min(last)` as u32, and that index back as f32 (exact): the
-    /// saturating conversion, NaN giving 0, as `as` does.
+    /// Mask of `self < b` (false where either is NaN).
     #[inline]
-    pub fn index_below(self, last: u32) -> ([u32; 4], Self) {
-        let (i, f) = imp::index_below(self.0, last);
-        (i, Self(f))
+    pub fn lt(self, b: Self) -> Self {
+        Self(imp::lt(self.0, b.0))
+    }
+    /// For lanes y in [0, 2^31): (n, 2^-n) with n = trunc(y) as f32, both exact (n <= 126 for
+    /// 2^-n to be a normal float). Other lanes give unspecified values.
+    #[inline]
+    pub fn pow2_neg_trunc(self) -> (Self, Self) {
+        let (n, scale) = imp::pow2_neg_trunc(self.0);
+        (Self(n), Self(scale))
     }
 }
 
@@ -166,21 +168,102 @@ mod imp {
         [m & 1 != 0, m & 2 != 0, m & 4 != 0, m & 8 != 0]
     }
     #[inline]
-    pub fn index_below(t: Raw, last: u32) -> ([u32; 4], Raw) {
-        // Clamped to [0, last] in float first (max(NaN, 0) is 0 here: SSE's max returns its
-        // second operand when either is NaN), then truncated: for t >= 0 truncation is the
-        // floor, and every clamped value converts exactly.
+    pub fn lt(a: Raw, b: Raw) -> Raw {
+        unsafe { _mm_cmplt_ps(a, b) }
+    }
+    #[inline]
+    pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
+        // cvttps truncates toward zero; (127 - n) << 23 is the bit pattern of 2^-n.
         unsafe {
-            let clamped = _mm_min_ps(_mm_max_ps(t, _mm_setzero_ps()), _mm_set1_ps(last as f32));
-            let i = _mm_cvttps_epi32(clamped);
-            let mut lanes = [0u32; 4];
-            _mm_storeu_si128(lanes.as_mut_ptr() as *mut __m128i, i);
-            (lanes, _mm_cvtepi32_ps(i))
+            let n = _mm_cvttps_epi32(y);
+            let bits = _mm_slli_epi32::<23>(_mm_sub_epi32(_mm_set1_epi32(127), n));
+            (_mm_cvtepi32_ps(n), _mm_castsi128_ps(bits))
         }
     }
 }
 
-#[cfg(not(target_arch = "x86_64"))]
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod imp {
+    use core::arch::wasm32::*;
+    pub type Raw = v128;
+
+    // The loads and stores go through arrays of exactly 16 bytes; the rest are plain lane
+    // operations (f32x4_add is the IEEE addition lane by lane, and so on).
+    #[inline]
+    pub fn from_array(a: [f32; 4]) -> Raw {
+        f32x4(a[0], a[1], a[2], a[3])
+    }
+    #[inline]
+    pub fn to_array(v: Raw) -> [f32; 4] {
+        [
+            f32x4_extract_lane::<0>(v),
+            f32x4_extract_lane::<1>(v),
+            f32x4_extract_lane::<2>(v),
+            f32x4_extract_lane::<3>(v),
+        ]
+    }
+    #[inline]
+    pub fn splat(v: f32) -> Raw {
+        f32x4_splat(v)
+    }
+    #[inline]
+    pub fn load(four: &[f32; 4]) -> Raw {
+        // SAFETY: `four` is 16 readable bytes; v128_load allows any alignment.
+        unsafe { v128_load(four.as_ptr() as *const v128) }
+    }
+    #[inline]
+    pub fn add(a: Raw, b: Raw) -> Raw {
+        f32x4_add(a, b)
+    }
+    #[inline]
+    pub fn sub(a: Raw, b: Raw) -> Raw {
+        f32x4_sub(a, b)
+    }
+    #[inline]
+    pub fn mul(a: Raw, b: Raw) -> Raw {
+        f32x4_mul(a, b)
+    }
+    #[inline]
+    pub fn gt(a: Raw, b: Raw) -> Raw {
+        f32x4_gt(a, b)
+    }
+    #[inline]
+    pub fn le(a: Raw, b: Raw) -> Raw {
+        f32x4_le(a, b)
+    }
+    #[inline]
+    pub fn ge(a: Raw, b: Raw) -> Raw {
+        f32x4_ge(a, b)
+    }
+    #[inline]
+    pub fn lt(a: Raw, b: Raw) -> Raw {
+        f32x4_lt(a, b)
+    }
+    #[inline]
+    pub fn select(mask: Raw, a: Raw, b: Raw) -> Raw {
+        v128_bitselect(a, b, mask)
+    }
+    #[inline]
+    pub fn all(mask: Raw) -> bool {
+        i32x4_all_true(mask)
+    }
+    #[inline]
+    pub fn mask_to_array(mask: Raw) -> [bool; 4] {
+        let m = i32x4_bitmask(mask);
+        [m & 1 != 0, m & 2 != 0, m & 4 != 0, m & 8 != 0]
+    }
+    #[inline]
+    pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
+        let n = i32x4_trunc_sat_f32x4(y);
+        let bits = i32x4_shl(i32x4_sub(i32x4_splat(127), n), 23);
+        (f32x4_convert_i32x4(n), bits)
+    }
+}
+
+#[cfg(not(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+)))]
 mod imp {
     //! Four plain floats, lane by lane; masks hold all-ones bit patterns as the SIMD ones do.
     pub type Raw = [f32; 4];
@@ -245,9 +328,16 @@ mod imp {
         mask.map(|m| m.to_bits() != 0)
     }
     #[inline]
-    pub fn index_below(t: Raw, last: u32) -> ([u32; 4], Raw) {
-        let i = t.map(|v| (v as u32).min(last));
-        (i, i.map(|v| v as f32))
+    pub fn lt(a: Raw, b: Raw) -> Raw {
+        mask(a, b, |x, y| x < y)
+    }
+    #[inline]
+    pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
+        let n = y.map(|v| v as i32);
+        (
+            n.map(|v| v as f32),
+            n.map(|v| f32::from_bits((127i32.wrapping_sub(v) as u32) << 23)),
+        )
     }
 }
 
@@ -268,6 +358,7 @@ mod tests {
             assert_eq!(va.gt(vb).mask_to_array()[k], a[k] > b[k]);
             assert_eq!(va.le(vb).mask_to_array()[k], a[k] <= b[k]);
             assert_eq!(va.ge(vb).mask_to_array()[k], a[k] >= b[k]);
+            assert_eq!(va.lt(vb).mask_to_array()[k], a[k] < b[k]);
         }
         let picked = va.gt(vb).select(va, vb).to_array();
         assert_eq!(picked[0], 1.5);
@@ -282,15 +373,13 @@ mod tests {
     }
 
     #[test]
-    fn indices_saturate_as_the_scalar_conversion_does() {
-        let t = [f32::NAN, -0.0, 5.75, 1.0e12];
-        let (i, f) = F32x4::from_array(t).index_below(2048);
+    fn powers_of_two_are_exact() {
+        let y = [0.0f32, 0.999, 5.75, 46.2];
+        let (n, scale) = F32x4::from_array(y).pow2_neg_trunc();
         for k in 0..4 {
-            let scalar = (t[k] as usize).min(2048) as u32;
-            assert_eq!(i[k], scalar, "{}", t[k]);
-            assert_eq!(f.to_array()[k], scalar as f32);
+            let whole = y[k].trunc();
+            assert_eq!(n.to_array()[k], whole);
+            assert_eq!(f64::from(scale.to_array()[k]), 2f64.powi(-(whole as i32)));
         }
-        let (i, _) = F32x4::from_array([2047.9, 2048.0, 2049.5, f32::INFINITY]).index_below(2048);
-        assert_eq!(i, [2047, 2048, 2048, 2048]);
     }
 }

@@ -30,10 +30,10 @@
 
 pub mod config;
 pub mod descriptors;
-pub mod exp_table;
 pub mod kernels;
 pub mod lanes;
 pub mod model;
+pub mod neg_exp;
 
 use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};

@@ -25,13 +25,14 @@
 //! to equal weights and the random walk carries the cloud.
 //!
 //! Numerics (ours, tested against the reference kernels of [`super::kernels`] to 1e-3): exp by
-//! the table of [`super::exp_table`], pixels whose orientation term alone is beyond the table
-//! skipped, in G_pi the curve's orientation at the quadrature nodes taken to first order
-//! from the row's (the nodes are within 2 rows; the error is below 1e-6 rad), and each
-//! pixel's G_pi in f32 (added to an f64 sum): rounding of 6e-8 against the table's 3e-5.
-//! Natively the 3-node rule runs four pixels per SSE2 operation ([`super::lanes`]), gathered
-//! across rows; WebAssembly one pixel at a time, its three nodes in three lanes of a `simd128`
-//! vector (measured faster there than four pixels per vector); all give the same bits.
+//! the polynomial of [`super::neg_exp`] (within 5e-6 relative; 0 from an exponent of 32 on,
+//! exp(-32) = 1.3e-14), in G_pi the curve's orientation at the quadrature nodes taken to
+//! first order from the row's (the nodes are within 2 rows; the error is below 1e-6 rad), and
+//! both kernels in f32: a pixel's term (rounding 6e-8 each, the f32 column differences 1e-5
+//! at most) is added into one of four f32 partial sums over up to 64 pixels (rounding below
+//! 1e-6 relative), which go into the f64 sum. The pixels of both sums are gathered across
+//! rows and run four per operation ([`super::lanes`]: SSE2 natively, `simd128` in
+//! WebAssembly), with the same bits on every target.
 
 //! Validity (Sec. IV-A, in metres): at the bottom row and at y_m, each boundary lies at least
 //! `min_spacing_m` to the right of its left neighbour, and neighbouring spacings differ by less
@@ -39,9 +40,9 @@
 
 use super::config::{LiuConfig, MAX_BOUNDARIES};
 use super::descriptors::{wrap_half_turn, Descriptors, MaskPixel};
-use super::exp_table::{ExpTable, RANGE};
 use super::kernels::GaussHermite;
 use super::lanes::F32x4;
+use super::neg_exp::{neg_exp, neg_exp_x4};
 use crate::calib::ego_on_road::EgoOnRoad;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
@@ -77,7 +78,6 @@ pub struct PpfModel {
     sigma_d: f64,
     min_spacing: f64,
     max_difference: f64,
-    exp: ExpTable,
 }
 
 impl PpfModel {
@@ -113,7 +113,6 @@ impl PpfModel {
             sigma_d: config.sigma_d,
             min_spacing: config.min_spacing_m,
             max_difference: config.max_spacing_difference_m,
-            exp: ExpTable::default(),
         }
     }
 
@@ -194,8 +193,13 @@ impl PpfModel {
         let (a, slope) = (b.rho / c, -s / c);
         // Eq. 5's variance of the distance along the normal.
         let var = self.var_x * c * c + self.var_y * s * s;
-        let inv_2var = 0.5 / var;
+        let line = Line {
+            theta: b.theta as f32,
+            cos: c as f32,
+            inv_2var: (0.5 / var) as f32,
+        };
         let mut sum = 0.0;
+        let mut batch = Batch::default();
         for y in self.near_rows() {
             let xc = a + slope * y as f64;
             let Some(cols) = self.band(xc) else { continue };
@@ -204,7 +208,17 @@ impl PpfModel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            sum = self.linear_row(sum, &cues.pixels[span], b.theta, xc, c, inv_2var);
+            let xc = xc as f32;
+            for px in &cues.pixels[span] {
+                batch.push_line(px, xc);
+                if batch.used == BATCH {
+                    sum += line.batch(&batch);
+                    batch.used = 0;
+                }
+            }
+        }
+        if batch.used > 0 {
+            sum += line.batch(&batch);
         }
         if self.kernel {
             sum /= (2.0 * PI * var).sqrt();
@@ -232,9 +246,8 @@ impl PpfModel {
         let nodes = self.node_offsets.len();
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
-        // Four pixels in four lanes natively; in WebAssembly one pixel at a time (its three
-        // nodes in three lanes), which measured faster there (see `super::lanes`).
-        let lanes = self.kernel && nodes == 3 && !cfg!(target_arch = "wasm32");
+        // The default 3-node rule four pixels at a time; other rules one at a time.
+        let lanes = self.kernel && nodes == 3;
         let mut batch = lanes.then(Batch::default);
         for y in self.far_rows() {
             let yf = y as f64;
@@ -268,22 +281,11 @@ impl PpfModel {
                 for px in pixels {
                     batch.push(px, theta as f32, x, t);
                     if batch.used == BATCH {
-                        sum = self.parabolic_batch(sum, batch);
+                        sum += self.parabolic_batch(batch);
                         batch.used = 0;
                     }
                 }
             } else {
-                #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-                if self.kernel && nodes == 3 {
-                    sum = self.parabolic_pixels_v3(
-                        sum,
-                        pixels,
-                        theta as f32,
-                        &node_x[..3],
-                        &node_theta[..3],
-                    );
-                    continue;
-                }
                 sum = self.parabolic_pixels(
                     sum,
                     pixels,
@@ -294,7 +296,7 @@ impl PpfModel {
             }
         }
         if let Some(batch) = batch.filter(|b| b.used > 0) {
-            sum = self.parabolic_batch(sum, &batch);
+            sum += self.parabolic_batch(&batch);
         }
         if self.kernel {
             sum /= (2.0 * PI * self.var_x).sqrt();
@@ -303,38 +305,44 @@ impl PpfModel {
     }
 }
 
-impl PpfModel {
-    /// The line kernels of one row's band pixels added to `sum`, pixel by pixel: the line at
-    /// column `xc` with orientation `theta` (cos `c`), 1 / (2 var) = `inv_2var`.
-    #[inline]
-    fn linear_row(
-        &self,
-        mut sum: f64,
-        pixels: &[MaskPixel],
-        theta: f64,
-        xc: f64,
-        c: f64,
-        inv_2var: f64,
-    ) -> f64 {
-        for px in pixels {
-            let dtheta = fold(theta - f64::from(px.theta));
-            let orientation = 0.5 * dtheta * dtheta * f64::from(px.precision);
-            if orientation >= RANGE {
-                continue;
-            }
-            let dist = c * (xc - f64::from(px.x));
-            let arg = dist * dist * inv_2var + orientation;
-            sum += f64::from(px.weight) * self.exp.neg_exp(arg);
-        }
-        sum
-    }
+/// The line of a linear sum (eqs. 5, 20): its orientation theta, cos(theta) and
+/// 1 / (2 var) with eq. 5's variance, in f32.
+struct Line {
+    theta: f32,
+    cos: f32,
+    inv_2var: f32,
+}
 
+impl Line {
+    /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
+    /// line column in `node_x[0]`), four at a time, summed: per lane in f32, the four lanes then
+    /// in f64 in lane order.
+    fn batch(&self, batch: &Batch) -> f64 {
+        let (theta, cos) = (F32x4::splat(self.theta), F32x4::splat(self.cos));
+        let inv_2var = F32x4::splat(self.inv_2var);
+        let half = F32x4::splat(0.5);
+        let mut acc = F32x4::splat(0.0);
+        for j in (0..batch.used).step_by(4) {
+            let dtheta = fold_x4(theta.sub(F32x4::load(&batch.theta_i, j)));
+            let orientation = half
+                .mul(dtheta)
+                .mul(dtheta)
+                .mul(F32x4::load(&batch.precision, j));
+            let dist = cos.mul(F32x4::load(&batch.node_x[0], j).sub(F32x4::load(&batch.x, j)));
+            let arg = dist.mul(dist).mul(inv_2var).add(orientation);
+            let term = F32x4::load(&batch.weight, j).mul(neg_exp_x4(arg));
+            acc = acc.add(only_used(term, batch.used - j));
+        }
+        lane_sum(acc)
+    }
+}
+
+impl PpfModel {
     /// The parabolic kernels of one row's band `pixels` added to `sum`, one pixel at a time in
     /// order, with the quadrature rule's nodes (`node_x`, `node_theta`: the curve's column and
     /// orientation change at each node; `theta`: its orientation at the row). A pixel's kernel
-    /// is computed in f32 (rounding 6e-8 relative, against the exp table's 3e-5) and added to
-    /// the f64 sum. (The default 3-node rule goes four pixels at a time instead:
-    /// [`PpfModel::parabolic_batch`], with the same bits.)
+    /// is computed in f32 and added to the f64 sum. (The default 3-node rule goes four pixels
+    /// at a time instead: [`PpfModel::parabolic_batch`].)
     #[inline]
     fn parabolic_pixels(
         &self,
@@ -349,95 +357,30 @@ impl PpfModel {
             // The orientation difference at the row, folded once: across the nodes it
             // changes by dtheta_dy * offset (below 1e-3 rad), too little to cross a fold.
             let dtheta = fold32(theta - px.theta);
-            if 0.5 * dtheta * dtheta * px.precision >= SKIP {
-                // Every node's exponent is beyond the table: the pixel adds nothing.
-                continue;
-            }
             let mut g = 0.0f32;
             for (k, (&x, &t)) in node_x.iter().zip(node_theta).enumerate() {
                 let dx = x - px.x;
                 let dt = dtheta + t;
                 let arg = dx * dx * inv_2var + 0.5 * dt * dt * px.precision;
-                g += self.node_weights[k] * self.exp.neg_exp32(arg);
+                g += self.node_weights[k] * neg_exp(arg);
             }
             sum += f64::from(px.weight * g);
         }
         sum
     }
 
-    /// [`PpfModel::parabolic_pixels`] with the 3-node rule in WebAssembly: a pixel's three
-    /// nodes in three lanes of one SIMD vector (each lane the scalar code's IEEE operations in
-    /// its order, no fused multiply-add), the nodes' terms then added in node order as the
-    /// scalar loop adds them, so the bits are those of the one-pixel-at-a-time path.
-    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    #[inline]
-    fn parabolic_pixels_v3(
-        &self,
-        mut sum: f64,
-        pixels: &[MaskPixel],
-        theta: f32,
-        node_x: &[f32],
-        node_theta: &[f32],
-    ) -> f64 {
-        use core::arch::wasm32::*;
-        let inv_2var = f32x4_splat((0.5 / self.var_x) as f32);
-        let half = f32x4_splat(0.5);
-        let xs = f32x4(node_x[0], node_x[1], node_x[2], 0.0);
-        let ts = f32x4(node_theta[0], node_theta[1], node_theta[2], 0.0);
-        let ws = f32x4(
-            self.node_weights[0],
-            self.node_weights[1],
-            self.node_weights[2],
-            0.0,
-        );
-        for px in pixels {
-            let dtheta = fold32(theta - px.theta);
-            if 0.5 * dtheta * dtheta * px.precision >= SKIP {
-                continue;
-            }
-            let dx = f32x4_sub(xs, f32x4_splat(px.x));
-            let dt = f32x4_add(f32x4_splat(dtheta), ts);
-            let arg = f32x4_add(
-                f32x4_mul(f32x4_mul(dx, dx), inv_2var),
-                f32x4_mul(
-                    f32x4_mul(f32x4_mul(half, dt), dt),
-                    f32x4_splat(px.precision),
-                ),
-            );
-            let terms = f32x4_mul(ws, self.exp.neg_exp_v3(arg));
-            let mut g = 0.0f32;
-            g += f32x4_extract_lane::<0>(terms);
-            g += f32x4_extract_lane::<1>(terms);
-            g += f32x4_extract_lane::<2>(terms);
-            sum += f64::from(px.weight * g);
-        }
-        sum
-    }
-
-    /// [`PpfModel::parabolic_pixels`] with 3 nodes for the `used` pixels of `batch`, four at a
-    /// time in the four lanes of each operation ([`F32x4`]: SSE2 on x86_64). Every lane performs the scalar code's IEEE operations in the scalar
-    /// code's order with its own row's curve (the fold's branches become lane selects), and
-    /// the pixels' terms are added to `sum` one by one in pixel order, so the result is
-    /// bit-identical to the one-pixel-at-a-time path. (Lanes past `used` in the last quad are
-    /// computed from stale entries and not added.)
-    fn parabolic_batch(&self, mut sum: f64, batch: &Batch) -> f64 {
+    /// The parabolic kernels of the `used` pixels of `batch` with the 3-node rule, four pixels
+    /// at a time in the four lanes of each operation ([`F32x4`]), each lane with its own row's
+    /// curve, summed: per lane in f32, the four lanes then in f64 in lane order.
+    fn parabolic_batch(&self, batch: &Batch) -> f64 {
         let inv_2var = F32x4::splat((0.5 / self.var_x) as f32);
         let half = F32x4::splat(0.5);
-        let (half_pi, pi) = (F32x4::splat(FRAC_PI_2_32), F32x4::splat(PI_32));
-        let minus_half_pi = F32x4::splat(-FRAC_PI_2_32);
-        let skip_at = F32x4::splat(SKIP);
         let node_weights = [0, 1, 2].map(|k| F32x4::splat(self.node_weights[k]));
+        let mut acc = F32x4::splat(0.0);
         for j in (0..batch.used).step_by(4) {
-            let used = (batch.used - j).min(4);
             let precision = F32x4::load(&batch.precision, j);
-            let d = F32x4::load(&batch.theta, j).sub(F32x4::load(&batch.theta_i, j));
-            let dtheta = d
-                .gt(half_pi)
-                .select(d.sub(pi), d.le(minus_half_pi).select(d.add(pi), d));
-            let skip = half.mul(dtheta).mul(dtheta).mul(precision).ge(skip_at);
-            if used == 4 && skip.all() {
-                continue;
-            }
+            // The orientation difference at the row, folded once (see `parabolic_pixels`).
+            let dtheta = fold_x4(F32x4::load(&batch.theta, j).sub(F32x4::load(&batch.theta_i, j)));
             let xf = F32x4::load(&batch.x, j);
             let mut g = F32x4::splat(0.0);
             for ((weight, node_x), node_theta) in node_weights
@@ -451,27 +394,51 @@ impl PpfModel {
                     .mul(dx)
                     .mul(inv_2var)
                     .add(half.mul(dt).mul(dt).mul(precision));
-                g = g.add(weight.mul(self.exp.neg_exp_x4(arg)));
+                g = g.add(weight.mul(neg_exp_x4(arg)));
             }
-            let terms = F32x4::load(&batch.weight, j).mul(g).to_array();
-            let skipped = skip.mask_to_array();
-            for k in 0..used {
-                if !skipped[k] {
-                    sum += f64::from(terms[k]);
-                }
-            }
+            let term = F32x4::load(&batch.weight, j).mul(g);
+            acc = acc.add(only_used(term, batch.used - j));
         }
-        sum
+        lane_sum(acc)
     }
+}
+
+/// `term` with the lanes from `left` on set to 0 (`left` pixels of the batch are left from
+/// this quad on; lanes past them hold stale entries).
+#[inline]
+fn only_used(term: F32x4, left: usize) -> F32x4 {
+    if left >= 4 {
+        return term;
+    }
+    let lane = F32x4::from_array([0.0, 1.0, 2.0, 3.0]);
+    lane.lt(F32x4::splat(left as f32))
+        .select(term, F32x4::splat(0.0))
+}
+
+/// The four lanes added in f64, in lane order.
+#[inline]
+fn lane_sum(acc: F32x4) -> f64 {
+    acc.to_array().iter().map(|&v| f64::from(v)).sum()
+}
+
+/// [`fold32`] lane by lane (its branches as lane selects).
+#[inline]
+fn fold_x4(d: F32x4) -> F32x4 {
+    let (half_pi, pi) = (F32x4::splat(FRAC_PI_2_32), F32x4::splat(PI_32));
+    d.gt(half_pi).select(
+        d.sub(pi),
+        d.le(F32x4::splat(-FRAC_PI_2_32)).select(d.add(pi), d),
+    )
 }
 
 /// Pixels per [`Batch`] (a multiple of 4).
 const BATCH: usize = 64;
 
-/// Band pixels of the parabolic sum, each with its row's curve (3-node rule), gathered across
-/// rows: a row has few (about 3 in a 7-column band), too few to fill the four lanes, and lanes
-/// read long after their entries were written run at full speed (loading four floats just
-/// written one by one stalls the processor's store forwarding).
+/// Band pixels of a linear sum (the line's column in `node_x[0]`) or of a parabolic sum with
+/// the 3-node rule, each with its row's curve, gathered across rows: a row has few (about 3 in
+/// a 7-column band), too few to fill the four lanes, and lanes read long after their entries
+/// were written run at full speed (loading four floats just written one by one stalls the
+/// processor's store forwarding).
 #[derive(Debug, Clone, Copy)]
 struct Batch {
     used: usize,
@@ -519,32 +486,31 @@ impl Batch {
         }
         self.used = j + 1;
     }
+
+    /// Adds a pixel of a row where the line of a linear sum is at column `xc` (kept in
+    /// `node_x[0]`); the batch must not be full.
+    #[inline]
+    fn push_line(&mut self, px: &MaskPixel, xc: f32) {
+        let j = self.used;
+        self.x[j] = px.x;
+        self.weight[j] = px.weight;
+        self.theta_i[j] = px.theta;
+        self.precision[j] = px.precision;
+        self.node_x[0][j] = xc;
+        self.used = j + 1;
+    }
 }
 
-/// A pixel whose orientation term alone reaches this adds nothing at any node (every node's
-/// exponent is then beyond the table's range, up to the nodes' tiny orientation changes).
-const SKIP: f32 = RANGE as f32 + 1.0;
 const PI_32: f32 = std::f32::consts::PI;
 const FRAC_PI_2_32: f32 = std::f32::consts::FRAC_PI_2;
 
-/// [`fold`] in f32.
+/// A difference of two orientations in (-pi/2, pi/2] each, folded into (-pi/2, pi/2].
 #[inline]
 fn fold32(d: f32) -> f32 {
     if d > FRAC_PI_2_32 {
         d - PI_32
     } else if d <= -FRAC_PI_2_32 {
         d + PI_32
-    } else {
-        d
-    }
-}
-
-/// A difference of two orientations in (-pi/2, pi/2] each, folded into (-pi/2, pi/2].
-fn fold(d: f64) -> f64 {
-    if d > PI / 2.0 {
-        d - PI
-    } else if d <= -PI / 2.0 {
-        d + PI
     } else {
         d
     }
