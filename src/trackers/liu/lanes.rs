@@ -34,6 +34,11 @@ impl F32x4 {
         let four = [v[j], v[j + 1], v[j + 2], v[j + 3]];
         Self(imp::load(&four))
     }
+    /// The four floats of `four` (one load).
+    #[inline]
+    pub fn load_array(four: &[f32; 4]) -> Self {
+        Self(imp::load(four))
+    }
     /// Mask of `self > b` (false where either is NaN).
     #[inline]
     pub fn gt(self, b: Self) -> Self {
@@ -63,6 +68,12 @@ impl F32x4 {
     #[inline]
     pub fn mask_to_array(self) -> [bool; 4] {
         imp::mask_to_array(self.0)
+    }
+    /// The transpose of the 4 x 4 matrix whose rows are `rows`: lane k of row i becomes lane
+    /// i of row k (data movement only).
+    #[inline]
+    pub fn transpose(rows: [Self; 4]) -> [Self; 4] {
+        imp::transpose(rows.map(|r| r.0)).map(Self)
     }
     /// Mask of `self < b` (false where either is NaN).
     #[inline]
@@ -172,6 +183,19 @@ mod imp {
         unsafe { _mm_cmplt_ps(a, b) }
     }
     #[inline]
+    pub fn transpose([r0, r1, r2, r3]: [Raw; 4]) -> [Raw; 4] {
+        unsafe {
+            let (t0, t1) = (_mm_unpacklo_ps(r0, r1), _mm_unpacklo_ps(r2, r3));
+            let (t2, t3) = (_mm_unpackhi_ps(r0, r1), _mm_unpackhi_ps(r2, r3));
+            [
+                _mm_movelh_ps(t0, t1),
+                _mm_movehl_ps(t1, t0),
+                _mm_movelh_ps(t2, t3),
+                _mm_movehl_ps(t3, t2),
+            ]
+        }
+    }
+    #[inline]
     pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
         // cvttps truncates toward zero; (127 - n) << 23 is the bit pattern of 2^-n.
         unsafe {
@@ -238,6 +262,23 @@ mod imp {
     #[inline]
     pub fn lt(a: Raw, b: Raw) -> Raw {
         f32x4_lt(a, b)
+    }
+    #[inline]
+    pub fn transpose([r0, r1, r2, r3]: [Raw; 4]) -> [Raw; 4] {
+        let (t0, t1) = (
+            i32x4_shuffle::<0, 4, 1, 5>(r0, r1),
+            i32x4_shuffle::<0, 4, 1, 5>(r2, r3),
+        );
+        let (t2, t3) = (
+            i32x4_shuffle::<2, 6, 3, 7>(r0, r1),
+            i32x4_shuffle::<2, 6, 3, 7>(r2, r3),
+        );
+        [
+            i32x4_shuffle::<0, 1, 4, 5>(t0, t1),
+            i32x4_shuffle::<2, 3, 6, 7>(t0, t1),
+            i32x4_shuffle::<0, 1, 4, 5>(t2, t3),
+            i32x4_shuffle::<2, 3, 6, 7>(t2, t3),
+        ]
     }
     #[inline]
     pub fn select(mask: Raw, a: Raw, b: Raw) -> Raw {
@@ -332,6 +373,10 @@ mod imp {
         mask(a, b, |x, y| x < y)
     }
     #[inline]
+    pub fn transpose(rows: [Raw; 4]) -> [Raw; 4] {
+        [0, 1, 2, 3].map(|k| rows.map(|r| r[k]))
+    }
+    #[inline]
     pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
         let n = y.map(|v| v as i32);
         (
@@ -370,6 +415,18 @@ mod tests {
             F32x4::load(&[0.0, 9.0, 8.0, 7.0, 6.0], 1).to_array(),
             [9.0, 8.0, 7.0, 6.0]
         );
+    }
+
+    #[test]
+    fn transposes() {
+        let rows =
+            [0, 1, 2, 3].map(|i| F32x4::from_array([0, 1, 2, 3].map(|k| (4 * i + k) as f32)));
+        let cols = F32x4::transpose(rows).map(F32x4::to_array);
+        for i in 0..4 {
+            for k in 0..4 {
+                assert_eq!(cols[k][i], (4 * i + k) as f32);
+            }
+        }
     }
 
     #[test]

@@ -208,14 +208,9 @@ impl PpfModel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            let xc = xc as f32;
-            for px in &cues.pixels[span] {
-                batch.push_line(px, xc);
-                if batch.used == BATCH {
-                    sum += line.batch(&batch);
-                    batch.used = 0;
-                }
-            }
+            batch.push_row(&cues.pixels, span, [xc as f32, 0.0, 0.0, 0.0], |b| {
+                sum += line.batch(b);
+            });
         }
         if batch.used > 0 {
             sum += line.batch(&batch);
@@ -246,8 +241,10 @@ impl PpfModel {
         let nodes = self.node_offsets.len();
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
-        // The default 3-node rule four pixels at a time; other rules one at a time.
+        // The default 3-node rule (nodes y - h, y, y + h) four pixels at a time; other rules
+        // one at a time.
         let lanes = self.kernel && nodes == 3;
+        let h = self.node_offsets[nodes - 1];
         let mut batch = lanes.then(Batch::default);
         for y in self.far_rows() {
             let yf = y as f64;
@@ -267,36 +264,38 @@ impl PpfModel {
             let slope = d + 2.0 * e * yf;
             let theta = math::atan(-slope);
             let dtheta_dy = -2.0 * e / (1.0 + slope * slope);
+            if let Some(batch) = batch.as_mut() {
+                // The default 3-node rule: the pixels are batched across rows and go four at
+                // a time, each with its row's curve: at the nodes y -+ h the column is
+                // xc -+ slope h + e h^2 and the orientation theta -+ h dtheta/dy.
+                let row = [
+                    xc as f32,
+                    theta as f32,
+                    (slope * h) as f32,
+                    (dtheta_dy * h) as f32,
+                ];
+                let e_h2 = (e * h * h) as f32;
+                batch.push_row(&cues.pixels, span, row, |b| {
+                    sum += self.parabolic_batch(b, e_h2);
+                });
+                continue;
+            }
             for k in 0..nodes {
                 let yk = yf + self.node_offsets[k];
                 node_x[k] = (c + d * yk + e * yk * yk) as f32;
                 // The change of the curve's orientation from the row to node k.
                 node_theta[k] = (dtheta_dy * self.node_offsets[k]) as f32;
             }
-            let pixels = &cues.pixels[span];
-            if let Some(batch) = batch.as_mut() {
-                // The default 3-node rule: the pixels are batched across rows and go four at
-                // a time.
-                let (x, t) = (&node_x[..3], &node_theta[..3]);
-                for px in pixels {
-                    batch.push(px, theta as f32, x, t);
-                    if batch.used == BATCH {
-                        sum += self.parabolic_batch(batch);
-                        batch.used = 0;
-                    }
-                }
-            } else {
-                sum = self.parabolic_pixels(
-                    sum,
-                    pixels,
-                    theta as f32,
-                    &node_x[..nodes],
-                    &node_theta[..nodes],
-                );
-            }
+            sum = self.parabolic_pixels(
+                sum,
+                &cues.pixels[span],
+                theta as f32,
+                &node_x[..nodes],
+                &node_theta[..nodes],
+            );
         }
         if let Some(batch) = batch.filter(|b| b.used > 0) {
-            sum += self.parabolic_batch(&batch);
+            sum += self.parabolic_batch(&batch, (e * h * h) as f32);
         }
         if self.kernel {
             sum /= (2.0 * PI * self.var_x).sqrt();
@@ -315,22 +314,21 @@ struct Line {
 
 impl Line {
     /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
-    /// line column in `node_x[0]`), four at a time, summed: per lane in f32, the four lanes then
-    /// in f64 in lane order.
+    /// line column first in its row record), four at a time, summed: per lane in f32, the four
+    /// lanes then in f64 in lane order.
     fn batch(&self, batch: &Batch) -> f64 {
         let (theta, cos) = (F32x4::splat(self.theta), F32x4::splat(self.cos));
         let inv_2var = F32x4::splat(self.inv_2var);
         let half = F32x4::splat(0.5);
         let mut acc = F32x4::splat(0.0);
         for j in (0..batch.used).step_by(4) {
-            let dtheta = fold_x4(theta.sub(F32x4::load(&batch.theta_i, j)));
-            let orientation = half
-                .mul(dtheta)
-                .mul(dtheta)
-                .mul(F32x4::load(&batch.precision, j));
-            let dist = cos.mul(F32x4::load(&batch.node_x[0], j).sub(F32x4::load(&batch.x, j)));
+            let [x, weight, theta_i, precision] = batch.pixels(j);
+            let [xc, ..] = batch.rows(j);
+            let dtheta = fold_x4(theta.sub(theta_i));
+            let orientation = half.mul(dtheta).mul(dtheta).mul(precision);
+            let dist = cos.mul(xc.sub(x));
             let arg = dist.mul(dist).mul(inv_2var).add(orientation);
-            let term = F32x4::load(&batch.weight, j).mul(neg_exp_x4(arg));
+            let term = weight.mul(neg_exp_x4(arg));
             acc = acc.add(only_used(term, batch.used - j));
         }
         lane_sum(acc)
@@ -369,35 +367,35 @@ impl PpfModel {
         sum
     }
 
-    /// The parabolic kernels of the `used` pixels of `batch` with the 3-node rule, four pixels
-    /// at a time in the four lanes of each operation ([`F32x4`]), each lane with its own row's
-    /// curve, summed: per lane in f32, the four lanes then in f64 in lane order.
-    fn parabolic_batch(&self, batch: &Batch) -> f64 {
+    /// The parabolic kernels of the `used` pixels of `batch` with the 3-node rule (nodes y - h,
+    /// y, y + h; `e_h2` = e h^2), four pixels at a time in the four lanes of each operation
+    /// ([`F32x4`]), each lane with its own row's curve, summed: per lane in f32, the four lanes
+    /// then in f64 in lane order.
+    fn parabolic_batch(&self, batch: &Batch, e_h2: f32) -> f64 {
         let inv_2var = F32x4::splat((0.5 / self.var_x) as f32);
         let half = F32x4::splat(0.5);
-        let node_weights = [0, 1, 2].map(|k| F32x4::splat(self.node_weights[k]));
+        let e_h2 = F32x4::splat(e_h2);
+        let [w_minus, w_0, w_plus] = [0, 1, 2].map(|k| F32x4::splat(self.node_weights[k]));
         let mut acc = F32x4::splat(0.0);
         for j in (0..batch.used).step_by(4) {
-            let precision = F32x4::load(&batch.precision, j);
+            let [x, weight, theta_i, precision] = batch.pixels(j);
+            // Row record: the curve's column and orientation at the row, slope h, h dtheta/dy.
+            let [xc, theta, slope_h, dtheta_h] = batch.rows(j);
             // The orientation difference at the row, folded once (see `parabolic_pixels`).
-            let dtheta = fold_x4(F32x4::load(&batch.theta, j).sub(F32x4::load(&batch.theta_i, j)));
-            let xf = F32x4::load(&batch.x, j);
-            let mut g = F32x4::splat(0.0);
-            for ((weight, node_x), node_theta) in node_weights
-                .iter()
-                .zip(&batch.node_x)
-                .zip(&batch.node_theta)
-            {
-                let dx = F32x4::load(node_x, j).sub(xf);
-                let dt = dtheta.add(F32x4::load(node_theta, j));
+            let dtheta = fold_x4(theta.sub(theta_i));
+            let dx = xc.sub(x);
+            let node = |dx: F32x4, dt: F32x4| {
                 let arg = dx
                     .mul(dx)
                     .mul(inv_2var)
                     .add(half.mul(dt).mul(dt).mul(precision));
-                g = g.add(weight.mul(neg_exp_x4(arg)));
-            }
-            let term = F32x4::load(&batch.weight, j).mul(g);
-            acc = acc.add(only_used(term, batch.used - j));
+                neg_exp_x4(arg)
+            };
+            let g = w_minus
+                .mul(node(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h)))
+                .add(w_0.mul(node(dx, dtheta)))
+                .add(w_plus.mul(node(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h))));
+            acc = acc.add(only_used(weight.mul(g), batch.used - j));
         }
         lane_sum(acc)
     }
@@ -433,71 +431,77 @@ fn fold_x4(d: F32x4) -> F32x4 {
 
 /// Pixels per [`Batch`] (a multiple of 4).
 const BATCH: usize = 64;
+/// Pixels a [`Batch`] copies from a row at once: a whole band of the default 7 columns.
+const ROW_COPY: usize = 8;
 
-/// Band pixels of a linear sum (the line's column in `node_x[0]`) or of a parabolic sum with
-/// the 3-node rule, each with its row's curve, gathered across rows: a row has few (about 3 in
-/// a 7-column band), too few to fill the four lanes, and lanes read long after their entries
-/// were written run at full speed (loading four floats just written one by one stalls the
-/// processor's store forwarding).
+/// Band pixels of a linear or parabolic sum gathered across rows, each with its row's record
+/// (the curve there): a row has few (about 3 in a 7-column band), too few to fill the four
+/// lanes. A row's pixels are copied eight at a time whatever their number (the pixels past the
+/// band are overwritten by the next row's or never read), so that the copy does not branch on
+/// it; the pixels and records are then transposed four by four into lanes.
 #[derive(Debug, Clone, Copy)]
 struct Batch {
     used: usize,
-    x: [f32; BATCH],
-    weight: [f32; BATCH],
-    theta_i: [f32; BATCH],
-    precision: [f32; BATCH],
-    /// The curve's orientation at the pixel's row.
-    theta: [f32; BATCH],
-    /// Per node: the curve's column, and its orientation change from the row.
-    node_x: [[f32; BATCH]; 3],
-    node_theta: [[f32; BATCH]; 3],
+    pixels: [MaskPixel; BATCH + ROW_COPY],
+    rows: [[f32; 4]; BATCH + ROW_COPY],
 }
 
 impl Default for Batch {
     fn default() -> Self {
-        let zeros = [0.0; BATCH];
         Self {
             used: 0,
-            x: zeros,
-            weight: zeros,
-            theta_i: zeros,
-            precision: zeros,
-            theta: zeros,
-            node_x: [zeros; 3],
-            node_theta: [zeros; 3],
+            pixels: [MaskPixel::default(); BATCH + ROW_COPY],
+            rows: [[0.0; 4]; BATCH + ROW_COPY],
         }
     }
 }
 
 impl Batch {
-    /// Adds a pixel of a row whose curve has orientation `theta` and nodes `node_x`,
-    /// `node_theta` (3 each); the batch must not be full.
+    /// Adds the pixels `all[span]` of one row with the row's record `row`, calling `full` with
+    /// the batch (then emptied) each time it fills up.
     #[inline]
-    fn push(&mut self, px: &MaskPixel, theta: f32, node_x: &[f32], node_theta: &[f32]) {
-        let j = self.used;
-        self.x[j] = px.x;
-        self.weight[j] = px.weight;
-        self.theta_i[j] = px.theta;
-        self.precision[j] = px.precision;
-        self.theta[j] = theta;
-        for k in 0..3 {
-            self.node_x[k][j] = node_x[k];
-            self.node_theta[k][j] = node_theta[k];
+    fn push_row(
+        &mut self,
+        all: &[MaskPixel],
+        span: std::ops::Range<usize>,
+        row: [f32; 4],
+        mut full: impl FnMut(&Self),
+    ) {
+        let mut start = span.start;
+        loop {
+            let n = (span.end - start).min(ROW_COPY);
+            let j = self.used;
+            // Room: used < BATCH before every copy.
+            if start + ROW_COPY <= all.len() {
+                self.pixels[j..j + ROW_COPY].copy_from_slice(&all[start..start + ROW_COPY]);
+            } else {
+                self.pixels[j..j + n].copy_from_slice(&all[start..start + n]);
+            }
+            self.rows[j..j + ROW_COPY].fill(row);
+            self.used = j + n;
+            start += n;
+            if self.used >= BATCH {
+                full(self);
+                self.used = 0;
+            }
+            if start == span.end {
+                break;
+            }
         }
-        self.used = j + 1;
     }
 
-    /// Adds a pixel of a row where the line of a linear sum is at column `xc` (kept in
-    /// `node_x[0]`); the batch must not be full.
+    /// The pixels j..j + 4 as lanes: column, weight, orientation, precision.
     #[inline]
-    fn push_line(&mut self, px: &MaskPixel, xc: f32) {
-        let j = self.used;
-        self.x[j] = px.x;
-        self.weight[j] = px.weight;
-        self.theta_i[j] = px.theta;
-        self.precision[j] = px.precision;
-        self.node_x[0][j] = xc;
-        self.used = j + 1;
+    fn pixels(&self, j: usize) -> [F32x4; 4] {
+        let p = &self.pixels[j..j + 4];
+        F32x4::transpose([0, 1, 2, 3].map(|k| F32x4::load_array(p[k].as_array())))
+    }
+
+    /// The row records of pixels j..j + 4 as lanes.
+    #[inline]
+    fn rows(&self, j: usize) -> [F32x4; 4] {
+        let r = &self.rows[j..j + 4];
+        F32x4::transpose([0, 1, 2, 3].map(|k| F32x4::load_array(&r[k])))
     }
 }
 
