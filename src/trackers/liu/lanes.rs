@@ -8,6 +8,9 @@
 //! liu-ppf in Chromium with the native bits). Masks are lanes of all ones (true) or all zeros
 //! (false).
 
+/// 1.5 2^23: y + ROUNDER has the integer nearest y in its last mantissa bits (|y| < 2^22).
+const ROUNDER: f32 = 12_582_912.0;
+
 /// Four f32 lanes (or a mask of four lanes).
 #[derive(Clone, Copy, Debug)]
 pub struct F32x4(imp::Raw);
@@ -80,11 +83,13 @@ impl F32x4 {
     pub fn lt(self, b: Self) -> Self {
         Self(imp::lt(self.0, b.0))
     }
-    /// For lanes y in [0, 2^31): (n, 2^-n) with n = trunc(y) as f32, both exact (n <= 126 for
-    /// 2^-n to be a normal float). Other lanes give unspecified values.
+    /// For lanes y in (-2^22, 2^22): (n, 2^-n) with n the integer nearest y (ties to even),
+    /// both exact (-126 <= n <= 126 for 2^-n to be a normal float), by the IEEE sum y + 1.5 2^23,
+    /// whose last mantissa bits are then n, not by a conversion (which WebAssembly engines
+    /// emulate in several instructions). Other lanes give unspecified values.
     #[inline]
-    pub fn pow2_neg_trunc(self) -> (Self, Self) {
-        let (n, scale) = imp::pow2_neg_trunc(self.0);
+    pub fn pow2_neg_round(self) -> (Self, Self) {
+        let (n, scale) = imp::pow2_neg_round(self.0);
         (Self(n), Self(scale))
     }
 }
@@ -196,12 +201,14 @@ mod imp {
         }
     }
     #[inline]
-    pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
-        // cvttps truncates toward zero; (127 - n) << 23 is the bit pattern of 2^-n.
+    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
+        // (127 - n) << 23 is the bit pattern of 2^-n.
         unsafe {
-            let n = _mm_cvttps_epi32(y);
+            let rounder = _mm_set1_ps(super::ROUNDER);
+            let t = _mm_add_ps(y, rounder);
+            let n = _mm_sub_epi32(_mm_castps_si128(t), _mm_castps_si128(rounder));
             let bits = _mm_slli_epi32::<23>(_mm_sub_epi32(_mm_set1_epi32(127), n));
-            (_mm_cvtepi32_ps(n), _mm_castsi128_ps(bits))
+            (_mm_sub_ps(t, rounder), _mm_castsi128_ps(bits))
         }
     }
 }
@@ -294,10 +301,12 @@ mod imp {
         [m & 1 != 0, m & 2 != 0, m & 4 != 0, m & 8 != 0]
     }
     #[inline]
-    pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
-        let n = i32x4_trunc_sat_f32x4(y);
+    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
+        let rounder = f32x4_splat(super::ROUNDER);
+        let t = f32x4_add(y, rounder);
+        let n = i32x4_sub(t, rounder);
         let bits = i32x4_shl(i32x4_sub(i32x4_splat(127), n), 23);
-        (f32x4_convert_i32x4(n), bits)
+        (f32x4_sub(t, rounder), bits)
     }
 }
 
@@ -377,11 +386,12 @@ mod imp {
         [0, 1, 2, 3].map(|k| rows.map(|r| r[k]))
     }
     #[inline]
-    pub fn pow2_neg_trunc(y: Raw) -> (Raw, Raw) {
-        let n = y.map(|v| v as i32);
+    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
+        let t = y.map(|v| v + super::ROUNDER);
+        let n = t.map(|v| v.to_bits().wrapping_sub(super::ROUNDER.to_bits()));
         (
-            n.map(|v| v as f32),
-            n.map(|v| f32::from_bits((127i32.wrapping_sub(v) as u32) << 23)),
+            t.map(|v| v - super::ROUNDER),
+            n.map(|v| f32::from_bits(127u32.wrapping_sub(v) << 23)),
         )
     }
 }
@@ -431,10 +441,10 @@ mod tests {
 
     #[test]
     fn powers_of_two_are_exact() {
-        let y = [0.0f32, 0.999, 5.75, 46.2];
-        let (n, scale) = F32x4::from_array(y).pow2_neg_trunc();
+        let y = [0.0f32, 0.499, 5.75, 46.2];
+        let (n, scale) = F32x4::from_array(y).pow2_neg_round();
         for k in 0..4 {
-            let whole = y[k].trunc();
+            let whole = y[k].round();
             assert_eq!(n.to_array()[k], whole);
             assert_eq!(f64::from(scale.to_array()[k]), 2f64.powi(-(whole as i32)));
         }
