@@ -42,6 +42,11 @@ impl F32x4 {
     pub fn load_array(four: &[f32; 4]) -> Self {
         Self(imp::load(four))
     }
+    /// Stores the four lanes in `four` (one store).
+    #[inline]
+    pub fn store(self, four: &mut [f32; 4]) {
+        imp::store(self.0, four);
+    }
     /// Mask of `self > b` (false where either is NaN).
     #[inline]
     pub fn gt(self, b: Self) -> Self {
@@ -147,6 +152,10 @@ mod imp {
         unsafe { _mm_loadu_ps(four.as_ptr()) }
     }
     #[inline]
+    pub fn store(v: Raw, four: &mut [f32; 4]) {
+        unsafe { _mm_storeu_ps(four.as_mut_ptr(), v) }
+    }
+    #[inline]
     pub fn add(a: Raw, b: Raw) -> Raw {
         unsafe { _mm_add_ps(a, b) }
     }
@@ -241,6 +250,11 @@ mod imp {
     pub fn load(four: &[f32; 4]) -> Raw {
         // SAFETY: `four` is 16 readable bytes; v128_load allows any alignment.
         unsafe { v128_load(four.as_ptr() as *const v128) }
+    }
+    #[inline]
+    pub fn store(v: Raw, four: &mut [f32; 4]) {
+        // SAFETY: `four` is 16 writable bytes; v128_store allows any alignment.
+        unsafe { v128_store(four.as_mut_ptr() as *mut v128, v) }
     }
     #[inline]
     pub fn add(a: Raw, b: Raw) -> Raw {
@@ -342,6 +356,10 @@ mod imp {
         *four
     }
     #[inline]
+    pub fn store(v: Raw, four: &mut [f32; 4]) {
+        *four = v;
+    }
+    #[inline]
     pub fn add(a: Raw, b: Raw) -> Raw {
         lanes(a, b, |x, y| x + y)
     }
@@ -425,6 +443,9 @@ mod tests {
             F32x4::load(&[0.0, 9.0, 8.0, 7.0, 6.0], 1).to_array(),
             [9.0, 8.0, 7.0, 6.0]
         );
+        let mut four = [0.0; 4];
+        va.store(&mut four);
+        assert_eq!(four.map(f32::to_bits), a.map(f32::to_bits));
     }
 
     #[test]

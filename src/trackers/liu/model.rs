@@ -199,7 +199,7 @@ impl PpfModel {
             inv_2var: (0.5 / var) as f32,
         };
         let mut sum = 0.0;
-        let mut batch = Batch::default();
+        let mut batch = Batch::new(&cues.pixels);
         for y in self.near_rows() {
             let xc = a + slope * y as f64;
             let Some(cols) = self.band(xc) else { continue };
@@ -208,7 +208,7 @@ impl PpfModel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            batch.push_row(&cues.pixels, span, [xc as f32, 0.0, 0.0, 0.0], |b| {
+            batch.push_row(span, [xc as f32, 0.0, 0.0, 0.0], |b| {
                 sum += line.batch(b);
             });
         }
@@ -245,7 +245,7 @@ impl PpfModel {
         // one at a time.
         let lanes = self.kernel && nodes == 3;
         let h = self.node_offsets[nodes - 1];
-        let mut batch = lanes.then(Batch::default);
+        let mut batch = Batch::new(&cues.pixels);
         for y in self.far_rows() {
             let yf = y as f64;
             let xc = c + d * yf + e * yf * yf;
@@ -264,7 +264,7 @@ impl PpfModel {
             let slope = d + 2.0 * e * yf;
             let theta = math::atan(-slope);
             let dtheta_dy = -2.0 * e / (1.0 + slope * slope);
-            if let Some(batch) = batch.as_mut() {
+            if lanes {
                 // The default 3-node rule: the pixels are batched across rows and go four at
                 // a time, each with its row's curve: at the nodes y -+ h the column is
                 // xc -+ slope h + e h^2 and the orientation theta -+ h dtheta/dy.
@@ -275,7 +275,7 @@ impl PpfModel {
                     (dtheta_dy * h) as f32,
                 ];
                 let e_h2 = (e * h * h) as f32;
-                batch.push_row(&cues.pixels, span, row, |b| {
+                batch.push_row(span, row, |b| {
                     sum += self.parabolic_batch(b, e_h2);
                 });
                 continue;
@@ -294,7 +294,7 @@ impl PpfModel {
                 &node_theta[..nodes],
             );
         }
-        if let Some(batch) = batch.filter(|b| b.used > 0) {
+        if batch.used > 0 {
             sum += self.parabolic_batch(&batch, (e * h * h) as f32);
         }
         if self.kernel {
@@ -436,33 +436,36 @@ const ROW_COPY: usize = 8;
 
 /// Band pixels of a linear or parabolic sum gathered across rows, each with its row's record
 /// (the curve there): a row has few (about 3 in a 7-column band), too few to fill the four
-/// lanes. A row's pixels are copied eight at a time whatever their number (the pixels past the
-/// band are overwritten by the next row's or never read), so that the copy does not branch on
-/// it; the pixels and records are then transposed four by four into lanes.
+/// lanes. The batch holds the pixels' indices; a row's are written eight at a time whatever
+/// their number (the entries past the band are overwritten by the next row's or never read),
+/// so that the writes do not branch on it. The pixels and records are then read four at a
+/// time and transposed into lanes. (Copying the pixels themselves became a `memory.copy`
+/// call per row in WebAssembly.)
 #[derive(Debug, Clone, Copy)]
-struct Batch {
+struct Batch<'a> {
+    all: &'a [MaskPixel],
     used: usize,
-    pixels: [MaskPixel; BATCH + ROW_COPY],
+    /// Indices into `all`, each valid (entries are written only with valid indices).
+    index: [u32; BATCH + ROW_COPY],
     rows: [[f32; 4]; BATCH + ROW_COPY],
 }
 
-impl Default for Batch {
-    fn default() -> Self {
+impl<'a> Batch<'a> {
+    /// An empty batch of pixels of `all`.
+    fn new(all: &'a [MaskPixel]) -> Self {
         Self {
+            all,
             used: 0,
-            pixels: [MaskPixel::default(); BATCH + ROW_COPY],
+            index: [0; BATCH + ROW_COPY],
             rows: [[0.0; 4]; BATCH + ROW_COPY],
         }
     }
-}
 
-impl Batch {
     /// Adds the pixels `all[span]` of one row with the row's record `row`, calling `full` with
     /// the batch (then emptied) each time it fills up.
     #[inline]
     fn push_row(
         &mut self,
-        all: &[MaskPixel],
         span: std::ops::Range<usize>,
         row: [f32; 4],
         mut full: impl FnMut(&Self),
@@ -471,13 +474,20 @@ impl Batch {
         loop {
             let n = (span.end - start).min(ROW_COPY);
             let j = self.used;
-            // Room: used < BATCH before every copy.
-            if start + ROW_COPY <= all.len() {
-                self.pixels[j..j + ROW_COPY].copy_from_slice(&all[start..start + ROW_COPY]);
+            // Room: used < BATCH before every write.
+            if start + ROW_COPY <= self.all.len() {
+                for k in 0..ROW_COPY {
+                    self.index[j + k] = (start + k) as u32;
+                }
             } else {
-                self.pixels[j..j + n].copy_from_slice(&all[start..start + n]);
+                for k in 0..n {
+                    self.index[j + k] = (start + k) as u32;
+                }
             }
-            self.rows[j..j + ROW_COPY].fill(row);
+            let record = F32x4::from_array(row);
+            for to in &mut self.rows[j..j + ROW_COPY] {
+                record.store(to);
+            }
             self.used = j + n;
             start += n;
             if self.used >= BATCH {
@@ -493,8 +503,10 @@ impl Batch {
     /// The pixels j..j + 4 as lanes: column, weight, orientation, precision.
     #[inline]
     fn pixels(&self, j: usize) -> [F32x4; 4] {
-        let p = &self.pixels[j..j + 4];
-        F32x4::transpose([0, 1, 2, 3].map(|k| F32x4::load_array(p[k].as_array())))
+        let index = &self.index[j..j + 4];
+        F32x4::transpose(
+            [0, 1, 2, 3].map(|k| F32x4::load_array(self.all[index[k] as usize].as_array())),
+        )
     }
 
     /// The row records of pixels j..j + 4 as lanes.
