@@ -262,18 +262,14 @@ impl PpfModel {
             // orientation by atan at y and its first-order change across the nodes
             // (|dtheta/dy| = 2|e| / (1 + slope^2) over +-2 rows: below 1e-6 rad off).
             let slope = d + 2.0 * e * yf;
-            let theta = math::atan(-slope);
+            // In f32, as the kernels use it (within an f32 rounding of the f64 atan's).
+            let theta = math::atanf(-slope as f32);
             let dtheta_dy = -2.0 * e / (1.0 + slope * slope);
             if lanes {
                 // The default 3-node rule: the pixels are batched across rows and go four at
                 // a time, each with its row's curve: at the nodes y -+ h the column is
                 // xc -+ slope h + e h^2 and the orientation theta -+ h dtheta/dy.
-                let row = [
-                    xc as f32,
-                    theta as f32,
-                    (slope * h) as f32,
-                    (dtheta_dy * h) as f32,
-                ];
+                let row = [xc as f32, theta, (slope * h) as f32, (dtheta_dy * h) as f32];
                 let e_h2 = (e * h * h) as f32;
                 batch.push_row(span, row, |b| {
                     sum += self.parabolic_batch(b, e_h2);
@@ -289,7 +285,7 @@ impl PpfModel {
             sum = self.parabolic_pixels(
                 sum,
                 &cues.pixels[span],
-                theta as f32,
+                theta,
                 &node_x[..nodes],
                 &node_theta[..nodes],
             );
