@@ -259,7 +259,7 @@ impl PpfModel {
                 continue;
             }
             // The curve and its gradient orientation (eq. 7) at the row's nodes y_k: the
-            // orientation by atan at y and its first-order change across the nodes
+            // orientation by atan (f32) at y and its first-order change across the nodes
             // (|dtheta/dy| = 2|e| / (1 + slope^2) over +-2 rows: below 1e-6 rad off).
             let slope = d + 2.0 * e * yf;
             // In f32, as the kernels use it (within an f32 rounding of the f64 atan's).

@@ -348,7 +348,8 @@ fn a_hidden_near_field_gives_finite_far_weights() {
 
 #[test]
 fn the_band_sums_match_the_reference_kernels() {
-    // linear_sum and parabolic_sum (table exp, orientation linearised across the nodes) against
+    // linear_sum and parabolic_sum (polynomial exp, f32 lanes, orientation linearised across
+    // the nodes) against
     // the reference forms of kernels.rs summed over the same band pixels, on a real frame,
     // for boundaries on and beside a marking.
     use super::kernels::{
