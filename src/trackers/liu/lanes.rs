@@ -453,9 +453,9 @@ mod tests {
         let rows =
             [0, 1, 2, 3].map(|i| F32x4::from_array([0, 1, 2, 3].map(|k| (4 * i + k) as f32)));
         let cols = F32x4::transpose(rows).map(F32x4::to_array);
-        for i in 0..4 {
-            for k in 0..4 {
-                assert_eq!(cols[k][i], (4 * i + k) as f32);
+        for (k, col) in cols.iter().enumerate() {
+            for (i, &v) in col.iter().enumerate() {
+                assert_eq!(v, (4 * i + k) as f32);
             }
         }
     }
@@ -464,10 +464,10 @@ mod tests {
     fn powers_of_two_are_exact() {
         let y = [0.0f32, 0.499, 5.75, 46.2];
         let (n, scale) = F32x4::from_array(y).pow2_neg_round();
-        for k in 0..4 {
-            let whole = y[k].round();
-            assert_eq!(n.to_array()[k], whole);
-            assert_eq!(f64::from(scale.to_array()[k]), 2f64.powi(-(whole as i32)));
+        for ((y, n), scale) in y.iter().zip(n.to_array()).zip(scale.to_array()) {
+            let whole = y.round();
+            assert_eq!(n, whole);
+            assert_eq!(f64::from(scale), 2f64.powi(-(whole as i32)));
         }
     }
 }

@@ -35,7 +35,7 @@ const C: [f32; 5] = [
 /// exp(-a) for 0 <= a < 32, 0 from 32 on and for NaN.
 #[inline]
 pub fn neg_exp(a: f32) -> f32 {
-    if !(a < RANGE) {
+    if a.is_nan() || a >= RANGE {
         return 0.0;
     }
     let y = a * LOG2_E;
