@@ -62,6 +62,11 @@ pub fn hypot(x: f64, y: f64) -> f64 {
 pub fn atan2f(y: f32, x: f32) -> f32 {
     libm::atan2f(y, x)
 }
+/// Single-precision arc tangent (liu-ppf's curve orientation per row).
+#[inline]
+pub fn atanf(x: f32) -> f32 {
+    libm::atanf(x)
+}
 /// Single-precision e^x.
 #[inline]
 pub fn expf(x: f32) -> f32 {

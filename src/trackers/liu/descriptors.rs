@@ -25,6 +25,16 @@ use crate::math;
 use crate::vision::{Gradients, Ipm, TopViewConfig};
 use std::f64::consts::PI;
 
+impl MaskPixel {
+    /// The four fields in their order (column, weight, orientation, precision) as one array.
+    #[inline]
+    pub fn as_array(&self) -> &[f32; 4] {
+        // SAFETY: `MaskPixel` is `repr(C)` with four f32 fields and no padding, so it has the
+        // size, alignment and layout of `[f32; 4]`.
+        unsafe { &*(self as *const Self).cast::<[f32; 4]>() }
+    }
+}
+
 /// The descriptors of one frame on the top view, reused from frame to frame.
 #[derive(Debug, Clone)]
 pub struct Descriptors {
@@ -49,8 +59,10 @@ pub struct Descriptors {
     weight_sum: Vec<f64>,
 }
 
-/// One measurement pixel.
+/// One measurement pixel (four f32 in this order, so that the kernel sums load it as one
+/// vector of four lanes).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(C)]
 pub struct MaskPixel {
     /// Column x_i.
     pub x: f32,

@@ -1,15 +1,15 @@
-//! Four f32 lanes for liu-ppf's parabolic kernel sums: SSE2 on x86_64 (every x86_64 CPU has
-//! it), four plain floats elsewhere. (WebAssembly runs those sums one pixel at a time, the
-//! pixel's three quadrature nodes in three `simd128` lanes, `PpfModel::parabolic_pixels_v3`:
-//! four pixels in these lanes measured 3 % slower there, the table reads of the four lanes
-//! costing what the arithmetic saves; the node lanes measured 10-13 % faster per frame in Node
-//! than one node at a time.)
+//! Four f32 lanes for liu-ppf's kernel sums: SSE2 on x86_64 (every x86_64 CPU has it),
+//! `simd128` in WebAssembly (on for every wasm32 build, .cargo/config.toml), four plain floats
+//! elsewhere.
 //!
 //! Every operation is the IEEE operation the scalar code performs, lane by lane (no fused
-//! multiply-add, no reordering), so a sum written with these lanes is bit-identical to the
-//! same sum written one pixel at a time, and so to the browser build (tests/web.rs compares
+//! multiply-add, no reordering), and the integer steps of [`F32x4::pow2_neg_trunc`] are exact,
+//! so a sum written with these lanes has the same bits on every target (tests/web.rs compares
 //! liu-ppf in Chromium with the native bits). Masks are lanes of all ones (true) or all zeros
 //! (false).
+
+/// 1.5 2^23: y + ROUNDER has the integer nearest y in its last mantissa bits (|y| < 2^22).
+const ROUNDER: f32 = 12_582_912.0;
 
 /// Four f32 lanes (or a mask of four lanes).
 #[derive(Clone, Copy, Debug)]
@@ -36,6 +36,16 @@ impl F32x4 {
     pub fn load(v: &[f32], j: usize) -> Self {
         let four = [v[j], v[j + 1], v[j + 2], v[j + 3]];
         Self(imp::load(&four))
+    }
+    /// The four floats of `four` (one load).
+    #[inline]
+    pub fn load_array(four: &[f32; 4]) -> Self {
+        Self(imp::load(four))
+    }
+    /// Stores the four lanes in `four` (one store).
+    #[inline]
+    pub fn store(self, four: &mut [f32; 4]) {
+        imp::store(self.0, four);
     }
     /// Mask of `self > b` (false where either is NaN).
     #[inline]
@@ -67,12 +77,25 @@ impl F32x4 {
     pub fn mask_to_array(self) -> [bool; 4] {
         imp::mask_to_array(self.0)
     }
-    /// Lane-wise `(self as usize).min(last)` as u32, and that index back as f32 (exact): the
-    /// saturating conversion, NaN giving 0, as `as` does.
+    /// The transpose of the 4 x 4 matrix whose rows are `rows`: lane k of row i becomes lane
+    /// i of row k (data movement only).
     #[inline]
-    pub fn index_below(self, last: u32) -> ([u32; 4], Self) {
-        let (i, f) = imp::index_below(self.0, last);
-        (i, Self(f))
+    pub fn transpose(rows: [Self; 4]) -> [Self; 4] {
+        imp::transpose(rows.map(|r| r.0)).map(Self)
+    }
+    /// Mask of `self < b` (false where either is NaN).
+    #[inline]
+    pub fn lt(self, b: Self) -> Self {
+        Self(imp::lt(self.0, b.0))
+    }
+    /// For lanes y in (-2^22, 2^22): (n, 2^-n) with n the integer nearest y (ties to even),
+    /// both exact (-126 <= n <= 126 for 2^-n to be a normal float), by the IEEE sum y + 1.5 2^23,
+    /// whose last mantissa bits are then n, not by a conversion (which WebAssembly engines
+    /// emulate in several instructions). Other lanes give unspecified values.
+    #[inline]
+    pub fn pow2_neg_round(self) -> (Self, Self) {
+        let (n, scale) = imp::pow2_neg_round(self.0);
+        (Self(n), Self(scale))
     }
 }
 
@@ -129,6 +152,10 @@ mod imp {
         unsafe { _mm_loadu_ps(four.as_ptr()) }
     }
     #[inline]
+    pub fn store(v: Raw, four: &mut [f32; 4]) {
+        unsafe { _mm_storeu_ps(four.as_mut_ptr(), v) }
+    }
+    #[inline]
     pub fn add(a: Raw, b: Raw) -> Raw {
         unsafe { _mm_add_ps(a, b) }
     }
@@ -166,21 +193,141 @@ mod imp {
         [m & 1 != 0, m & 2 != 0, m & 4 != 0, m & 8 != 0]
     }
     #[inline]
-    pub fn index_below(t: Raw, last: u32) -> ([u32; 4], Raw) {
-        // Clamped to [0, last] in float first (max(NaN, 0) is 0 here: SSE's max returns its
-        // second operand when either is NaN), then truncated: for t >= 0 truncation is the
-        // floor, and every clamped value converts exactly.
+    pub fn lt(a: Raw, b: Raw) -> Raw {
+        unsafe { _mm_cmplt_ps(a, b) }
+    }
+    #[inline]
+    pub fn transpose([r0, r1, r2, r3]: [Raw; 4]) -> [Raw; 4] {
         unsafe {
-            let clamped = _mm_min_ps(_mm_max_ps(t, _mm_setzero_ps()), _mm_set1_ps(last as f32));
-            let i = _mm_cvttps_epi32(clamped);
-            let mut lanes = [0u32; 4];
-            _mm_storeu_si128(lanes.as_mut_ptr() as *mut __m128i, i);
-            (lanes, _mm_cvtepi32_ps(i))
+            let (t0, t1) = (_mm_unpacklo_ps(r0, r1), _mm_unpacklo_ps(r2, r3));
+            let (t2, t3) = (_mm_unpackhi_ps(r0, r1), _mm_unpackhi_ps(r2, r3));
+            [
+                _mm_movelh_ps(t0, t1),
+                _mm_movehl_ps(t1, t0),
+                _mm_movelh_ps(t2, t3),
+                _mm_movehl_ps(t3, t2),
+            ]
+        }
+    }
+    #[inline]
+    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
+        // (127 - n) << 23 is the bit pattern of 2^-n.
+        unsafe {
+            let rounder = _mm_set1_ps(super::ROUNDER);
+            let t = _mm_add_ps(y, rounder);
+            let n = _mm_sub_epi32(_mm_castps_si128(t), _mm_castps_si128(rounder));
+            let bits = _mm_slli_epi32::<23>(_mm_sub_epi32(_mm_set1_epi32(127), n));
+            (_mm_sub_ps(t, rounder), _mm_castsi128_ps(bits))
         }
     }
 }
 
-#[cfg(not(target_arch = "x86_64"))]
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+mod imp {
+    use core::arch::wasm32::*;
+    pub type Raw = v128;
+
+    // The loads and stores go through arrays of exactly 16 bytes; the rest are plain lane
+    // operations (f32x4_add is the IEEE addition lane by lane, and so on).
+    #[inline]
+    pub fn from_array(a: [f32; 4]) -> Raw {
+        f32x4(a[0], a[1], a[2], a[3])
+    }
+    #[inline]
+    pub fn to_array(v: Raw) -> [f32; 4] {
+        [
+            f32x4_extract_lane::<0>(v),
+            f32x4_extract_lane::<1>(v),
+            f32x4_extract_lane::<2>(v),
+            f32x4_extract_lane::<3>(v),
+        ]
+    }
+    #[inline]
+    pub fn splat(v: f32) -> Raw {
+        f32x4_splat(v)
+    }
+    #[inline]
+    pub fn load(four: &[f32; 4]) -> Raw {
+        // SAFETY: `four` is 16 readable bytes; v128_load allows any alignment.
+        unsafe { v128_load(four.as_ptr() as *const v128) }
+    }
+    #[inline]
+    pub fn store(v: Raw, four: &mut [f32; 4]) {
+        // SAFETY: `four` is 16 writable bytes; v128_store allows any alignment.
+        unsafe { v128_store(four.as_mut_ptr() as *mut v128, v) }
+    }
+    #[inline]
+    pub fn add(a: Raw, b: Raw) -> Raw {
+        f32x4_add(a, b)
+    }
+    #[inline]
+    pub fn sub(a: Raw, b: Raw) -> Raw {
+        f32x4_sub(a, b)
+    }
+    #[inline]
+    pub fn mul(a: Raw, b: Raw) -> Raw {
+        f32x4_mul(a, b)
+    }
+    #[inline]
+    pub fn gt(a: Raw, b: Raw) -> Raw {
+        f32x4_gt(a, b)
+    }
+    #[inline]
+    pub fn le(a: Raw, b: Raw) -> Raw {
+        f32x4_le(a, b)
+    }
+    #[inline]
+    pub fn ge(a: Raw, b: Raw) -> Raw {
+        f32x4_ge(a, b)
+    }
+    #[inline]
+    pub fn lt(a: Raw, b: Raw) -> Raw {
+        f32x4_lt(a, b)
+    }
+    #[inline]
+    pub fn transpose([r0, r1, r2, r3]: [Raw; 4]) -> [Raw; 4] {
+        let (t0, t1) = (
+            i32x4_shuffle::<0, 4, 1, 5>(r0, r1),
+            i32x4_shuffle::<0, 4, 1, 5>(r2, r3),
+        );
+        let (t2, t3) = (
+            i32x4_shuffle::<2, 6, 3, 7>(r0, r1),
+            i32x4_shuffle::<2, 6, 3, 7>(r2, r3),
+        );
+        [
+            i32x4_shuffle::<0, 1, 4, 5>(t0, t1),
+            i32x4_shuffle::<2, 3, 6, 7>(t0, t1),
+            i32x4_shuffle::<0, 1, 4, 5>(t2, t3),
+            i32x4_shuffle::<2, 3, 6, 7>(t2, t3),
+        ]
+    }
+    #[inline]
+    pub fn select(mask: Raw, a: Raw, b: Raw) -> Raw {
+        v128_bitselect(a, b, mask)
+    }
+    #[inline]
+    pub fn all(mask: Raw) -> bool {
+        i32x4_all_true(mask)
+    }
+    #[inline]
+    pub fn mask_to_array(mask: Raw) -> [bool; 4] {
+        let m = i32x4_bitmask(mask);
+        [m & 1 != 0, m & 2 != 0, m & 4 != 0, m & 8 != 0]
+    }
+    #[inline]
+    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
+        let rounder = f32x4_splat(super::ROUNDER);
+        let t = f32x4_add(y, rounder);
+        let n = i32x4_sub(t, rounder);
+        let bits = i32x4_shl(i32x4_sub(i32x4_splat(127), n), 23);
+        (f32x4_sub(t, rounder), bits)
+    }
+}
+
+#[cfg(not(any(
+    target_arch = "x86_64",
+    all(target_arch = "wasm32", target_feature = "simd128")
+)))]
 mod imp {
     //! Four plain floats, lane by lane; masks hold all-ones bit patterns as the SIMD ones do.
     pub type Raw = [f32; 4];
@@ -207,6 +354,10 @@ mod imp {
     #[inline]
     pub fn load(four: &[f32; 4]) -> Raw {
         *four
+    }
+    #[inline]
+    pub fn store(v: Raw, four: &mut [f32; 4]) {
+        *four = v;
     }
     #[inline]
     pub fn add(a: Raw, b: Raw) -> Raw {
@@ -245,9 +396,21 @@ mod imp {
         mask.map(|m| m.to_bits() != 0)
     }
     #[inline]
-    pub fn index_below(t: Raw, last: u32) -> ([u32; 4], Raw) {
-        let i = t.map(|v| (v as u32).min(last));
-        (i, i.map(|v| v as f32))
+    pub fn lt(a: Raw, b: Raw) -> Raw {
+        mask(a, b, |x, y| x < y)
+    }
+    #[inline]
+    pub fn transpose(rows: [Raw; 4]) -> [Raw; 4] {
+        [0, 1, 2, 3].map(|k| rows.map(|r| r[k]))
+    }
+    #[inline]
+    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
+        let t = y.map(|v| v + super::ROUNDER);
+        let n = t.map(|v| v.to_bits().wrapping_sub(super::ROUNDER.to_bits()));
+        (
+            t.map(|v| v - super::ROUNDER),
+            n.map(|v| f32::from_bits(127u32.wrapping_sub(v) << 23)),
+        )
     }
 }
 
@@ -268,6 +431,7 @@ mod tests {
             assert_eq!(va.gt(vb).mask_to_array()[k], a[k] > b[k]);
             assert_eq!(va.le(vb).mask_to_array()[k], a[k] <= b[k]);
             assert_eq!(va.ge(vb).mask_to_array()[k], a[k] >= b[k]);
+            assert_eq!(va.lt(vb).mask_to_array()[k], a[k] < b[k]);
         }
         let picked = va.gt(vb).select(va, vb).to_array();
         assert_eq!(picked[0], 1.5);
@@ -279,18 +443,31 @@ mod tests {
             F32x4::load(&[0.0, 9.0, 8.0, 7.0, 6.0], 1).to_array(),
             [9.0, 8.0, 7.0, 6.0]
         );
+        let mut four = [0.0; 4];
+        va.store(&mut four);
+        assert_eq!(four.map(f32::to_bits), a.map(f32::to_bits));
     }
 
     #[test]
-    fn indices_saturate_as_the_scalar_conversion_does() {
-        let t = [f32::NAN, -0.0, 5.75, 1.0e12];
-        let (i, f) = F32x4::from_array(t).index_below(2048);
-        for k in 0..4 {
-            let scalar = (t[k] as usize).min(2048) as u32;
-            assert_eq!(i[k], scalar, "{}", t[k]);
-            assert_eq!(f.to_array()[k], scalar as f32);
+    fn transposes() {
+        let rows =
+            [0, 1, 2, 3].map(|i| F32x4::from_array([0, 1, 2, 3].map(|k| (4 * i + k) as f32)));
+        let cols = F32x4::transpose(rows).map(F32x4::to_array);
+        for (k, col) in cols.iter().enumerate() {
+            for (i, &v) in col.iter().enumerate() {
+                assert_eq!(v, (4 * i + k) as f32);
+            }
         }
-        let (i, _) = F32x4::from_array([2047.9, 2048.0, 2049.5, f32::INFINITY]).index_below(2048);
-        assert_eq!(i, [2047, 2048, 2048, 2048]);
+    }
+
+    #[test]
+    fn powers_of_two_are_exact() {
+        let y = [0.0f32, 0.499, 5.75, 46.2];
+        let (n, scale) = F32x4::from_array(y).pow2_neg_round();
+        for ((y, n), scale) in y.iter().zip(n.to_array()).zip(scale.to_array()) {
+            let whole = y.round();
+            assert_eq!(n, whole);
+            assert_eq!(f64::from(scale), 2f64.powi(-(whole as i32)));
+        }
     }
 }

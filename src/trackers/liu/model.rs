@@ -25,13 +25,14 @@
 //! to equal weights and the random walk carries the cloud.
 //!
 //! Numerics (ours, tested against the reference kernels of [`super::kernels`] to 1e-3): exp by
-//! the table of [`super::exp_table`], pixels whose orientation term alone is beyond the table
-//! skipped, in G_pi the curve's orientation at the quadrature nodes taken to first order
-//! from the row's (the nodes are within 2 rows; the error is below 1e-6 rad), and each
-//! pixel's G_pi in f32 (added to an f64 sum): rounding of 6e-8 against the table's 3e-5.
-//! Natively the 3-node rule runs four pixels per SSE2 operation ([`super::lanes`]), gathered
-//! across rows; WebAssembly one pixel at a time, its three nodes in three lanes of a `simd128`
-//! vector (measured faster there than four pixels per vector); all give the same bits.
+//! the polynomial of [`super::neg_exp`] (within 5e-6 relative; 0 from an exponent of 32 on,
+//! exp(-32) = 1.3e-14), in G_pi the curve's orientation at the quadrature nodes taken to
+//! first order from the row's (the nodes are within 2 rows; the error is below 1e-6 rad), and
+//! both kernels in f32: a pixel's term (rounding 6e-8 each, the f32 column differences 1e-5
+//! at most) is added into one of four f32 partial sums over up to 64 pixels (rounding below
+//! 1e-6 relative), which go into the f64 sum. The pixels of both sums are gathered across
+//! rows and run four per operation ([`super::lanes`]: SSE2 natively, `simd128` in
+//! WebAssembly), with the same bits on every target.
 
 //! Validity (Sec. IV-A, in metres): at the bottom row and at y_m, each boundary lies at least
 //! `min_spacing_m` to the right of its left neighbour, and neighbouring spacings differ by less
@@ -39,9 +40,9 @@
 
 use super::config::{LiuConfig, MAX_BOUNDARIES};
 use super::descriptors::{wrap_half_turn, Descriptors, MaskPixel};
-use super::exp_table::{ExpTable, RANGE};
 use super::kernels::GaussHermite;
 use super::lanes::F32x4;
+use super::neg_exp::{neg_exp, neg_exp_x4};
 use crate::calib::ego_on_road::EgoOnRoad;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
@@ -77,7 +78,6 @@ pub struct PpfModel {
     sigma_d: f64,
     min_spacing: f64,
     max_difference: f64,
-    exp: ExpTable,
 }
 
 impl PpfModel {
@@ -113,7 +113,6 @@ impl PpfModel {
             sigma_d: config.sigma_d,
             min_spacing: config.min_spacing_m,
             max_difference: config.max_spacing_difference_m,
-            exp: ExpTable::default(),
         }
     }
 
@@ -194,8 +193,13 @@ impl PpfModel {
         let (a, slope) = (b.rho / c, -s / c);
         // Eq. 5's variance of the distance along the normal.
         let var = self.var_x * c * c + self.var_y * s * s;
-        let inv_2var = 0.5 / var;
+        let line = Line {
+            theta: b.theta as f32,
+            cos: c as f32,
+            inv_2var: (0.5 / var) as f32,
+        };
         let mut sum = 0.0;
+        let mut batch = Batch::new(&cues.pixels);
         for y in self.near_rows() {
             let xc = a + slope * y as f64;
             let Some(cols) = self.band(xc) else { continue };
@@ -204,7 +208,12 @@ impl PpfModel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            sum = self.linear_row(sum, &cues.pixels[span], b.theta, xc, c, inv_2var);
+            batch.push_row(span, [xc as f32, 0.0, 0.0, 0.0], |b| {
+                sum += line.batch(b);
+            });
+        }
+        if batch.used > 0 {
+            sum += line.batch(&batch);
         }
         if self.kernel {
             sum /= (2.0 * PI * var).sqrt();
@@ -232,10 +241,11 @@ impl PpfModel {
         let nodes = self.node_offsets.len();
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
-        // Four pixels in four lanes natively; in WebAssembly one pixel at a time (its three
-        // nodes in three lanes), which measured faster there (see `super::lanes`).
-        let lanes = self.kernel && nodes == 3 && !cfg!(target_arch = "wasm32");
-        let mut batch = lanes.then(Batch::default);
+        // The default 3-node rule (nodes y - h, y, y + h) four pixels at a time; other rules
+        // one at a time.
+        let lanes = self.kernel && nodes == 3;
+        let h = self.node_offsets[nodes - 1];
+        let mut batch = Batch::new(&cues.pixels);
         for y in self.far_rows() {
             let yf = y as f64;
             let xc = c + d * yf + e * yf * yf;
@@ -249,52 +259,39 @@ impl PpfModel {
                 continue;
             }
             // The curve and its gradient orientation (eq. 7) at the row's nodes y_k: the
-            // orientation by atan at y and its first-order change across the nodes
+            // orientation by atan (f32) at y and its first-order change across the nodes
             // (|dtheta/dy| = 2|e| / (1 + slope^2) over +-2 rows: below 1e-6 rad off).
             let slope = d + 2.0 * e * yf;
-            let theta = math::atan(-slope);
+            // In f32, as the kernels use it (within an f32 rounding of the f64 atan's).
+            let theta = math::atanf(-slope as f32);
             let dtheta_dy = -2.0 * e / (1.0 + slope * slope);
+            if lanes {
+                // The default 3-node rule: the pixels are batched across rows and go four at
+                // a time, each with its row's curve: at the nodes y -+ h the column is
+                // xc -+ slope h + e h^2 and the orientation theta -+ h dtheta/dy.
+                let row = [xc as f32, theta, (slope * h) as f32, (dtheta_dy * h) as f32];
+                let e_h2 = (e * h * h) as f32;
+                batch.push_row(span, row, |b| {
+                    sum += self.parabolic_batch(b, e_h2);
+                });
+                continue;
+            }
             for k in 0..nodes {
                 let yk = yf + self.node_offsets[k];
                 node_x[k] = (c + d * yk + e * yk * yk) as f32;
                 // The change of the curve's orientation from the row to node k.
                 node_theta[k] = (dtheta_dy * self.node_offsets[k]) as f32;
             }
-            let pixels = &cues.pixels[span];
-            if let Some(batch) = batch.as_mut() {
-                // The default 3-node rule: the pixels are batched across rows and go four at
-                // a time.
-                let (x, t) = (&node_x[..3], &node_theta[..3]);
-                for px in pixels {
-                    batch.push(px, theta as f32, x, t);
-                    if batch.used == BATCH {
-                        sum = self.parabolic_batch(sum, batch);
-                        batch.used = 0;
-                    }
-                }
-            } else {
-                #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-                if self.kernel && nodes == 3 {
-                    sum = self.parabolic_pixels_v3(
-                        sum,
-                        pixels,
-                        theta as f32,
-                        &node_x[..3],
-                        &node_theta[..3],
-                    );
-                    continue;
-                }
-                sum = self.parabolic_pixels(
-                    sum,
-                    pixels,
-                    theta as f32,
-                    &node_x[..nodes],
-                    &node_theta[..nodes],
-                );
-            }
+            sum = self.parabolic_pixels(
+                sum,
+                &cues.pixels[span],
+                theta,
+                &node_x[..nodes],
+                &node_theta[..nodes],
+            );
         }
-        if let Some(batch) = batch.filter(|b| b.used > 0) {
-            sum = self.parabolic_batch(sum, &batch);
+        if batch.used > 0 {
+            sum += self.parabolic_batch(&batch, (e * h * h) as f32);
         }
         if self.kernel {
             sum /= (2.0 * PI * self.var_x).sqrt();
@@ -303,38 +300,43 @@ impl PpfModel {
     }
 }
 
-impl PpfModel {
-    /// The line kernels of one row's band pixels added to `sum`, pixel by pixel: the line at
-    /// column `xc` with orientation `theta` (cos `c`), 1 / (2 var) = `inv_2var`.
-    #[inline]
-    fn linear_row(
-        &self,
-        mut sum: f64,
-        pixels: &[MaskPixel],
-        theta: f64,
-        xc: f64,
-        c: f64,
-        inv_2var: f64,
-    ) -> f64 {
-        for px in pixels {
-            let dtheta = fold(theta - f64::from(px.theta));
-            let orientation = 0.5 * dtheta * dtheta * f64::from(px.precision);
-            if orientation >= RANGE {
-                continue;
-            }
-            let dist = c * (xc - f64::from(px.x));
-            let arg = dist * dist * inv_2var + orientation;
-            sum += f64::from(px.weight) * self.exp.neg_exp(arg);
-        }
-        sum
-    }
+/// The line of a linear sum (eqs. 5, 20): its orientation theta, cos(theta) and
+/// 1 / (2 var) with eq. 5's variance, in f32.
+struct Line {
+    theta: f32,
+    cos: f32,
+    inv_2var: f32,
+}
 
+impl Line {
+    /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
+    /// line column first in its row record), four at a time, summed: per lane in f32, the four
+    /// lanes then in f64 in lane order.
+    fn batch(&self, batch: &Batch) -> f64 {
+        let (theta, cos) = (F32x4::splat(self.theta), F32x4::splat(self.cos));
+        let inv_2var = F32x4::splat(self.inv_2var);
+        let half = F32x4::splat(0.5);
+        let mut acc = F32x4::splat(0.0);
+        for j in (0..batch.used).step_by(4) {
+            let [x, weight, theta_i, precision] = batch.pixels(j);
+            let [xc, ..] = batch.rows(j);
+            let dtheta = fold_x4(theta.sub(theta_i));
+            let orientation = half.mul(dtheta).mul(dtheta).mul(precision);
+            let dist = cos.mul(xc.sub(x));
+            let arg = dist.mul(dist).mul(inv_2var).add(orientation);
+            let term = weight.mul(neg_exp_x4(arg));
+            acc = acc.add(only_used(term, batch.used - j));
+        }
+        lane_sum(acc)
+    }
+}
+
+impl PpfModel {
     /// The parabolic kernels of one row's band `pixels` added to `sum`, one pixel at a time in
     /// order, with the quadrature rule's nodes (`node_x`, `node_theta`: the curve's column and
     /// orientation change at each node; `theta`: its orientation at the row). A pixel's kernel
-    /// is computed in f32 (rounding 6e-8 relative, against the exp table's 3e-5) and added to
-    /// the f64 sum. (The default 3-node rule goes four pixels at a time instead:
-    /// [`PpfModel::parabolic_batch`], with the same bits.)
+    /// is computed in f32 and added to the f64 sum. (The default 3-node rule goes four pixels
+    /// at a time instead: [`PpfModel::parabolic_batch`].)
     #[inline]
     fn parabolic_pixels(
         &self,
@@ -349,202 +351,178 @@ impl PpfModel {
             // The orientation difference at the row, folded once: across the nodes it
             // changes by dtheta_dy * offset (below 1e-3 rad), too little to cross a fold.
             let dtheta = fold32(theta - px.theta);
-            if 0.5 * dtheta * dtheta * px.precision >= SKIP {
-                // Every node's exponent is beyond the table: the pixel adds nothing.
-                continue;
-            }
             let mut g = 0.0f32;
             for (k, (&x, &t)) in node_x.iter().zip(node_theta).enumerate() {
                 let dx = x - px.x;
                 let dt = dtheta + t;
                 let arg = dx * dx * inv_2var + 0.5 * dt * dt * px.precision;
-                g += self.node_weights[k] * self.exp.neg_exp32(arg);
+                g += self.node_weights[k] * neg_exp(arg);
             }
             sum += f64::from(px.weight * g);
         }
         sum
     }
 
-    /// [`PpfModel::parabolic_pixels`] with the 3-node rule in WebAssembly: a pixel's three
-    /// nodes in three lanes of one SIMD vector (each lane the scalar code's IEEE operations in
-    /// its order, no fused multiply-add), the nodes' terms then added in node order as the
-    /// scalar loop adds them, so the bits are those of the one-pixel-at-a-time path.
-    #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
-    #[inline]
-    fn parabolic_pixels_v3(
-        &self,
-        mut sum: f64,
-        pixels: &[MaskPixel],
-        theta: f32,
-        node_x: &[f32],
-        node_theta: &[f32],
-    ) -> f64 {
-        use core::arch::wasm32::*;
-        let inv_2var = f32x4_splat((0.5 / self.var_x) as f32);
-        let half = f32x4_splat(0.5);
-        let xs = f32x4(node_x[0], node_x[1], node_x[2], 0.0);
-        let ts = f32x4(node_theta[0], node_theta[1], node_theta[2], 0.0);
-        let ws = f32x4(
-            self.node_weights[0],
-            self.node_weights[1],
-            self.node_weights[2],
-            0.0,
-        );
-        for px in pixels {
-            let dtheta = fold32(theta - px.theta);
-            if 0.5 * dtheta * dtheta * px.precision >= SKIP {
-                continue;
-            }
-            let dx = f32x4_sub(xs, f32x4_splat(px.x));
-            let dt = f32x4_add(f32x4_splat(dtheta), ts);
-            let arg = f32x4_add(
-                f32x4_mul(f32x4_mul(dx, dx), inv_2var),
-                f32x4_mul(
-                    f32x4_mul(f32x4_mul(half, dt), dt),
-                    f32x4_splat(px.precision),
-                ),
-            );
-            let terms = f32x4_mul(ws, self.exp.neg_exp_v3(arg));
-            let mut g = 0.0f32;
-            g += f32x4_extract_lane::<0>(terms);
-            g += f32x4_extract_lane::<1>(terms);
-            g += f32x4_extract_lane::<2>(terms);
-            sum += f64::from(px.weight * g);
-        }
-        sum
-    }
-
-    /// [`PpfModel::parabolic_pixels`] with 3 nodes for the `used` pixels of `batch`, four at a
-    /// time in the four lanes of each operation ([`F32x4`]: SSE2 on x86_64). Every lane performs the scalar code's IEEE operations in the scalar
-    /// code's order with its own row's curve (the fold's branches become lane selects), and
-    /// the pixels' terms are added to `sum` one by one in pixel order, so the result is
-    /// bit-identical to the one-pixel-at-a-time path. (Lanes past `used` in the last quad are
-    /// computed from stale entries and not added.)
-    fn parabolic_batch(&self, mut sum: f64, batch: &Batch) -> f64 {
+    /// The parabolic kernels of the `used` pixels of `batch` with the 3-node rule (nodes y - h,
+    /// y, y + h; `e_h2` = e h^2), four pixels at a time in the four lanes of each operation
+    /// ([`F32x4`]), each lane with its own row's curve, summed: per lane in f32, the four lanes
+    /// then in f64 in lane order.
+    fn parabolic_batch(&self, batch: &Batch, e_h2: f32) -> f64 {
         let inv_2var = F32x4::splat((0.5 / self.var_x) as f32);
         let half = F32x4::splat(0.5);
-        let (half_pi, pi) = (F32x4::splat(FRAC_PI_2_32), F32x4::splat(PI_32));
-        let minus_half_pi = F32x4::splat(-FRAC_PI_2_32);
-        let skip_at = F32x4::splat(SKIP);
-        let node_weights = [0, 1, 2].map(|k| F32x4::splat(self.node_weights[k]));
+        let e_h2 = F32x4::splat(e_h2);
+        let [w_minus, w_0, w_plus] = [0, 1, 2].map(|k| F32x4::splat(self.node_weights[k]));
+        let mut acc = F32x4::splat(0.0);
         for j in (0..batch.used).step_by(4) {
-            let used = (batch.used - j).min(4);
-            let precision = F32x4::load(&batch.precision, j);
-            let d = F32x4::load(&batch.theta, j).sub(F32x4::load(&batch.theta_i, j));
-            let dtheta = d
-                .gt(half_pi)
-                .select(d.sub(pi), d.le(minus_half_pi).select(d.add(pi), d));
-            let skip = half.mul(dtheta).mul(dtheta).mul(precision).ge(skip_at);
-            if used == 4 && skip.all() {
-                continue;
-            }
-            let xf = F32x4::load(&batch.x, j);
-            let mut g = F32x4::splat(0.0);
-            for ((weight, node_x), node_theta) in node_weights
-                .iter()
-                .zip(&batch.node_x)
-                .zip(&batch.node_theta)
-            {
-                let dx = F32x4::load(node_x, j).sub(xf);
-                let dt = dtheta.add(F32x4::load(node_theta, j));
+            let [x, weight, theta_i, precision] = batch.pixels(j);
+            // Row record: the curve's column and orientation at the row, slope h, h dtheta/dy.
+            let [xc, theta, slope_h, dtheta_h] = batch.rows(j);
+            // The orientation difference at the row, folded once (see `parabolic_pixels`).
+            let dtheta = fold_x4(theta.sub(theta_i));
+            let dx = xc.sub(x);
+            let node = |dx: F32x4, dt: F32x4| {
                 let arg = dx
                     .mul(dx)
                     .mul(inv_2var)
                     .add(half.mul(dt).mul(dt).mul(precision));
-                g = g.add(weight.mul(self.exp.neg_exp_x4(arg)));
-            }
-            let terms = F32x4::load(&batch.weight, j).mul(g).to_array();
-            let skipped = skip.mask_to_array();
-            for k in 0..used {
-                if !skipped[k] {
-                    sum += f64::from(terms[k]);
-                }
-            }
+                neg_exp_x4(arg)
+            };
+            let g = w_minus
+                .mul(node(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h)))
+                .add(w_0.mul(node(dx, dtheta)))
+                .add(w_plus.mul(node(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h))));
+            acc = acc.add(only_used(weight.mul(g), batch.used - j));
         }
-        sum
+        lane_sum(acc)
     }
+}
+
+/// `term` with the lanes from `left` on set to 0 (`left` pixels of the batch are left from
+/// this quad on; lanes past them hold stale entries).
+#[inline]
+fn only_used(term: F32x4, left: usize) -> F32x4 {
+    if left >= 4 {
+        return term;
+    }
+    let lane = F32x4::from_array([0.0, 1.0, 2.0, 3.0]);
+    lane.lt(F32x4::splat(left as f32))
+        .select(term, F32x4::splat(0.0))
+}
+
+/// The four lanes added in f64, in lane order.
+#[inline]
+fn lane_sum(acc: F32x4) -> f64 {
+    acc.to_array().iter().map(|&v| f64::from(v)).sum()
+}
+
+/// [`fold32`] lane by lane (its branches as lane selects).
+#[inline]
+fn fold_x4(d: F32x4) -> F32x4 {
+    let (half_pi, pi) = (F32x4::splat(FRAC_PI_2_32), F32x4::splat(PI_32));
+    d.gt(half_pi).select(
+        d.sub(pi),
+        d.le(F32x4::splat(-FRAC_PI_2_32)).select(d.add(pi), d),
+    )
 }
 
 /// Pixels per [`Batch`] (a multiple of 4).
 const BATCH: usize = 64;
+/// Pixels a [`Batch`] copies from a row at once: a whole band of the default 7 columns.
+const ROW_COPY: usize = 8;
 
-/// Band pixels of the parabolic sum, each with its row's curve (3-node rule), gathered across
-/// rows: a row has few (about 3 in a 7-column band), too few to fill the four lanes, and lanes
-/// read long after their entries were written run at full speed (loading four floats just
-/// written one by one stalls the processor's store forwarding).
+/// Band pixels of a linear or parabolic sum gathered across rows, each with its row's record
+/// (the curve there): a row has few (about 3 in a 7-column band), too few to fill the four
+/// lanes. The batch holds the pixels' indices; a row's are written eight at a time whatever
+/// their number (the entries past the band are overwritten by the next row's or never read),
+/// so that the writes do not branch on it. The pixels and records are then read four at a
+/// time and transposed into lanes. (Copying the pixels themselves became a `memory.copy`
+/// call per row in WebAssembly.)
 #[derive(Debug, Clone, Copy)]
-struct Batch {
+struct Batch<'a> {
+    all: &'a [MaskPixel],
     used: usize,
-    x: [f32; BATCH],
-    weight: [f32; BATCH],
-    theta_i: [f32; BATCH],
-    precision: [f32; BATCH],
-    /// The curve's orientation at the pixel's row.
-    theta: [f32; BATCH],
-    /// Per node: the curve's column, and its orientation change from the row.
-    node_x: [[f32; BATCH]; 3],
-    node_theta: [[f32; BATCH]; 3],
+    /// Indices into `all`, each valid (entries are written only with valid indices).
+    index: [u32; BATCH + ROW_COPY],
+    rows: [[f32; 4]; BATCH + ROW_COPY],
 }
 
-impl Default for Batch {
-    fn default() -> Self {
-        let zeros = [0.0; BATCH];
+impl<'a> Batch<'a> {
+    /// An empty batch of pixels of `all`.
+    fn new(all: &'a [MaskPixel]) -> Self {
         Self {
+            all,
             used: 0,
-            x: zeros,
-            weight: zeros,
-            theta_i: zeros,
-            precision: zeros,
-            theta: zeros,
-            node_x: [zeros; 3],
-            node_theta: [zeros; 3],
+            index: [0; BATCH + ROW_COPY],
+            rows: [[0.0; 4]; BATCH + ROW_COPY],
         }
     }
-}
 
-impl Batch {
-    /// Adds a pixel of a row whose curve has orientation `theta` and nodes `node_x`,
-    /// `node_theta` (3 each); the batch must not be full.
+    /// Adds the pixels `all[span]` of one row with the row's record `row`, calling `full` with
+    /// the batch (then emptied) each time it fills up.
     #[inline]
-    fn push(&mut self, px: &MaskPixel, theta: f32, node_x: &[f32], node_theta: &[f32]) {
-        let j = self.used;
-        self.x[j] = px.x;
-        self.weight[j] = px.weight;
-        self.theta_i[j] = px.theta;
-        self.precision[j] = px.precision;
-        self.theta[j] = theta;
-        for k in 0..3 {
-            self.node_x[k][j] = node_x[k];
-            self.node_theta[k][j] = node_theta[k];
+    fn push_row(
+        &mut self,
+        span: std::ops::Range<usize>,
+        row: [f32; 4],
+        mut full: impl FnMut(&Self),
+    ) {
+        let mut start = span.start;
+        loop {
+            let n = (span.end - start).min(ROW_COPY);
+            let j = self.used;
+            // Room: used < BATCH before every write.
+            if start + ROW_COPY <= self.all.len() {
+                for k in 0..ROW_COPY {
+                    self.index[j + k] = (start + k) as u32;
+                }
+            } else {
+                for k in 0..n {
+                    self.index[j + k] = (start + k) as u32;
+                }
+            }
+            let record = F32x4::from_array(row);
+            for to in &mut self.rows[j..j + ROW_COPY] {
+                record.store(to);
+            }
+            self.used = j + n;
+            start += n;
+            if self.used >= BATCH {
+                full(self);
+                self.used = 0;
+            }
+            if start == span.end {
+                break;
+            }
         }
-        self.used = j + 1;
+    }
+
+    /// The pixels j..j + 4 as lanes: column, weight, orientation, precision.
+    #[inline]
+    fn pixels(&self, j: usize) -> [F32x4; 4] {
+        let index = &self.index[j..j + 4];
+        F32x4::transpose(
+            [0, 1, 2, 3].map(|k| F32x4::load_array(self.all[index[k] as usize].as_array())),
+        )
+    }
+
+    /// The row records of pixels j..j + 4 as lanes.
+    #[inline]
+    fn rows(&self, j: usize) -> [F32x4; 4] {
+        let r = &self.rows[j..j + 4];
+        F32x4::transpose([0, 1, 2, 3].map(|k| F32x4::load_array(&r[k])))
     }
 }
 
-/// A pixel whose orientation term alone reaches this adds nothing at any node (every node's
-/// exponent is then beyond the table's range, up to the nodes' tiny orientation changes).
-const SKIP: f32 = RANGE as f32 + 1.0;
 const PI_32: f32 = std::f32::consts::PI;
 const FRAC_PI_2_32: f32 = std::f32::consts::FRAC_PI_2;
 
-/// [`fold`] in f32.
+/// A difference of two orientations in (-pi/2, pi/2] each, folded into (-pi/2, pi/2].
 #[inline]
 fn fold32(d: f32) -> f32 {
     if d > FRAC_PI_2_32 {
         d - PI_32
     } else if d <= -FRAC_PI_2_32 {
         d + PI_32
-    } else {
-        d
-    }
-}
-
-/// A difference of two orientations in (-pi/2, pi/2] each, folded into (-pi/2, pi/2].
-fn fold(d: f64) -> f64 {
-    if d > PI / 2.0 {
-        d - PI
-    } else if d <= -PI / 2.0 {
-        d + PI
     } else {
         d
     }

@@ -207,7 +207,7 @@ fn holds_the_lane_under_tree_and_bridge_shadows() {
 
 /// The first ego-left boundary's rho after 5 frames of `highway-curve` (seed 1, 320x240,
 /// 300 particles, seed 2), as bits; `tests/web.rs` asserts the same value in headless Chromium.
-const CROSS_TARGET_RHO_BITS: u64 = 0x4046_955d_e534_3b1e;
+const CROSS_TARGET_RHO_BITS: u64 = 0x4046_955d_e747_4792;
 
 #[test]
 fn same_result_as_the_browser_build() {
@@ -348,7 +348,8 @@ fn a_hidden_near_field_gives_finite_far_weights() {
 
 #[test]
 fn the_band_sums_match_the_reference_kernels() {
-    // linear_sum and parabolic_sum (table exp, orientation linearised across the nodes) against
+    // linear_sum and parabolic_sum (polynomial exp, f32 lanes, orientation linearised across
+    // the nodes) against
     // the reference forms of kernels.rs summed over the same band pixels, on a real frame,
     // for boundaries on and beside a marking.
     use super::kernels::{
