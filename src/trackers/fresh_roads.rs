@@ -128,3 +128,25 @@ pub(crate) fn after_blackout(id: &str, options: &str, scene_seed: u64, seed: u64
     let valid = out.iter().filter(|e| e.valid).count() as f64 / out.len() as f64;
     (accuracy, valid)
 }
+
+/// `eval-suite`'s score of tracker `id` (tracker seed 1, 320x240, `option` set to `value`,
+/// every other option its default) on each member of the family `scenario` with seeds
+/// `seeds`, over at most `frames` frames of each.
+pub(crate) fn member_scores(
+    id: &str,
+    scenario: &str,
+    seeds: std::ops::RangeInclusive<u64>,
+    frames: u32,
+    (option, value): (&str, serde_json::Value),
+) -> Vec<crate::eval::suite::SeedScore> {
+    use crate::eval::suite::{run_member, score_run};
+    let options = std::collections::BTreeMap::from([(option.to_string(), value)]);
+    seeds
+        .map(|seed| {
+            let member = draw_scenario(scenario, seed).unwrap();
+            let ids = [id.to_string()];
+            let run = run_member(&member, &ids, 320, 240, Some(frames), 1, &options).unwrap();
+            score_run(&run.truth, &run.outputs[0].1).unwrap()
+        })
+        .collect()
+}

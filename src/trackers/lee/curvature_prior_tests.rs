@@ -1,9 +1,7 @@
 //! `curvature_prior_sd` (ours, beyond the paper) against the paper's uniform curvature, on
 //! drawn members of the scenario families (320x240, tracker seed 1).
 
-use crate::eval::suite::{run_member, score_run};
-use crate::synth::draw_scenario;
-use std::collections::BTreeMap;
+use crate::trackers::fresh_roads::member_scores;
 
 /// The curvature RMSE (1/km) of lee-cpf's valid frames on each member (NaN: none valid).
 fn curvature_rmse_per_km(
@@ -12,17 +10,10 @@ fn curvature_rmse_per_km(
     frames: u32,
     prior_sd: f64,
 ) -> Vec<f64> {
-    let mut options = BTreeMap::new();
-    options.insert(
-        "curvature_prior_sd".to_string(),
-        serde_json::json!(prior_sd),
-    );
-    seeds
-        .map(|seed| {
-            let member = draw_scenario(scenario, seed).unwrap();
-            let ids = ["lee-cpf".to_string()];
-            let run = run_member(&member, &ids, 320, 240, Some(frames), 1, &options).unwrap();
-            let score = score_run(&run.truth, &run.outputs[0].1).unwrap();
+    let option = ("curvature_prior_sd", serde_json::json!(prior_sd));
+    member_scores("lee-cpf", scenario, seeds, frames, option)
+        .iter()
+        .map(|score| {
             score
                 .report
                 .params

@@ -1,9 +1,7 @@
 //! `start_pair_share` (ours: the paper does not say how the filter starts) against the
 //! uniform start, on drawn members of the scenario families (320x240, tracker seed 1).
 
-use crate::eval::suite::{run_member, score_run};
-use crate::synth::draw_scenario;
-use std::collections::BTreeMap;
+use crate::trackers::fresh_roads::member_scores;
 
 /// lee-cpf's detection rate (share of valid frames) on each member of `scenario` with seeds
 /// `seeds` over its first `frames` frames, starting with `share` of the particles around the
@@ -14,16 +12,10 @@ fn detection_rates(
     frames: u32,
     share: f64,
 ) -> Vec<f64> {
-    let mut options = BTreeMap::new();
-    options.insert("start_pair_share".to_string(), serde_json::json!(share));
-    seeds
-        .map(|seed| {
-            let member = draw_scenario(scenario, seed).unwrap();
-            let ids = ["lee-cpf".to_string()];
-            let run = run_member(&member, &ids, 320, 240, Some(frames), 1, &options).unwrap();
-            let score = score_run(&run.truth, &run.outputs[0].1).unwrap();
-            score.report.params.detection_rate.unwrap_or(0.0)
-        })
+    let option = ("start_pair_share", serde_json::json!(share));
+    member_scores("lee-cpf", scenario, seeds, frames, option)
+        .iter()
+        .map(|score| score.report.params.detection_rate.unwrap_or(0.0))
         .collect()
 }
 
