@@ -3,7 +3,7 @@
 use super::frames;
 use lanepf::camera::CameraFile;
 use lanepf::image::{read_rgba, RgbaFrame};
-use lanepf::trackers::{self, Preset, TrackerConfig, TrackerOptions};
+use lanepf::trackers::{self, Preset, TrackerConfig};
 use lanepf::{Error, Result};
 use std::io::Write;
 use std::path::PathBuf;
@@ -109,9 +109,7 @@ pub fn run(args: Args) -> Result<()> {
         .entry("seed")
         .or_insert(args.seed.unwrap_or(1).into());
     if preset != Preset::Paper {
-        let base = serde_json::to_value(TrackerOptions::preset(&args.tracker, preset)?)
-            .map_err(|e| Error::Config(e.to_string()))?;
-        if let serde_json::Value::Object(base) = base {
+        if let serde_json::Value::Object(base) = trackers::preset_options(&args.tracker, preset)? {
             for (key, value) in base {
                 options.entry(key).or_insert(value);
             }

@@ -138,6 +138,14 @@ pub struct LeeConfig {
     pub valid_fraction: f64,
 }
 
+impl LeeConfig {
+    /// Whether an option needs the line detector on every frame (`relock_share`,
+    /// `adjacent_lanes`), not only on first frames (`start_pair_share`).
+    pub fn detector_every_frame(&self) -> bool {
+        self.relock_share > 0.0 || self.adjacent_lanes
+    }
+}
+
 impl Default for LeeConfig {
     fn default() -> Self {
         Self {

@@ -356,7 +356,7 @@ impl LeeTracker {
             None
         };
         let smoother = Smoother::new(lee.kalman_process_sd, lee.kalman_measurement_sd);
-        let detector = if lee.relock_share > 0.0 || lee.adjacent_lanes {
+        let detector = if lee.detector_every_frame() {
             Some(RelockDetector::new(&camera)?)
         } else if lee.start_pair_share > 0.0 {
             // The default start only: where the detector cannot run (frames under 32x16),
@@ -529,7 +529,7 @@ impl LeeTracker {
         self.candidates
             .detect(&self.gray, &self.camera, &mut self.map)?;
         self.far.detect(&self.gray)?;
-        let every_frame = self.config.relock_share > 0.0 || self.config.adjacent_lanes;
+        let every_frame = self.config.detector_every_frame();
         if let Some(d) = self.detector.as_mut() {
             if every_frame || self.stepper.next_is_first() {
                 d.feed(&self.camera, rgba, width, height)?;
