@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 16] = [
+const TRACKERS: [fn() -> TrackerOptions; 17] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -55,6 +55,7 @@ const TRACKERS: [fn() -> TrackerOptions; 16] = [
             ..AdachiConfig::default()
         })
     },
+    || real_roads("adachi-mmpf"),
     || TrackerOptions::DanescuMono(DanescuConfig::default()),
     || {
         TrackerOptions::DanescuMono(DanescuConfig {

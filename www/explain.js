@@ -70,6 +70,7 @@ export const TRACKERS = {
       { path: 'start_pair_share', label: 'start: share drawn around the vote histogram’s lane pairs (ours; 0: uniform)', min: 0, max: 1, step: 0.05 },
       RELOCK,
       { path: 'vote_pair_share', label: 'vote-pair share: particles redrawn each frame around those pairs (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 },
+      { path: 'paired_edges', label: 'paired edges: only a bright stripe’s two edges vote, not a seam, kerb or shadow (ours, beyond the paper)', kind: /** @type {const} */ ('bool') },
     ],
   },
   'danescu-stereo': {

@@ -4,7 +4,7 @@
 //!
 //! | tracker | `real-roads` |
 //! |---|---|
-//! | adachi-mmpf | `relock_share` 0.05 |
+//! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold` |
 //! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03 |
 //! | danescu-stereo | `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03 |
 //! | lee-cpf | `relock_share` 0.05, `curvature_prior_sd` 0.004, `adjacent_lanes` |
@@ -59,6 +59,8 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
     match defaults {
         TrackerOptions::AdachiMmpf(c) => TrackerOptions::AdachiMmpf(AdachiConfig {
             relock_share: 0.05,
+            paired_edges: true,
+            width_scaled_threshold: true,
             ..c
         }),
         TrackerOptions::DanescuMono(c) => TrackerOptions::DanescuMono(DanescuConfig {
@@ -129,6 +131,8 @@ mod tests {
             "adjacent_lanes",
             "start_iterations",
             "valid_distance_m",
+            "paired_edges",
+            "width_scaled_threshold",
         ];
         let camera = default_camera(320, 240).unwrap().to_file();
         for id in TRACKER_IDS {

@@ -91,7 +91,26 @@ pub struct AdachiConfig {
     /// 0: off, the paper's filter). It also finds a false lane where that is the likelihood's
     /// maximum (a guard rail's foot beside a line: RESULTS, *Accuracy on real data*).
     pub vote_pair_share: f64,
+    /// Only marking edges vote: an edge point votes when the opposite edge of a bright stripe
+    /// lies beside it, at most [`PAIRED_EDGE_MAX_M`] away on the road, on the marking's side
+    /// (ours, beyond the paper; false: every edge point votes, the paper's Sec. 3.2). A seam
+    /// between asphalt and concrete, a barrier's foot or a shadow's edge is one edge with no
+    /// partner and does not vote; a dark stripe (crack sealant) has its edges in the wrong order.
+    pub paired_edges: bool,
+    /// `edge_threshold` holds up to [`THRESHOLD_WIDTH_PX`] pixels of image width; a wider image
+    /// scales it by 640 / width (ours, beyond the paper; false: grey levels per pixel at any
+    /// size). A lens and a codec blur an edge over a share of the image, so at twice the width
+    /// the same edge's gradient per pixel is about half: the markings of 1280x720 dash-cam
+    /// video fall under the threshold that suits 640x480.
+    pub width_scaled_threshold: bool,
 }
+
+/// The image width [`AdachiConfig::width_scaled_threshold`] takes `edge_threshold` for, pixels.
+pub const THRESHOLD_WIDTH_PX: f64 = 640.0;
+
+/// The widest bright stripe [`AdachiConfig::paired_edges`] takes for a marking, metres (a
+/// double line of two 0.15 m lines 0.15 m apart is 0.45 m; a wider stripe is road surface).
+pub const PAIRED_EDGE_MAX_M: f64 = 0.3;
 
 impl Default for AdachiConfig {
     fn default() -> Self {
@@ -123,6 +142,8 @@ impl Default for AdachiConfig {
             relock_share: 0.0,
             start_pair_share: 0.5,
             vote_pair_share: 0.0,
+            paired_edges: false,
+            width_scaled_threshold: false,
         }
     }
 }

@@ -11,7 +11,7 @@
 //! (x ahead, rho), and a frame's edge points are voted where [`road_shape`](super::road_shape)
 //! straightens them.
 
-use super::config::{AdachiConfig, LaneShape, Polarity};
+use super::config::{AdachiConfig, LaneShape, Polarity, PAIRED_EDGE_MAX_M, THRESHOLD_WIDTH_PX};
 use super::road_shape::{Shape, ShapeSearch};
 use crate::camera::Camera;
 use crate::error::Result;
@@ -39,6 +39,10 @@ pub struct Votes {
     /// `lane_shape: "curved"`: the road point (x ahead, rho) of each region pixel, the frame's
     /// edge points, the search, the followed shape (None before the first frame) and its gain.
     curved: Option<Curved>,
+    /// `paired_edges`: the signed Sobel response of the row and, per region row, how many
+    /// pixels [`PAIRED_EDGE_MAX_M`] spans there (empty when off).
+    gx: Vec<f32>,
+    pair_px: Vec<usize>,
 }
 
 #[derive(Debug, Clone)]
@@ -116,6 +120,11 @@ impl Votes {
         if total > 0.0 {
             noise.iter_mut().for_each(|n| *n /= total);
         }
+        let pair_px = if config.paired_edges {
+            rows.clone().map(|v| stripe_px(camera, v)).collect()
+        } else {
+            Vec::new()
+        };
         Ok(Self {
             width: w,
             rows: rows.clone(),
@@ -128,8 +137,14 @@ impl Votes {
             bin_m: config.bin_m,
             rho_min,
             polarity: config.polarity,
-            threshold: config.edge_threshold as f32,
+            threshold: if config.width_scaled_threshold {
+                (config.edge_threshold * (THRESHOLD_WIDTH_PX / w.max(1) as f64).min(1.0)) as f32
+            } else {
+                config.edge_threshold as f32
+            },
             curved,
+            gx: vec![0.0; if config.paired_edges { w } else { 0 }],
+            pair_px,
         })
     }
 
@@ -226,11 +241,24 @@ impl Votes {
             }
             self.response[0] = 0.0;
             self.response[w - 1] = 0.0;
+            let paired = !self.pair_px.is_empty();
+            if paired {
+                for u in 1..w - 1 {
+                    self.gx[u] = (g(up, u + 1) + 2.0 * g(k, u + 1) + g(down, u + 1))
+                        - (g(up, u - 1) + 2.0 * g(k, u - 1) + g(down, u - 1));
+                }
+                self.gx[0] = 0.0;
+                self.gx[w - 1] = 0.0;
+            }
             let row_bins = &self.bins[(v - self.rows.start) * w..(v - self.rows.start + 1) * w];
             for (u, &b) in row_bins.iter().enumerate().take(w - 1).skip(1) {
                 let r = self.response[u];
-                let peak =
+                let mut peak =
                     r > self.threshold && r >= self.response[u - 1] && r > self.response[u + 1];
+                if peak && paired {
+                    let reach = self.pair_px[v - self.rows.start];
+                    peak = has_partner(&self.gx, u, reach, self.threshold);
+                }
                 if peak && b != u32::MAX {
                     match &mut self.curved {
                         None => {
@@ -246,6 +274,38 @@ impl Votes {
             None => n,
             Some(c) => vote_straightened(c, &mut self.histogram),
         }
+    }
+}
+
+/// How many pixels [`PAIRED_EDGE_MAX_M`] spans across the road at image row `v`, measured at
+/// the middle column (at least 2: the Sobel responses of a line one pixel wide lie 2 apart).
+fn stripe_px(camera: &Camera, v: usize) -> usize {
+    let u = camera.width() as f64 / 2.0;
+    let (Ok([_, y0]), Ok([_, y1])) = (
+        camera.pixel_to_road(u, v as f64),
+        camera.pixel_to_road(u + 1.0, v as f64),
+    ) else {
+        return 2;
+    };
+    let metres_per_px = (y1 - y0).abs();
+    if metres_per_px > 0.0 && metres_per_px.is_finite() {
+        ((PAIRED_EDGE_MAX_M / metres_per_px).ceil() as usize).clamp(2, camera.width())
+    } else {
+        2
+    }
+}
+
+/// Whether the edge at `u` (signed response `gx`) is one side of a bright stripe: a rising edge
+/// (dark to light going right) needs a falling peak within `reach` pixels to its right, a
+/// falling one a rising peak within `reach` to its left, each above `threshold`.
+fn has_partner(gx: &[f32], u: usize, reach: usize, threshold: f32) -> bool {
+    let falling = |i: usize| -gx[i] > threshold && -gx[i] >= -gx[i - 1] && -gx[i] > -gx[i + 1];
+    let rising = |i: usize| gx[i] > threshold && gx[i] >= gx[i - 1] && gx[i] > gx[i + 1];
+    let last = gx.len() - 2;
+    if gx[u] > 0.0 {
+        (u + 1..=(u + reach).min(last)).any(falling)
+    } else {
+        (u.saturating_sub(reach).max(1)..u).any(rising)
     }
 }
 
@@ -359,5 +419,95 @@ mod tests {
             (both_at_left, both_at_right, n_both),
             (n_left, n_right, n_left + n_right)
         );
+    }
+
+    /// A grey road (90) painted by `paint(y)` (Some grey level for the road point's lateral y).
+    fn painted_frame(cam: &Camera, paint: impl Fn(f64) -> Option<u8>) -> Vec<u8> {
+        let (w, h) = (cam.width(), cam.height());
+        let mut rgba = vec![90u8; w * h * 4];
+        for v in 0..h {
+            for u in 0..w {
+                let at = cam.pixel_to_road(u as f64, v as f64).ok();
+                if let Some(grey) = at.and_then(|p| paint(p[1])) {
+                    rgba[(v * w + u) * 4..(v * w + u) * 4 + 3].fill(grey);
+                }
+            }
+        }
+        rgba
+    }
+
+    #[test]
+    fn a_width_scaled_threshold_halves_at_twice_640_pixels_and_holds_below() {
+        // A faint marking: 15 grey levels over the road, a Sobel response of 60, under the
+        // default threshold of 80 and over its half.
+        let faint = |y: f64| (-1.65..=-1.5).contains(&y).then_some(105u8);
+        let count = |width, height, width_scaled_threshold| {
+            let cam = default_camera(width, height).unwrap();
+            let config = AdachiConfig {
+                width_scaled_threshold,
+                ..AdachiConfig::default()
+            };
+            let mut votes = Votes::new(&cam, &config).unwrap();
+            votes.vote(&painted_frame(&cam, faint))
+        };
+        assert_eq!(count(1280, 720, false), 0);
+        let scaled = count(1280, 720, true);
+        assert!(
+            scaled > 50,
+            "{scaled} votes at 1280x720 with the scaled threshold"
+        );
+        assert_eq!((count(320, 240, false), count(320, 240, true)), (0, 0));
+    }
+
+    #[test]
+    fn with_paired_edges_only_a_bright_stripe_votes_not_a_seam_or_a_dark_stripe() {
+        let cam = default_camera(320, 240).unwrap();
+        // Across the road (rho = -y, to the right): light road (140) up to a dark strip of crack
+        // sealant (40) at rho -2.2 .. -2.0, asphalt (90) to the seam at -0.5, lighter concrete
+        // (140) beyond it, and on it a white marking (230) at 1.5 .. 1.65 m. Rising edges
+        // (dark to light going right): the strip's right side, the seam and the marking.
+        let rgba = painted_frame(&cam, |y| {
+            let rho = -y;
+            if (1.5..=1.65).contains(&rho) {
+                Some(230)
+            } else if (-2.2..=-2.0).contains(&rho) {
+                Some(40)
+            } else if !(-2.2..-0.5).contains(&rho) {
+                Some(140)
+            } else {
+                None
+            }
+        });
+        let with = |paired_edges| {
+            let config = AdachiConfig {
+                paired_edges,
+                ..AdachiConfig::default()
+            };
+            let mut votes = Votes::new(&cam, &config).unwrap();
+            let n = votes.vote(&rgba) as f64;
+            (
+                n,
+                between(&votes, 1.35, 1.575),
+                between(&votes, -0.7, -0.3),
+                between(&votes, -2.2, -1.8),
+            )
+        };
+        let (n, marking, seam, sealant) = with(false);
+        // Every rising edge votes: the marking's, the seam's and the sealant strip's right side.
+        assert!(
+            marking > 20.0 && seam > 20.0 && sealant > 20.0,
+            "{n}: {marking} {seam} {sealant}"
+        );
+        let (n_paired, marking_paired, seam_paired, sealant_paired) = with(true);
+        assert_eq!(
+            marking_paired, marking,
+            "the marking's left edge has its right edge beside it"
+        );
+        assert_eq!(
+            (seam_paired, sealant_paired),
+            (0.0, 0.0),
+            "single edges and dark stripes"
+        );
+        assert_eq!(n_paired, marking_paired, "nothing else votes");
     }
 }

@@ -595,6 +595,26 @@ export interface AdachiOptions {
    * @defaultValue `0`
    */
   vote_pair_share?: number;
+  /**
+   * Only marking edges vote: an edge point votes when the opposite edge of a bright stripe
+   * lies beside it, at most `PAIRED_EDGE_MAX_M` away on the road, on the marking's side
+   * (ours, beyond the paper; false: every edge point votes, the paper's Sec. 3.2). A seam
+   * between asphalt and concrete, a barrier's foot or a shadow's edge is one edge with no
+   * partner and does not vote; a dark stripe (crack sealant) has its edges in the wrong order.
+   *
+   * @defaultValue `false`
+   */
+  paired_edges?: boolean;
+  /**
+   * `edge_threshold` holds up to `THRESHOLD_WIDTH_PX` pixels of image width; a wider image
+   * scales it by 640 / width (ours, beyond the paper; false: grey levels per pixel at any
+   * size). A lens and a codec blur an edge over a share of the image, so at twice the width
+   * the same edge's gradient per pixel is about half: the markings of 1280x720 dash-cam
+   * video fall under the threshold that suits 640x480.
+   *
+   * @defaultValue `false`
+   */
+  width_scaled_threshold?: boolean;
 }
 
 /**
