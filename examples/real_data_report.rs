@@ -25,7 +25,7 @@ use lanepf::camera::CameraFile;
 use lanepf::eval::{evaluate_with, EvalOptions, Format, Metrics};
 use lanepf::image::{read_rgba, write_rgba_png, RgbaFrame};
 use lanepf::lane::{LaneEstimate, Role};
-use lanepf::trackers::adachi::config::{AdachiConfig, LaneShape};
+use lanepf::trackers::adachi::config::{AdachiConfig, EdgeResponse, LaneShape};
 use lanepf::trackers::danescu::config::DanescuConfig;
 use lanepf::trackers::lee::config::LeeConfig;
 use lanepf::trackers::liu::config::LiuConfig;
@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 17] = [
+const TRACKERS: [fn() -> TrackerOptions; 18] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -56,6 +56,12 @@ const TRACKERS: [fn() -> TrackerOptions; 17] = [
         })
     },
     || real_roads("adachi-mmpf"),
+    || {
+        TrackerOptions::AdachiMmpf(AdachiConfig {
+            edge_response: EdgeResponse::Gradient,
+            ..AdachiConfig::default()
+        })
+    },
     || TrackerOptions::DanescuMono(DanescuConfig::default()),
     || {
         TrackerOptions::DanescuMono(DanescuConfig {

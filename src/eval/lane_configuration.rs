@@ -7,7 +7,11 @@
 //! a valid estimate, accuracy = frames whose configuration equals the truth's / those frames.
 //!
 //! A tracker that never reports an adjacent boundary does not model the configuration: the
-//! count says so ([`LaneConfigurationCounts::reports_neighbours`]) and tables show "n/a".
+//! count says so ([`LaneConfigurationCounts::reports_neighbours`]) and tables show "n/a". An
+//! output that states its configuration model (`adachi.r`, Adachi's model number, the key the
+//! truth writes too) models it on every frame, even one of model 1 (no neighbour, so no
+//! adjacent boundary): until 2026-11-26 an adachi-mmpf run that said model 1 on every frame
+//! (`night`, where the truth has a neighbour on every frame) was shown as "n/a" instead of 0 %.
 
 use crate::lane::{LaneEstimate, Role};
 use serde::Serialize;
@@ -37,6 +41,17 @@ pub fn configuration(e: &LaneEstimate) -> (bool, bool) {
     (has(Role::LeftAdjacent), has(Role::RightAdjacent))
 }
 
+/// Whether `e` says which neighbours exist: it reports an adjacent boundary, or states its
+/// configuration model (`adachi.r`; model 1 has no adjacent boundary to report).
+pub fn models_configuration(e: &LaneEstimate) -> bool {
+    let (left, right) = configuration(e);
+    left || right || e.state.contains_key(CONFIGURATION_MODEL_KEY)
+}
+
+/// The state key of Adachi's configuration model r (1: ego lane only, 2: a lane on the left,
+/// 3: on the right, 4: both), in the truth and in adachi-mmpf's output.
+pub const CONFIGURATION_MODEL_KEY: &str = "adachi.r";
+
 /// The counts of one sequence; `preds[i]` belongs to `gt[i]`.
 pub fn lane_configuration_counts(
     gt: &[LaneEstimate],
@@ -50,7 +65,7 @@ pub fn lane_configuration_counts(
         let predicted = configuration(p);
         c.frames += 1;
         c.correct += usize::from(predicted == configuration(g));
-        c.reports_neighbours |= predicted.0 || predicted.1;
+        c.reports_neighbours |= models_configuration(p);
     }
     c
 }
@@ -108,5 +123,24 @@ mod tests {
         let ego_only = [with(&[EgoLeft, EgoRight], true)];
         let c = lane_configuration_counts(&gt[..1], &[Some(&ego_only[0])]);
         assert_eq!((c.frames, c.accuracy()), (1, None));
+    }
+
+    /// An output that states Adachi's model r models the configuration even when it says
+    /// model 1 (no neighbour) on every frame: scored, not "n/a" (adachi-mmpf at `night`).
+    #[test]
+    fn model_one_on_every_frame_is_scored() {
+        use Role::*;
+        let gt = vec![
+            with(&[EgoLeft, EgoRight, LeftAdjacent], true),
+            with(&[EgoLeft, EgoRight], true),
+        ];
+        let mut model_one = with(&[EgoLeft, EgoRight], true);
+        model_one.state.insert(CONFIGURATION_MODEL_KEY.into(), 1.0);
+        let c = lane_configuration_counts(&gt, &[Some(&model_one), Some(&model_one)]);
+        assert_eq!((c.frames, c.correct), (2, 1));
+        assert_eq!(c.accuracy(), Some(0.5));
+        // Wrong on every frame: 0 %, not "n/a".
+        let c = lane_configuration_counts(&gt[..1], &[Some(&model_one)]);
+        assert_eq!(c.accuracy(), Some(0.0));
     }
 }

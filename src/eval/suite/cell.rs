@@ -90,7 +90,8 @@ pub struct CellRow {
     pub width_mae_m: Option<f64>,
     /// Correct boundaries / ground-truth boundaries (the `synthetic` boundary accuracy).
     pub point_accuracy: Option<f64>,
-    /// Lane-configuration accuracy (`None`: no valid frame, or no neighbour ever reported).
+    /// Lane-configuration accuracy (`None`: no valid frame, or the output never models the
+    /// configuration: [`crate::eval::lane_configuration::models_configuration`]).
     pub lane_configuration_accuracy: Option<f64>,
     /// Blackouts scored.
     pub blackouts: usize,

@@ -15,6 +15,21 @@ pub enum Polarity {
     Both,
 }
 
+/// What an edge point's strength is (Sec. 3.2: "the edge image"; the paper names no operator).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EdgeResponse {
+    /// The horizontal Sobel response g_x of the polarity (our reading since the first
+    /// increment). A boundary at lateral distance Y seen from a camera h metres high crosses
+    /// the image at an angle whose tangent is h / |Y|, and g_x falls with it: the neighbours'
+    /// outer lines (|Y| about 1.5 w, 5-6 m) give a fifth to a third of an ego line's g_x.
+    Horizontal,
+    /// Ours: the Sobel gradient magnitude sqrt(g_x^2 + g_y^2), with the polarity still from
+    /// the sign of g_x (a left edge is dark to light going right). The same threshold then
+    /// passes a line at any angle (see [`super::votes`]).
+    Gradient,
+}
+
 /// The lane boundaries' shape along the road.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -40,8 +55,12 @@ pub struct AdachiConfig {
     pub bin_m: f64,
     /// Edge polarity.
     pub polarity: Polarity,
-    /// Horizontal Sobel response an edge point needs (grey levels x 4).
+    /// Sobel response an edge point needs (grey levels x 4): g_x, or the gradient magnitude
+    /// with `edge_response: "gradient"`.
     pub edge_threshold: f64,
+    /// `horizontal` (g_x of the polarity, the default) or `gradient` (ours: the gradient
+    /// magnitude, the polarity from the sign of g_x), see [`EdgeResponse`].
+    pub edge_response: EdgeResponse,
     /// Marking width assumed by the template H_bar, metres.
     pub marking_width_m: f64,
     /// Spread of edge positions around the template's edge, metres (added to the bin width in
@@ -121,6 +140,7 @@ impl Default for AdachiConfig {
             bin_m: 0.05,
             polarity: Polarity::LeftEdge,
             edge_threshold: 80.0,
+            edge_response: EdgeResponse::Horizontal,
             marking_width_m: 0.15,
             edge_sigma_m: 0.1,
             start_iterations: 20,

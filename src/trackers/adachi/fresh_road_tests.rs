@@ -28,8 +28,9 @@ fn run_member(name: &str, seed: u64, frames: u32) -> Vec<(LaneEstimate, AdachiEs
 /// model r (which neighbouring lanes exist) right in more than 95 % of the frames on at least 2
 /// of the 4. Not on seed 1 (2 lanes of 4.08 m, the car in the left one, a camera 1.18 m high
 /// with a 76 deg field of view: model 1, no neighbour, instead of 3 on every frame; the right
-/// neighbour's outer edge, 6.1 m out, is out of the image nearer than 7.6 m, in the 6-22 m
-/// voting region; not diagnosed further) nor seed 3 (4 lanes, the car in the leftmost, a
+/// neighbour's solid outer line, 6.1 m out, crosses the image nearly flat from 1.18 m high and
+/// its horizontal Sobel response stays under the threshold: `edge_response: "gradient"`
+/// (ours) finds it, see `edge_response_tests`) nor seed 3 (4 lanes, the car in the leftmost, a
 /// double yellow left edge: model 1 on 33 of 60 frames), RESULTS' known failures on fresh
 /// roads.
 #[test]

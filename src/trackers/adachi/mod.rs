@@ -41,6 +41,8 @@
 //! that a cloud locked on a false mode or lost after a blackout finds the lane again.
 
 pub mod config;
+#[cfg(test)]
+mod edge_response_tests;
 pub mod grid;
 #[cfg(test)]
 mod lane_shape_tests;

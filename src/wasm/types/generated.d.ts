@@ -458,12 +458,23 @@ export interface AdachiOptions {
    */
   polarity?: 'left-edge' | 'right-edge' | 'both';
   /**
-   * Horizontal Sobel response an edge point needs (grey levels x 4).
+   * Sobel response an edge point needs (grey levels x 4): g_x, or the gradient magnitude
+   * with `edge_response: "gradient"`.
    *
    * Range: 0 to 2000.
    * @defaultValue `80`
    */
   edge_threshold?: number;
+  /**
+   * `horizontal` (g_x of the polarity, the default) or `gradient` (ours: the gradient
+   * magnitude, the polarity from the sign of g_x), see `EdgeResponse`.
+   *
+   * - `'horizontal'`: The horizontal Sobel response g_x of the polarity (our reading since the first increment). A boundary at lateral distance Y seen from a camera h metres high crosses the image at an angle whose tangent is h / |Y|, and g_x falls with it: the neighbours' outer lines (|Y| about 1.5 w, 5-6 m) give a fifth to a third of an ego line's g_x.
+   * - `'gradient'`: Ours: the Sobel gradient magnitude sqrt(g_x^2 + g_y^2), with the polarity still from the sign of g_x (a left edge is dark to light going right). The same threshold then passes a line at any angle (see `votes`).
+   *
+   * @defaultValue `'horizontal'`
+   */
+  edge_response?: 'horizontal' | 'gradient';
   /**
    * Marking width assumed by the template H_bar, metres.
    *

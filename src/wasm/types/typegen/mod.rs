@@ -161,6 +161,7 @@ fn specs() -> Vec<Spec> {
             "DisparityConfig"
         ),
         inline!("Polarity", "src/trackers/adachi/config.rs"),
+        inline!("EdgeResponse", "src/trackers/adachi/config.rs"),
         inline!("LaneShape", "src/trackers/adachi/config.rs"),
         options!(
             AdachiConfig,
