@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 19] = [
+const TRACKERS: [fn() -> TrackerOptions; 20] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -62,6 +62,15 @@ const TRACKERS: [fn() -> TrackerOptions; 19] = [
         };
         TrackerOptions::AdachiMmpf(AdachiConfig {
             edge_response: EdgeResponse::Gradient,
+            ..c
+        })
+    },
+    || {
+        let TrackerOptions::AdachiMmpf(c) = real_roads("adachi-mmpf") else {
+            unreachable!("adachi-mmpf's preset holds adachi-mmpf's options")
+        };
+        TrackerOptions::AdachiMmpf(AdachiConfig {
+            vote_pair_share: 0.05,
             ..c
         })
     },
