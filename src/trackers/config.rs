@@ -105,9 +105,7 @@ pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
         .iter()
         .map(|(k, v)| (k.clone(), v.clone()))
         .collect();
-    serde_path_to_error::deserialize(serde_json::Value::Object(map)).map_err(|e| {
-        let path = e.path().to_string();
-        let inner = e.into_inner();
+    crate::keypath::deserialize(&serde_json::Value::Object(map)).map_err(|(path, inner)| {
         if path == "." {
             Error::Config(format!("{id} options: {inner}"))
         } else {
