@@ -101,10 +101,11 @@ pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
     id: &str,
     options: &BTreeMap<String, serde_json::Value>,
 ) -> Result<T> {
-    let map: serde_json::Map<String, serde_json::Value> = options
-        .iter()
-        .map(|(k, v)| (k.clone(), v.clone()))
-        .collect();
+    // Inserted, not collected (which sorts the pairs first: one more sort in the wasm).
+    let mut map = serde_json::Map::new();
+    for (k, v) in options {
+        map.insert(k.clone(), v.clone());
+    }
     crate::keypath::deserialize(&serde_json::Value::Object(map)).map_err(|(path, inner)| {
         if path == "." {
             Error::Config(format!("{id} options: {inner}"))
