@@ -35,6 +35,7 @@ pub mod error;
 pub mod eval;
 pub mod filter;
 pub mod image;
+mod keypath;
 pub mod lane;
 pub mod math;
 pub mod synth;

@@ -136,7 +136,7 @@ impl Scene {
             lane
         };
         let liu = liu_truth(&boundaries);
-        let state = [
+        let pairs = [
             ("t", pose.t),
             ("speed_mps", pose.speed),
             ("yaw_rate", pose.yaw_rate),
@@ -169,8 +169,14 @@ impl Scene {
         ]
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
-        .chain(liu)
-        .collect();
+        .chain(liu);
+        // Inserted, not collected: `collect` into a map sorts its pairs first, one more
+        // instance of the stable sort in the wasm (issue 21 part 5); the last of a repeated key
+        // wins either way.
+        let mut state = std::collections::BTreeMap::new();
+        for (k, v) in pairs {
+            state.insert(k, v);
+        }
         LaneEstimate {
             frame: format!("{frame:06}.png"),
             valid: true,

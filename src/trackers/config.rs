@@ -101,13 +101,12 @@ pub(crate) fn parse_options<T: serde::de::DeserializeOwned>(
     id: &str,
     options: &BTreeMap<String, serde_json::Value>,
 ) -> Result<T> {
-    let map: serde_json::Map<String, serde_json::Value> = options
-        .iter()
-        .map(|(k, v)| (k.clone(), v.clone()))
-        .collect();
-    serde_path_to_error::deserialize(serde_json::Value::Object(map)).map_err(|e| {
-        let path = e.path().to_string();
-        let inner = e.into_inner();
+    // Inserted, not collected (which sorts the pairs first: one more sort in the wasm).
+    let mut map = serde_json::Map::new();
+    for (k, v) in options {
+        map.insert(k.clone(), v.clone());
+    }
+    crate::keypath::deserialize(&serde_json::Value::Object(map)).map_err(|(path, inner)| {
         if path == "." {
             Error::Config(format!("{id} options: {inner}"))
         } else {

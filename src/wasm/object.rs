@@ -98,15 +98,14 @@ pub fn deserialize<T: DeserializeOwned>(
     path: &str,
     kind: Kind,
 ) -> Result<T, Thrown> {
-    serde_path_to_error::deserialize(value).map_err(|e| {
-        let inner = e.path().to_string();
+    crate::keypath::deserialize(&value).map_err(|(inner, e)| {
         let at = match (path, inner.as_str()) {
             ("", ".") => String::new(),
             (p, ".") => format!("{p}: "),
             ("", i) => format!("{i}: "),
             (p, i) => format!("{p}.{i}: "),
         };
-        Thrown::new(kind, format!("invalid {what}: {at}{}", e.into_inner()))
+        Thrown::new(kind, format!("invalid {what}: {at}{e}"))
     })
 }
 

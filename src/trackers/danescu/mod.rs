@@ -481,11 +481,12 @@ impl DanescuTracker {
             let adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
             boundaries.extend(adjacent);
         }
-        let mut state: std::collections::BTreeMap<String, f64> = Lane3d::NAMES
-            .iter()
-            .zip(lane.to_array())
-            .map(|(n, v)| (format!("danescu.{n}"), v))
-            .collect();
+        // Inserted, not collected: `collect` into a map sorts its pairs first, one more
+        // instance of the stable sort in the wasm for eleven keys (issue 21 part 5).
+        let mut state = std::collections::BTreeMap::new();
+        for (n, v) in Lane3d::NAMES.iter().zip(lane.to_array()) {
+            state.insert(format!("danescu.{n}"), v);
+        }
         for (k, v) in [
             ("danescu.cluster_share", e.cluster_share),
             ("danescu.clusters", e.clusters as f64),
