@@ -239,9 +239,15 @@ impl Votes {
             let up = k.saturating_sub(1);
             let down = (k + 1).min(bottom - top - 1);
             let g = |row: usize, u: usize| self.gray[row * w + u];
+            let paired = !self.pair_px.is_empty();
             for u in 1..w - 1 {
                 let gx = (g(up, u + 1) + 2.0 * g(k, u + 1) + g(down, u + 1))
                     - (g(up, u - 1) + 2.0 * g(k, u - 1) + g(down, u - 1));
+                let gradient = || {
+                    let gy = (g(down, u - 1) + 2.0 * g(down, u) + g(down, u + 1))
+                        - (g(up, u - 1) + 2.0 * g(up, u) + g(up, u + 1));
+                    (gx * gx + gy * gy).sqrt()
+                };
                 // g_x signed by the polarity: positive where the edge has the polarity's sign.
                 let signed = match self.polarity {
                     Polarity::LeftEdge => gx,
@@ -250,32 +256,21 @@ impl Votes {
                 };
                 self.response[u] = match self.edge_response {
                     EdgeResponse::Horizontal => signed,
-                    EdgeResponse::Gradient if signed > 0.0 => {
-                        let gy = (g(down, u - 1) + 2.0 * g(down, u) + g(down, u + 1))
-                            - (g(up, u - 1) + 2.0 * g(up, u) + g(up, u + 1));
-                        (gx * gx + gy * gy).sqrt()
-                    }
+                    EdgeResponse::Gradient if signed > 0.0 => gradient(),
                     EdgeResponse::Gradient => 0.0,
                 };
+                // `paired_edges`: the response of either sign, g_x or the gradient's magnitude
+                // signed by g_x, where a partner edge is looked for.
+                if paired {
+                    self.gx[u] = match self.edge_response {
+                        EdgeResponse::Horizontal => gx,
+                        EdgeResponse::Gradient => gradient().copysign(gx),
+                    };
+                }
             }
             self.response[0] = 0.0;
             self.response[w - 1] = 0.0;
-            let paired = !self.pair_px.is_empty();
             if paired {
-                // The response of either sign: g_x, or with `edge_response: "gradient"` the
-                // gradient's magnitude signed by g_x.
-                for u in 1..w - 1 {
-                    let gx = (g(up, u + 1) + 2.0 * g(k, u + 1) + g(down, u + 1))
-                        - (g(up, u - 1) + 2.0 * g(k, u - 1) + g(down, u - 1));
-                    self.gx[u] = match self.edge_response {
-                        EdgeResponse::Horizontal => gx,
-                        EdgeResponse::Gradient => {
-                            let gy = (g(down, u - 1) + 2.0 * g(down, u) + g(down, u + 1))
-                                - (g(up, u - 1) + 2.0 * g(up, u) + g(up, u + 1));
-                            (gx * gx + gy * gy).sqrt().copysign(gx)
-                        }
-                    };
-                }
                 self.gx[0] = 0.0;
                 self.gx[w - 1] = 0.0;
             }
