@@ -275,8 +275,9 @@ impl PpfModel {
     pub fn linear_sum_count(&self, b: &LinearParabolic, cues: &Descriptors) -> (f64, usize) {
         let (s, c) = (math::sin(b.theta), math::cos(b.theta));
         let (a, slope) = (b.rho / c, -s / c);
-        // As `linear_count`'s b.a(), b.b().
+        // As `linear_count`'s b.a(), b.b(); the same line when the slopes have the same bits.
         let slope_n = b.b();
+        let same_line = slope_n == slope;
         let mut count = 0;
         // Eq. 5's variance of the distance along the normal.
         let var = self.var_x * c * c + self.var_y * s * s;
@@ -290,17 +291,23 @@ impl PpfModel {
         for y in self.near_rows() {
             let xc = a + slope * y as f64;
             let centre = band_centre(xc);
-            let centre_n = band_centre(a + slope_n * y as f64);
-            if centre_n != centre {
-                if let Some(cols) = centre_n.and_then(|x| self.band_around(x)) {
-                    count += cues.span(y, *cols.start(), *cols.end()).len();
+            // Whether the count's line has the band centre of the sum's in this row (checked
+            // without a second conversion; `false` only costs the count its own band).
+            let same_band = same_line || {
+                let xn = a + slope_n * y as f64;
+                let same = centre.is_some_and(|c| rounds_to(xn, c));
+                if !same {
+                    if let Some(cols) = band_centre(xn).and_then(|x| self.band_around(x)) {
+                        count += cues.span(y, *cols.start(), *cols.end()).len();
+                    }
                 }
-            }
+                same
+            };
             let Some(cols) = centre.and_then(|x| self.band_around(x)) else {
                 continue;
             };
             let span = cues.span(y, *cols.start(), *cols.end());
-            if centre_n == centre {
+            if same_band {
                 count += span.len();
             }
             if !self.kernel {
@@ -508,6 +515,23 @@ fn band_centre(x: f64) -> Option<i64> {
     } else {
         (x - 0.5) as i64
     })
+}
+
+/// Whether [`band_centre`] of x is `centre`, by comparisons alone (no conversion: WebAssembly
+/// engines emulate the saturating one in several instructions). Never true when it is not;
+/// false also for a `centre` beyond 2^53, where the comparisons cannot tell.
+#[inline]
+fn rounds_to(x: f64, centre: i64) -> bool {
+    let c = centre as f64;
+    if x >= 0.0 {
+        let t = x + 0.5;
+        c <= t && t < c + 1.0
+    } else if x < 0.0 {
+        let t = x - 0.5;
+        c - 1.0 < t && t <= c
+    } else {
+        false
+    }
 }
 
 /// `term` with the lanes from `left` on set to 0 (`left` pixels of the batch are left from
@@ -782,5 +806,34 @@ impl InitialDistribution<LaneParticle> for DefaultLanes {
             p.boundaries[k] = self.straight_boundary(y0, slope);
         }
         p
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rounds_to_agrees_with_band_centre() {
+        let mut xs = vec![0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, 1e300, -1e300, 9.3e18];
+        for k in -400..400 {
+            let x = f64::from(k) * 0.25;
+            xs.extend([x, x.next_up(), x.next_down()]);
+        }
+        for x in xs {
+            let centre = band_centre(x).unwrap();
+            for c in [centre - 1, centre, centre + 1] {
+                if rounds_to(x, c) {
+                    assert_eq!(c, centre, "{x}");
+                }
+            }
+            if centre.unsigned_abs() < 1 << 52 {
+                assert!(rounds_to(x, centre), "{x}");
+            }
+        }
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(band_centre(x), None);
+            assert!(!rounds_to(x, 0) && !rounds_to(x, i64::MAX));
+        }
     }
 }
