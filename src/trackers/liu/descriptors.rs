@@ -232,7 +232,9 @@ pub fn orientation_mod_pi(gy: f32, gx: f32) -> f32 {
 /// angle (NaN and infinities give NaN). The remainder `t % pi` is exact, so an angle within a
 /// few turns gives the same bits as subtracting pi step by step.
 pub fn wrap_half_turn(t: f64) -> f64 {
-    let t = t % PI;
+    // `t % PI` is t itself for |t| < pi: skip the fmod call (the same bits; NaN and
+    // infinities take the remainder).
+    let t = if t.abs() < PI { t } else { t % PI };
     if t > PI / 2.0 {
         t - PI
     } else if t <= -PI / 2.0 {

@@ -239,10 +239,20 @@ impl PpfModel {
 
     /// Sec. IV-A: spacings at the bottom row and at y_m.
     pub fn is_valid(&self, p: &LaneParticle) -> bool {
+        // Each boundary's coefficients once for both rows (`x_at` computes them per call).
+        let mut coefficients = [[0.0; 4]; MAX_BOUNDARIES];
+        for (k, co) in coefficients.iter_mut().enumerate().take(self.n) {
+            *co = self.boundary(p, k).coefficients();
+        }
         for y in [self.height as f64 - 1.0, self.y_m] {
             let mut previous: Option<(f64, Option<f64>)> = None;
-            for k in 0..self.n {
-                let x = self.boundary(p, k).x_at(y);
+            for (k, &[a, b, c, e]) in coefficients.iter().enumerate().take(self.n) {
+                // As `LinearParabolic::x_at`.
+                let x = if y > self.y_m {
+                    a + b * y
+                } else {
+                    c + p.boundaries[k][2] * y + e * y * y
+                };
                 if let Some((x_left, spacing_left)) = previous {
                     let spacing = (x - x_left) * self.m_per_px;
                     if spacing.is_nan() || spacing <= self.min_spacing {
