@@ -655,10 +655,7 @@ impl<'a, const R: usize> Batch<'a, R> {
     /// The row records of pixels j..j + 4 as lanes (number r of the four in lane r).
     #[inline]
     fn rows(&self, j: usize) -> [F32x4; R] {
-        std::array::from_fn(|r| {
-            let four: &[f32; 4] = self.rows[r][j..j + 4].try_into().expect("four records");
-            F32x4::load_array(four)
-        })
+        std::array::from_fn(|r| F32x4::load(&self.rows[r], j))
     }
 }
 
@@ -828,7 +825,12 @@ mod tests {
         let mut xs = vec![0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, 1e300, -1e300, 9.3e18];
         for k in -400..400 {
             let x = f64::from(k) * 0.25;
-            xs.extend([x, x.next_up(), x.next_down()]);
+            // x and its neighbouring floats.
+            let bits = x.to_bits();
+            xs.push(x);
+            if x != 0.0 {
+                xs.extend([f64::from_bits(bits + 1), f64::from_bits(bits - 1)]);
+            }
         }
         for x in xs {
             let centre = band_centre(x).unwrap();
