@@ -834,7 +834,7 @@ mod tests {
         }
         for x in xs {
             let centre = band_centre(x).unwrap();
-            for c in [centre - 1, centre, centre + 1] {
+            for c in [centre.saturating_sub(1), centre, centre.saturating_add(1)] {
                 if rounds_to(x, c) {
                     assert_eq!(c, centre, "{x}");
                 }
