@@ -57,7 +57,12 @@ pub struct Descriptors {
     before: Vec<u32>,
     /// Running sum of the weights over `pixels` (index j: the first j pixels).
     weight_sum: Vec<f64>,
+    /// The id of the last frame computed (unique across all descriptors; 0 before the first).
+    frame: u64,
 }
+
+/// The next frame id of [`Descriptors::frame`].
+static NEXT_FRAME: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
 /// One measurement pixel (four f32 in this order, so that the kernel sums load it as one
 /// vector of four lanes).
@@ -114,6 +119,7 @@ impl Descriptors {
             pixels: Vec::with_capacity(w * h),
             before: vec![0; (w + 1) * h],
             weight_sum: Vec::with_capacity(w * h + 1),
+            frame: 0,
             ipm,
         })
     }
@@ -140,6 +146,8 @@ impl Descriptors {
     /// # Errors
     /// [`crate::Error::BufferSize`] / [`crate::Error::Dimensions`] for a wrong frame.
     pub fn compute(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        // A new id before anything changes, so that no cache keeps the last frame's values.
+        self.frame = NEXT_FRAME.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         rgba_to_gray(rgba, width, height, &mut self.grey)?;
         self.ipm.apply(&self.grey.view(), 0, &mut self.top)?;
         self.gradients.compute(&self.top.view())?;
@@ -190,6 +198,13 @@ impl Descriptors {
 }
 
 impl Descriptors {
+    /// The id of the last frame computed: unique across all descriptors of the process, so
+    /// that values cached for one frame's pixels are never read for another's (0 before the
+    /// first frame).
+    pub fn frame(&self) -> u64 {
+        self.frame
+    }
+
     /// Mask pixels in the last frame.
     pub fn count(&self) -> usize {
         self.pixels.len()
@@ -217,7 +232,9 @@ pub fn orientation_mod_pi(gy: f32, gx: f32) -> f32 {
 /// angle (NaN and infinities give NaN). The remainder `t % pi` is exact, so an angle within a
 /// few turns gives the same bits as subtracting pi step by step.
 pub fn wrap_half_turn(t: f64) -> f64 {
-    let t = t % PI;
+    // `t % PI` is t itself for |t| < pi: skip the fmod call (the same bits; NaN and
+    // infinities take the remainder).
+    let t = if t.abs() < PI { t } else { t % PI };
     if t > PI / 2.0 {
         t - PI
     } else if t <= -PI / 2.0 {

@@ -54,7 +54,7 @@ pub const ID: &str = "liu-ppf";
 /// The id of PPF-NoKernel.
 pub const ID_NOKERNEL: &str = "liu-ppf-nokernel";
 /// Particles N when the config does not say (the paper gives only N' = 50): 200, with which
-/// PPF-Kernel takes about 5.5 ms per 640x480 frame natively (RESULTS.md); N_l = N + N' in the linear part.
+/// PPF-Kernel takes about 5 ms per 640x480 frame natively (RESULTS.md); N_l = N + N' in the linear part.
 pub const DEFAULT_PARTICLES: usize = 200;
 
 /// Orientation tolerance of a supporting edge pixel (see `LiuTracker::support`), radians.

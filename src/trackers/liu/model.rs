@@ -47,6 +47,7 @@ use crate::calib::ego_on_road::EgoOnRoad;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
 use crate::math;
+use std::cell::RefCell;
 use std::f64::consts::PI;
 use std::ops::{Add, Mul, Sub};
 
@@ -78,6 +79,84 @@ pub struct PpfModel {
     sigma_d: f64,
     min_spacing: f64,
     max_difference: f64,
+    /// n_k^l of the linear parts stage 0 weighed in the current frame (see [`CountMemo`]).
+    counts: RefCell<CountMemo>,
+}
+
+/// n_k^l by linear part: stage 0 counts the band pixels of every boundary it weighs as it sums
+/// their kernels, and stage 1 (whose particles are stage 0's, resampled: copies, with the
+/// same (rho, theta) bits, only d moved) reads them here instead of counting again. Keyed by
+/// the bits of (rho, theta) and valid for one frame of descriptors ([`Descriptors::frame`]);
+/// a value is exactly what [`PpfModel::linear_count`] gives for that line, so a miss (a
+/// particle stage 0 did not weigh, e.g. an invalid one after a blackout) just counts.
+#[derive(Debug, Clone, Default)]
+struct CountMemo {
+    /// The frame the entries belong to.
+    frame: u64,
+    /// Open addressing (linear probing), a power of two long: (rho bits, theta bits, count +
+    /// 1), count + 1 = 0 for an empty slot.
+    slots: Vec<(u64, u64, u32)>,
+    used: usize,
+}
+
+impl CountMemo {
+    fn slot(&self, rho: u64, theta: u64) -> usize {
+        let h = (rho ^ theta.rotate_left(29)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        (h >> 40) as usize & (self.slots.len() - 1)
+    }
+
+    /// The entries of `frame` (emptied when they were another frame's).
+    fn for_frame(&mut self, frame: u64) -> &mut Self {
+        if self.frame != frame {
+            self.frame = frame;
+            self.slots.fill((0, 0, 0));
+            self.used = 0;
+        }
+        self
+    }
+
+    fn get(&self, rho: u64, theta: u64) -> Option<usize> {
+        if self.used == 0 {
+            return None;
+        }
+        let mut i = self.slot(rho, theta);
+        loop {
+            let (r, t, c) = self.slots[i];
+            if c == 0 {
+                return None;
+            }
+            if r == rho && t == theta {
+                return Some(c as usize - 1);
+            }
+            i = (i + 1) & (self.slots.len() - 1);
+        }
+    }
+
+    fn insert(&mut self, rho: u64, theta: u64, count: usize) {
+        if 2 * (self.used + 1) > self.slots.len() {
+            let old = std::mem::take(&mut self.slots);
+            self.slots = vec![(0, 0, 0); (2 * old.len()).max(1024)];
+            self.used = 0;
+            for (r, t, c) in old {
+                if c != 0 {
+                    self.insert(r, t, c as usize - 1);
+                }
+            }
+        }
+        let mut i = self.slot(rho, theta);
+        loop {
+            let (r, t, c) = self.slots[i];
+            if c == 0 {
+                self.slots[i] = (rho, theta, count as u32 + 1);
+                self.used += 1;
+                return;
+            }
+            if r == rho && t == theta {
+                return;
+            }
+            i = (i + 1) & (self.slots.len() - 1);
+        }
+    }
 }
 
 impl PpfModel {
@@ -113,6 +192,7 @@ impl PpfModel {
             sigma_d: config.sigma_d,
             min_spacing: config.min_spacing_m,
             max_difference: config.max_spacing_difference_m,
+            counts: RefCell::new(CountMemo::default()),
         }
     }
 
@@ -146,16 +226,12 @@ impl PpfModel {
 
     /// Columns of the band around x in a row, clipped to the view.
     fn band(&self, x: f64) -> Option<std::ops::RangeInclusive<usize>> {
-        // Rounding half away from zero (as f64::round) by saturating casts, without the libm
-        // call; NaN gives 0 and infinities saturate, both far outside any view.
-        if !x.is_finite() {
-            return None;
-        }
-        let centre = if x >= 0.0 {
-            (x + 0.5) as i64
-        } else {
-            (x - 0.5) as i64
-        };
+        self.band_around(band_centre(x)?)
+    }
+
+    /// Columns of the band around column `centre` ([`band_centre`]), clipped to the view.
+    #[inline]
+    fn band_around(&self, centre: i64) -> Option<std::ops::RangeInclusive<usize>> {
         let lo = (centre - self.band as i64).max(0);
         let hi = (centre + self.band as i64).min(self.width as i64 - 1);
         (lo <= hi).then_some(lo as usize..=hi as usize)
@@ -163,10 +239,20 @@ impl PpfModel {
 
     /// Sec. IV-A: spacings at the bottom row and at y_m.
     pub fn is_valid(&self, p: &LaneParticle) -> bool {
+        // Each boundary's coefficients once for both rows (`x_at` computes them per call).
+        let mut coefficients = [[0.0; 4]; MAX_BOUNDARIES];
+        for (k, co) in coefficients.iter_mut().enumerate().take(self.n) {
+            *co = self.boundary(p, k).coefficients();
+        }
         for y in [self.height as f64 - 1.0, self.y_m] {
             let mut previous: Option<(f64, Option<f64>)> = None;
-            for k in 0..self.n {
-                let x = self.boundary(p, k).x_at(y);
+            for (k, &[a, b, c, e]) in coefficients.iter().enumerate().take(self.n) {
+                // As `LinearParabolic::x_at`.
+                let x = if y > self.y_m {
+                    a + b * y
+                } else {
+                    c + p.boundaries[k][2] * y + e * y * y
+                };
                 if let Some((x_left, spacing_left)) = previous {
                     let spacing = (x - x_left) * self.m_per_px;
                     if spacing.is_nan() || spacing <= self.min_spacing {
@@ -189,8 +275,20 @@ impl PpfModel {
     /// S_k^l of boundary `b` over the near rows: eq. 20 times n_k^l (PPF-Kernel) or eq. 26 times
     /// n_k^l (PPF-NoKernel).
     pub fn linear_sum(&self, b: &LinearParabolic, cues: &Descriptors) -> f64 {
+        self.linear_sum_count(b, cues).0
+    }
+
+    /// [`PpfModel::linear_sum`] and [`PpfModel::linear_count`] of boundary `b` in one pass
+    /// over the near rows. (The count's rows are those of `linear_count`, whose line has the
+    /// slope -tan(theta) where the sum's has -sin / cos: the two round to the same band centre
+    /// in nearly every row, and where they do not the count takes its own band.)
+    pub fn linear_sum_count(&self, b: &LinearParabolic, cues: &Descriptors) -> (f64, usize) {
         let (s, c) = (math::sin(b.theta), math::cos(b.theta));
         let (a, slope) = (b.rho / c, -s / c);
+        // As `linear_count`'s b.a(), b.b(); the same line when the slopes have the same bits.
+        let slope_n = b.b();
+        let same_line = slope_n == slope;
+        let mut count = 0;
         // Eq. 5's variance of the distance along the normal.
         let var = self.var_x * c * c + self.var_y * s * s;
         let line = Line {
@@ -199,16 +297,34 @@ impl PpfModel {
             inv_2var: (0.5 / var) as f32,
         };
         let mut sum = 0.0;
-        let mut batch = Batch::new(&cues.pixels);
+        let mut batch = Batch::<1>::new(&cues.pixels);
         for y in self.near_rows() {
             let xc = a + slope * y as f64;
-            let Some(cols) = self.band(xc) else { continue };
+            let centre = band_centre(xc);
+            // Whether the count's line has the band centre of the sum's in this row (checked
+            // without a second conversion; `false` only costs the count its own band).
+            let same_band = same_line || {
+                let xn = a + slope_n * y as f64;
+                let same = centre.is_some_and(|c| rounds_to(xn, c));
+                if !same {
+                    if let Some(cols) = band_centre(xn).and_then(|x| self.band_around(x)) {
+                        count += cues.span(y, *cols.start(), *cols.end()).len();
+                    }
+                }
+                same
+            };
+            let Some(cols) = centre.and_then(|x| self.band_around(x)) else {
+                continue;
+            };
             let span = cues.span(y, *cols.start(), *cols.end());
+            if same_band {
+                count += span.len();
+            }
             if !self.kernel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            batch.push_row(span, [xc as f32, 0.0, 0.0, 0.0], |b| {
+            batch.push_row(span, [xc as f32], |b| {
                 sum += line.batch(b);
             });
         }
@@ -218,7 +334,7 @@ impl PpfModel {
         if self.kernel {
             sum /= (2.0 * PI * var).sqrt();
         }
-        sum
+        (sum, count)
     }
 
     /// Mask pixels near boundary `b` in the near rows (n_k^l), without the kernels.
@@ -245,7 +361,7 @@ impl PpfModel {
         // one at a time.
         let lanes = self.kernel && nodes == 3;
         let h = self.node_offsets[nodes - 1];
-        let mut batch = Batch::new(&cues.pixels);
+        let mut batch = Batch::<4>::new(&cues.pixels);
         for y in self.far_rows() {
             let yf = y as f64;
             let xc = c + d * yf + e * yf * yf;
@@ -312,14 +428,14 @@ impl Line {
     /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
     /// line column first in its row record), four at a time, summed: per lane in f32, the four
     /// lanes then in f64 in lane order.
-    fn batch(&self, batch: &Batch) -> f64 {
+    fn batch(&self, batch: &Batch<1>) -> f64 {
         let (theta, cos) = (F32x4::splat(self.theta), F32x4::splat(self.cos));
         let inv_2var = F32x4::splat(self.inv_2var);
         let half = F32x4::splat(0.5);
         let mut acc = F32x4::splat(0.0);
         for j in (0..batch.used).step_by(4) {
             let [x, weight, theta_i, precision] = batch.pixels(j);
-            let [xc, ..] = batch.rows(j);
+            let [xc] = batch.rows(j);
             let dtheta = fold_x4(theta.sub(theta_i));
             let orientation = half.mul(dtheta).mul(dtheta).mul(precision);
             let dist = cos.mul(xc.sub(x));
@@ -367,7 +483,7 @@ impl PpfModel {
     /// y, y + h; `e_h2` = e h^2), four pixels at a time in the four lanes of each operation
     /// ([`F32x4`]), each lane with its own row's curve, summed: per lane in f32, the four lanes
     /// then in f64 in lane order.
-    fn parabolic_batch(&self, batch: &Batch, e_h2: f32) -> f64 {
+    fn parabolic_batch(&self, batch: &Batch<4>, e_h2: f32) -> f64 {
         let inv_2var = F32x4::splat((0.5 / self.var_x) as f32);
         let half = F32x4::splat(0.5);
         let e_h2 = F32x4::splat(e_h2);
@@ -394,6 +510,37 @@ impl PpfModel {
             acc = acc.add(only_used(weight.mul(g), batch.used - j));
         }
         lane_sum(acc)
+    }
+}
+
+/// The column a band is centred on: x rounded half away from zero (as f64::round) by
+/// saturating casts, without the libm call; `None` for NaN and infinities.
+#[inline]
+fn band_centre(x: f64) -> Option<i64> {
+    if !x.is_finite() {
+        return None;
+    }
+    Some(if x >= 0.0 {
+        (x + 0.5) as i64
+    } else {
+        (x - 0.5) as i64
+    })
+}
+
+/// Whether [`band_centre`] of x is `centre`, by comparisons alone (no conversion: WebAssembly
+/// engines emulate the saturating one in several instructions). Never true when it is not;
+/// false also for a `centre` beyond 2^53, where the comparisons cannot tell.
+#[inline]
+fn rounds_to(x: f64, centre: i64) -> bool {
+    let c = centre as f64;
+    if x >= 0.0 {
+        let t = x + 0.5;
+        c <= t && t < c + 1.0
+    } else if x < 0.0 {
+        let t = x - 0.5;
+        c - 1.0 < t && t <= c
+    } else {
+        false
     }
 }
 
@@ -431,29 +578,30 @@ const BATCH: usize = 64;
 const ROW_COPY: usize = 8;
 
 /// Band pixels of a linear or parabolic sum gathered across rows, each with its row's record
-/// (the curve there): a row has few (about 3 in a 7-column band), too few to fill the four
-/// lanes. The batch holds the pixels' indices; a row's are written eight at a time whatever
-/// their number (the entries past the band are overwritten by the next row's or never read),
-/// so that the writes do not branch on it. The pixels and records are then read four at a
-/// time and transposed into lanes. (Copying the pixels themselves became a `memory.copy`
-/// call per row in WebAssembly.)
+/// of `R` numbers (the curve there): a row has few (about 3 in a 7-column band), too few to
+/// fill the four lanes. The batch holds the pixels' indices; a row's are written eight at a
+/// time whatever their number (the entries past the band are overwritten by the next row's or
+/// never read), so that the writes do not branch on it. The pixels are then read four at a
+/// time and transposed into lanes; the records are kept by number (record number r of pixel
+/// j at `rows[r][j]`), so that four pixels' are one load each. (Copying the pixels themselves
+/// became a `memory.copy` call per row in WebAssembly.)
 #[derive(Debug, Clone, Copy)]
-struct Batch<'a> {
+struct Batch<'a, const R: usize> {
     all: &'a [MaskPixel],
     used: usize,
     /// Indices into `all`, each valid (entries are written only with valid indices).
     index: [u32; BATCH + ROW_COPY],
-    rows: [[f32; 4]; BATCH + ROW_COPY],
+    rows: [[f32; BATCH + ROW_COPY]; R],
 }
 
-impl<'a> Batch<'a> {
+impl<'a, const R: usize> Batch<'a, R> {
     /// An empty batch of pixels of `all`.
     fn new(all: &'a [MaskPixel]) -> Self {
         Self {
             all,
             used: 0,
             index: [0; BATCH + ROW_COPY],
-            rows: [[0.0; 4]; BATCH + ROW_COPY],
+            rows: [[0.0; BATCH + ROW_COPY]; R],
         }
     }
 
@@ -463,7 +611,7 @@ impl<'a> Batch<'a> {
     fn push_row(
         &mut self,
         span: std::ops::Range<usize>,
-        row: [f32; 4],
+        row: [f32; R],
         mut full: impl FnMut(&Self),
     ) {
         let mut start = span.start;
@@ -480,9 +628,8 @@ impl<'a> Batch<'a> {
                     self.index[j + k] = (start + k) as u32;
                 }
             }
-            let record = F32x4::from_array(row);
-            for to in &mut self.rows[j..j + ROW_COPY] {
-                record.store(to);
+            for (to, &v) in self.rows.iter_mut().zip(&row) {
+                to[j..j + ROW_COPY].fill(v);
             }
             self.used = j + n;
             start += n;
@@ -505,11 +652,10 @@ impl<'a> Batch<'a> {
         )
     }
 
-    /// The row records of pixels j..j + 4 as lanes.
+    /// The row records of pixels j..j + 4 as lanes (number r of the four in lane r).
     #[inline]
-    fn rows(&self, j: usize) -> [F32x4; 4] {
-        let r = &self.rows[j..j + 4];
-        F32x4::transpose([0, 1, 2, 3].map(|k| F32x4::load_array(&r[k])))
+    fn rows(&self, j: usize) -> [F32x4; R] {
+        std::array::from_fn(|r| F32x4::load(&self.rows[r], j))
     }
 }
 
@@ -554,18 +700,30 @@ impl PartitionedModel<LaneParticle> for PpfModel {
             if !self.is_valid(p) {
                 return f64::NEG_INFINITY;
             }
+            let mut counts = self.counts.borrow_mut();
+            let counts = counts.for_frame(cues.frame());
             for k in 0..self.n {
                 // Eq. 21: prod_k n_k^l p(z_k^l | x) = prod_k S_k^l.
-                l += math::ln(self.linear_sum(&self.boundary(p, k), cues));
+                let (sum, count) = self.linear_sum_count(&self.boundary(p, k), cues);
+                l += math::ln(sum);
+                let [rho, theta, _] = p.boundaries[k];
+                counts.insert(rho.to_bits(), theta.to_bits(), count);
             }
         } else {
+            let mut counts = self.counts.borrow_mut();
+            let counts = counts.for_frame(cues.frame());
             for k in 0..self.n {
                 let b = self.boundary(p, k);
                 // Eq. 25 with A = prod_k 1 / n_k^l. A particle can reach this stage with
                 // n_k^l = 0 only when the linear stage gave every particle weight 0 (its
                 // weights then fell back to equal); A is undefined there and taken as 1,
-                // not as an infinite weight.
-                let n_l = self.linear_count(&b, cues).max(1);
+                // not as an infinite weight. The count is stage 0's for the same line
+                // (resampling copied it), or counted here.
+                let [rho, theta, _] = p.boundaries[k];
+                let n_l = counts
+                    .get(rho.to_bits(), theta.to_bits())
+                    .unwrap_or_else(|| self.linear_count(&b, cues))
+                    .max(1);
                 l += math::ln(self.parabolic_sum(&b, cues)) - math::ln(n_l as f64);
             }
         }
@@ -655,5 +813,39 @@ impl InitialDistribution<LaneParticle> for DefaultLanes {
             p.boundaries[k] = self.straight_boundary(y0, slope);
         }
         p
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rounds_to_agrees_with_band_centre() {
+        let mut xs = vec![0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, 1e300, -1e300, 9.3e18];
+        for k in -400..400 {
+            let x = f64::from(k) * 0.25;
+            // x and its neighbouring floats.
+            let bits = x.to_bits();
+            xs.push(x);
+            if x != 0.0 {
+                xs.extend([f64::from_bits(bits + 1), f64::from_bits(bits - 1)]);
+            }
+        }
+        for x in xs {
+            let centre = band_centre(x).unwrap();
+            for c in [centre.saturating_sub(1), centre, centre.saturating_add(1)] {
+                if rounds_to(x, c) {
+                    assert_eq!(c, centre, "{x}");
+                }
+            }
+            if centre.unsigned_abs() < 1 << 52 {
+                assert!(rounds_to(x, centre), "{x}");
+            }
+        }
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(band_centre(x), None);
+            assert!(!rounds_to(x, 0) && !rounds_to(x, i64::MAX));
+        }
     }
 }

@@ -425,6 +425,47 @@ fn the_band_sums_match_the_reference_kernels() {
     }
 }
 
+#[test]
+fn stage_1_reads_the_counts_stage_0_made() {
+    // n_k^l from stage 0's pass (linear_sum_count, memo by line) is linear_count's, for the
+    // particles the filter weighed and for lines across the view; stage 1's likelihoods equal
+    // a fresh model's (which counts).
+    use crate::filter::PartitionedModel;
+    let mut scene = Scene::new(
+        scenario("highway-curve").unwrap(),
+        default_camera(320, 240).unwrap(),
+        1,
+    )
+    .unwrap();
+    let mut rgba = vec![0; 320 * 240 * 4];
+    let mut t = LiuTracker::new(&config(""), true).unwrap();
+    for frame in 0..3 {
+        scene.render(frame, Eye::Left, &mut rgba, None).unwrap();
+        t.step(&rgba, 320, 240).unwrap();
+    }
+    let (d, m) = (&t.descriptors, &t.model);
+    let fresh = PpfModel::new(&t.config, d.width(), d.height(), true);
+    let states: Vec<LaneParticle> = t.particle_states().map(|(p, _)| *p).collect();
+    for p in &states {
+        for k in 0..m.boundaries() {
+            let b = m.boundary(p, k);
+            assert_eq!(m.linear_sum_count(&b, d).1, m.linear_count(&b, d));
+        }
+        let (a, b) = (m.log_likelihood(1, p, d), fresh.log_likelihood(1, p, d));
+        assert_eq!(a.to_bits(), b.to_bits());
+    }
+    for step in 0..4000 {
+        let s = f64::from(step);
+        let b = LinearParabolic {
+            rho: (s * 0.37) % 160.0 - 20.0,
+            theta: ((s * 0.013) % 1.6) - 0.8,
+            d: 0.0,
+            y_m: m.split_row(),
+        };
+        assert_eq!(m.linear_sum_count(&b, d).1, m.linear_count(&b, d), "{b:?}");
+    }
+}
+
 /// Share of the near rows' measurement weight (eq. 20's K_c sqrt(|grad I| / 2 pi)) on mask
 /// pixels within 1 pixel (sigma_x) of a true boundary, in the tracker's last frame.
 fn weight_share_on_truth(t: &LiuTracker, truth: &LaneEstimate) -> f64 {
