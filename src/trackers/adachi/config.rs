@@ -127,8 +127,8 @@ pub struct AdachiConfig {
 /// The image width [`AdachiConfig::width_scaled_threshold`] takes `edge_threshold` for, pixels.
 pub const THRESHOLD_WIDTH_PX: f64 = 640.0;
 
-/// The widest bright stripe [`AdachiConfig::paired_edges`] takes for a marking, metres (a
-/// double line of two 0.15 m lines 0.15 m apart is 0.45 m; a wider stripe is road surface).
+/// The widest bright stripe [`AdachiConfig::paired_edges`] takes for a marking, metres: one
+/// line (each line of a double line pairs on its own); a wider bright stripe is road surface.
 pub const PAIRED_EDGE_MAX_M: f64 = 0.3;
 
 impl Default for AdachiConfig {
