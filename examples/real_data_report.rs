@@ -57,21 +57,15 @@ const TRACKERS: [fn() -> TrackerOptions; 20] = [
     },
     || real_roads("adachi-mmpf"),
     || {
-        let TrackerOptions::AdachiMmpf(c) = real_roads("adachi-mmpf") else {
-            unreachable!("adachi-mmpf's preset holds adachi-mmpf's options")
-        };
         TrackerOptions::AdachiMmpf(AdachiConfig {
             edge_response: EdgeResponse::Gradient,
-            ..c
+            ..adachi_real_roads()
         })
     },
     || {
-        let TrackerOptions::AdachiMmpf(c) = real_roads("adachi-mmpf") else {
-            unreachable!("adachi-mmpf's preset holds adachi-mmpf's options")
-        };
         TrackerOptions::AdachiMmpf(AdachiConfig {
             vote_pair_share: 0.05,
-            ..c
+            ..adachi_real_roads()
         })
     },
     || {
@@ -129,6 +123,14 @@ const TRACKERS: [fn() -> TrackerOptions; 20] = [
 /// The `real-roads` preset of a registered tracker.
 fn real_roads(id: &str) -> TrackerOptions {
     TrackerOptions::preset(id, Preset::RealRoads).expect("a registered tracker id")
+}
+
+/// adachi-mmpf's `real-roads` options, for rows that add one of ours to them.
+fn adachi_real_roads() -> AdachiConfig {
+    match real_roads("adachi-mmpf") {
+        TrackerOptions::AdachiMmpf(c) => c,
+        _ => unreachable!("adachi-mmpf's preset holds adachi-mmpf's options"),
+    }
 }
 
 /// A row's name: the tracker id, and the options that differ from its defaults as JSON.
