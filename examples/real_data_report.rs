@@ -35,7 +35,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 20] = [
+const TRACKERS: [fn() -> TrackerOptions; 21] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -108,6 +108,12 @@ const TRACKERS: [fn() -> TrackerOptions; 20] = [
     || {
         TrackerOptions::LiuPpf(LiuConfig {
             relock_share: 0.1,
+            ..LiuConfig::default()
+        })
+    },
+    || {
+        TrackerOptions::LiuPpf(LiuConfig {
+            boundaries: 4,
             ..LiuConfig::default()
         })
     },
