@@ -381,23 +381,35 @@ const COLOURS: [[u8; 3]; 5] = [
     [30, 110, 60],
 ];
 
+/// Closest a vehicle ahead in the car's lane comes to the camera, metres (the car's front is
+/// 1 m ahead of it).
+const CLEAR_AHEAD_M: f64 = 3.0;
+
 fn occlusion(d: &mut Draw) -> SceneConfig {
     let segments = gentle(d, [60.0, 140.0], [80.0, 150.0], 0.0015);
     let mut c = highway(d, segments, 300);
-    let (lanes, v) = (c.road.lanes, c.ego.speed_mps);
+    let (lanes, v, own) = (c.road.lanes, c.ego.speed_mps, c.ego.lane);
+    let seconds = c.frames as f64 / c.ego.fps;
+    // Up to 3 m/s slower or faster than the car; but a slower one in the car's own lane that
+    // the car (which does not brake) would reach before the end goes as much faster instead.
+    let speed = |d: &mut Draw, lane: usize, ahead: f64| {
+        let dv = d.range(-3.0, 3.0);
+        let reached = lane == own && ahead + dv * seconds < CLEAR_AHEAD_M;
+        v + if reached { dv.abs() } else { dv }
+    };
     let n = d.int(2, 5);
     c.vehicles = (0..n)
         .map(|k| {
             let lane = d.int(0, lanes - 1);
             let ahead = d.range(10.0, 60.0);
-            let speed = v + d.range(-3.0, 3.0);
+            let speed = speed(d, lane, ahead);
             car(lane, ahead, speed, COLOURS[k % COLOURS.len()])
         })
         .collect();
     if d.chance(0.5) {
         let lane = d.int(0, lanes - 1);
         let ahead = d.range(10.0, 60.0);
-        let speed = v + d.range(-3.0, 3.0);
+        let speed = speed(d, lane, ahead);
         c.vehicles.push(Vehicle {
             size_m: [12.0, 2.5, 3.6],
             ..car(lane, ahead, speed, [230, 230, 225])
@@ -619,9 +631,11 @@ fn urban(d: &mut Draw) -> SceneConfig {
     let parked = d.int(3, 8);
     let mut s = d.range(30.0, 60.0);
     let mut vehicles = Vec::with_capacity(parked);
+    // Parked half on the pavement, 0.2 m into the lane: clear of the car, which keeps to the
+    // lane's centre within its sway of at most 0.25 m (half-width 0.9 m).
     for k in 0..parked {
         vehicles.push(Vehicle {
-            offset_m: -(w / 2.0 - 0.5),
+            offset_m: -(w / 2.0 + 0.7),
             ..car(1, s, 0.0, COLOURS[(k * 2) % COLOURS.len()])
         });
         s += d.range(15.0, 30.0);

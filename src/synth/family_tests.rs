@@ -203,3 +203,47 @@ fn a_member_renders_the_golden_fingerprint() {
     let got = frame_fingerprint(&rgba);
     assert_eq!(got, FAMILY_FINGERPRINT, "{got:#x}");
 }
+
+/// Half the ego car's width, and how far its body reaches ahead of and behind the camera,
+/// metres (a 4.5 m car with the camera 1 m behind its front).
+const EGO_HALF_WIDTH_M: f64 = 0.9;
+const EGO_AHEAD_M: f64 = 1.0;
+const EGO_BEHIND_M: f64 = 3.5;
+
+/// The first frame at which a vehicle of `config` overlaps the ego car on the road (in arc
+/// length and lateral position; every 2nd frame), if any.
+fn first_collision(config: &SceneConfig) -> Option<(u32, usize)> {
+    let road = Road::new(config.road.clone(), config.road_length()).unwrap();
+    (0..config.frames).step_by(2).find_map(|f| {
+        let p = config.ego.pose(&road, f);
+        let t = f as f64 / config.ego.fps;
+        config.vehicles.iter().enumerate().find_map(|(k, v)| {
+            let rear = v.start_s + v.speed_mps * t;
+            let mid = rear + v.size_m[0] / 2.0;
+            let d = road.lane_centre(v.lane, mid) + v.offset_m;
+            let along = rear < p.s + EGO_AHEAD_M && rear + v.size_m[0] > p.s - EGO_BEHIND_M;
+            let across = (d - p.d).abs() < v.size_m[1] / 2.0 + EGO_HALF_WIDTH_M;
+            (along && across).then_some((f, k))
+        })
+    })
+}
+
+#[test]
+fn no_vehicle_drives_or_parks_through_the_ego_car() {
+    let mut collisions = Vec::new();
+    for name in family_names() {
+        for seed in SEEDS {
+            let m = draw_scenario(name, seed).unwrap();
+            if let Some(c) = first_collision(&m.config) {
+                collisions.push(format!(
+                    "{name} seed {seed}: frame {}, vehicle {}",
+                    c.0, c.1
+                ));
+            }
+        }
+        if let Some(c) = scenario(name).ok().and_then(|r| first_collision(&r)) {
+            collisions.push(format!("{name} reference: frame {}, vehicle {}", c.0, c.1));
+        }
+    }
+    assert!(collisions.is_empty(), "{collisions:#?}");
+}

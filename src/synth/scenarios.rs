@@ -189,7 +189,9 @@ pub fn scenario(name: &str) -> Result<SceneConfig> {
                 300,
             );
             c.vehicles = vec![
-                car(1, 38.0, 22.0, [170, 30, 30]),
+                // In the car's lane, a little faster than it (25 m/s): it draws away instead
+                // of being driven through.
+                car(1, 38.0, 26.0, [170, 30, 30]),
                 car(0, 60.0, 27.0, [40, 60, 150]),
                 car(2, 25.0, 24.0, [200, 200, 205]),
                 Vehicle {
@@ -360,8 +362,10 @@ pub fn scenario(name: &str) -> Result<SceneConfig> {
                 width_m: 0.1,
             });
             c.vehicles = (0..6)
+                // Parked half on the pavement beyond the right kerb (1.65 m right of the
+                // lane's centre), 0.2 m into the lane: clear of the car.
                 .map(|k| Vehicle {
-                    offset_m: -1.15,
+                    offset_m: -2.35,
                     ..car(
                         1,
                         45.0 + 22.0 * k as f64,
