@@ -25,7 +25,7 @@ pub enum Keep {
 pub fn to_js(estimate: &LaneEstimate, keep: Keep) -> Result<JsValue, Thrown> {
     let value = super::to_js_value(estimate)?;
     let object: &js_sys::Object = value.unchecked_ref();
-    // A plain object just parsed from JSON: deleting its own data properties cannot throw.
+    // A plain object of our own (`to_js.rs`): deleting its own data properties cannot throw.
     let _ = js_sys::Reflect::delete_property(object, &"ms".into());
     if keep == Keep::Neither {
         let _ = js_sys::Reflect::delete_property(object, &"frame".into());

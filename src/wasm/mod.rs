@@ -17,6 +17,7 @@ mod object;
 mod scene;
 mod step_input;
 mod test_road;
+mod to_js;
 mod tracker;
 mod types;
 
@@ -41,10 +42,8 @@ pub fn version() -> String {
     crate::VERSION.to_string()
 }
 
-/// Serialises a core value into a plain JS object (by way of JSON, so field names are the
-/// contract's snake_case names).
+/// Serialises a core value into a plain JS object: the object of its JSON (so field names are
+/// the contract's snake_case names), built without the text (`to_js.rs`).
 fn to_js_value<T: serde::Serialize>(value: &T) -> Result<JsValue, Thrown> {
-    let text = serde_json::to_string(value)
-        .map_err(|e| Thrown::input(format!("cannot serialise the result: {e}")))?;
-    js_sys::JSON::parse(&text).map_err(|_| Thrown::input("cannot parse the result JSON"))
+    to_js::to_js(value).map_err(|e| Thrown::input(format!("cannot serialise the result: {e}")))
 }
