@@ -97,13 +97,13 @@ pub struct FrameObservation {
 
 /// One straight, stable frame's measurement.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Sample {
-    pitch: f64,
-    yaw: f64,
+pub(super) struct Sample {
+    pub(super) pitch: f64,
+    pub(super) yaw: f64,
     /// Lane width seen from one metre above the road.
-    width_at_unit_height: f64,
+    pub(super) width_at_unit_height: f64,
     /// How far the boundaries bent: |common bend| + |opposite bend| / 3, working pixels.
-    bend: f64,
+    pub(super) bend: f64,
 }
 
 /// The calibrator's current answer.
@@ -767,7 +767,7 @@ pub const CONSENSUS_DEG: f64 = 2.0;
 /// and yaw. A still of a stopped car, a truck's lines or a bend that passed as straight each
 /// imply a pose of their own; the road's markings, frame after frame, imply the same one, so
 /// the median is taken over them alone. Ties go to the earlier sample.
-fn consensus(samples: Vec<&Sample>) -> Vec<&Sample> {
+pub(super) fn consensus(samples: Vec<&Sample>) -> Vec<&Sample> {
     let tol = CONSENSUS_DEG.to_radians();
     let near = |a: &Sample, pitch: f64, yaw: f64| {
         (a.pitch - pitch).abs() <= tol && (a.yaw - yaw).abs() <= tol
