@@ -8,7 +8,8 @@
 //! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye.
 //! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/. With the environment
 //! variable `REAL_DATA_ROWS` set, only the rows whose name contains it run (e.g.
-//! `REAL_DATA_ROWS=adachi`).
+//! `REAL_DATA_ROWS=adachi`); with `REAL_DATA_RUNS` set, only the datasets (columns) whose
+//! label contains it (e.g. `REAL_DATA_RUNS=CULane`; the Udacity frames are still cut).
 //!
 //! Datasets and cameras (a camera the data ships, or `auto`: `lanepf::calib` on the same
 //! frames first, with the known intrinsics where there are some):
@@ -509,6 +510,9 @@ fn main() -> Res<()> {
                 sheet: Some(format!("sheet-{video}-{}.png", cam.replace(' ', "-"))),
             });
         }
+    }
+    if let Ok(only) = std::env::var("REAL_DATA_RUNS") {
+        runs.retain(|r| r.label.contains(only.as_str()));
     }
     let mut table = String::from("| tracker |");
     for r in &runs {

@@ -97,13 +97,13 @@ pub struct FrameObservation {
 
 /// One straight, stable frame's measurement.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Sample {
-    pitch: f64,
-    yaw: f64,
+pub(super) struct Sample {
+    pub(super) pitch: f64,
+    pub(super) yaw: f64,
     /// Lane width seen from one metre above the road.
-    width_at_unit_height: f64,
+    pub(super) width_at_unit_height: f64,
     /// How far the boundaries bent: |common bend| + |opposite bend| / 3, working pixels.
-    bend: f64,
+    pub(super) bend: f64,
 }
 
 /// The calibrator's current answer.
@@ -145,6 +145,12 @@ pub const MAX_YAW_DEG: f64 = 15.0;
 /// The camera heights, metres, an ego pair may imply with the lane-width prior: from a low
 /// car's dashboard to a truck's cab. A wider or narrower pair is not the ego lane.
 pub const HEIGHT_RANGE_M: [f64; 2] = [0.8, 4.0];
+/// Largest distance of the camera from the middle of the ego pair it measures, as a share of
+/// the lane width: a car on a straight stretch keeps near its lane's middle, while a pair of a
+/// marking and a car's edge, or two lines of one neighbouring vehicle, rarely has the camera
+/// between them in the middle. 0.35 keeps each boundary at least 0.15 lane widths (0.54 m of a
+/// 3.6 m lane) from the camera.
+pub const MAX_LANE_OFFSET: f64 = 0.35;
 /// Samples for full confidence by count.
 const FULL_COUNT: f64 = 30.0;
 
@@ -459,7 +465,7 @@ impl Calibrator {
         let bottom_row = bottom as f64 * s;
         let (left, right) = self.sides(&lines);
         let ego = self.ego_pair(&lines, &left, &right, prior, bottom_row);
-        self.vote_crossings(&lines, &left, &right);
+        self.vote_crossings(&lines, &left, &right, bottom_row);
         let vanishing_point = ego.and_then(|[l, r]| crossing(&lines[l], &lines[r]));
         if let (Some([l, r]), Some(vp)) = (ego, vanishing_point) {
             // Bends over the rows from 15 % of the way down from the vanishing point.
@@ -563,11 +569,20 @@ impl Calibrator {
     }
 
     /// Every left/right pair votes where it meets (see [`VpVotes`]).
-    fn vote_crossings(&mut self, lines: &[LineFit], left: &[usize], right: &[usize]) {
+    fn vote_crossings(
+        &mut self,
+        lines: &[LineFit],
+        left: &[usize],
+        right: &[usize],
+        bottom_row: f64,
+    ) {
         self.votes.decay();
         for &l in left {
             for &r in right {
-                if let Some(vp) = self.meeting(&lines[l], &lines[r]) {
+                let vp = self
+                    .meeting(&lines[l], &lines[r])
+                    .filter(|&vp| self.sample(vp, &lines[l], &lines[r], bottom_row).is_some());
+                if let Some(vp) = vp {
                     let weight = lines[l].support.min(lines[r].support) as f32;
                     self.votes.vote(vp, weight);
                 }
@@ -645,7 +660,9 @@ impl Calibrator {
         let width_at_unit_height = yl - yr;
         let height = self.config.lane_width_m / width_at_unit_height;
         let [lo, hi] = HEIGHT_RANGE_M;
-        (width_at_unit_height > 0.0 && (lo..=hi).contains(&height)).then_some(Sample {
+        // The camera (lateral 0) inside the lane, near its middle.
+        let centred = (yl + yr).abs() / 2.0 <= MAX_LANE_OFFSET * width_at_unit_height;
+        (width_at_unit_height > 0.0 && (lo..=hi).contains(&height) && centred).then_some(Sample {
             pitch,
             yaw,
             width_at_unit_height,
@@ -658,10 +675,11 @@ impl Calibrator {
             .map(|(pitch, yaw, ..)| vanishing_point(&self.pinhole, pitch, yaw))
     }
 
-    /// The samples the estimate uses: from ten on, the straighter half (a gentle bend that
-    /// passed as straight shifts the vanishing point sideways).
+    /// The samples the estimate uses: those that agree with the consensus pose (see
+    /// [`consensus`]), and of them from ten on the straighter half (a gentle bend that passed as
+    /// straight shifts the vanishing point sideways).
     fn chosen_samples(&self) -> Vec<&Sample> {
-        let mut chosen: Vec<&Sample> = self.samples.iter().collect();
+        let mut chosen = consensus(self.samples.iter().collect());
         if chosen.len() >= 10 {
             chosen.sort_by(|a, b| a.bend.total_cmp(&b.bend));
             chosen.truncate(chosen.len().div_ceil(2));
@@ -737,6 +755,51 @@ impl Calibrator {
             vanishing_point: vanishing_point(&k, pitch, yaw),
             intrinsics_known: self.intrinsics_known,
         })
+    }
+}
+
+/// Largest distance in pitch or in yaw, degrees, of a sample from the consensus pose for it to
+/// count (see [`consensus`]).
+pub const CONSENSUS_DEG: f64 = 2.0;
+
+/// The samples that agree on the pose: the largest group within [`CONSENSUS_DEG`] in pitch
+/// and yaw of one of them, then those within [`CONSENSUS_DEG`] of that group's median pitch
+/// and yaw. A still of a stopped car, a truck's lines or a bend that passed as straight each
+/// imply a pose of their own; the road's markings, frame after frame, imply the same one, so
+/// the median is taken over them alone. Ties go to the earlier sample.
+pub(super) fn consensus(samples: Vec<&Sample>) -> Vec<&Sample> {
+    let tol = CONSENSUS_DEG.to_radians();
+    let near = |a: &Sample, pitch: f64, yaw: f64| {
+        (a.pitch - pitch).abs() <= tol && (a.yaw - yaw).abs() <= tol
+    };
+    let Some(seed) = samples
+        .iter()
+        .enumerate()
+        .max_by_key(|&(i, a)| {
+            let n = samples.iter().filter(|b| near(b, a.pitch, a.yaw)).count();
+            (n, std::cmp::Reverse(i))
+        })
+        .map(|(_, a)| *a)
+    else {
+        return samples;
+    };
+    let group: Vec<&Sample> = samples
+        .iter()
+        .copied()
+        .filter(|b| near(b, seed.pitch, seed.yaw))
+        .collect();
+    let mut pitches: Vec<f64> = group.iter().map(|a| a.pitch).collect();
+    let mut yaws: Vec<f64> = group.iter().map(|a| a.yaw).collect();
+    let (pitch, yaw) = (median(&mut pitches), median(&mut yaws));
+    let agree: Vec<&Sample> = samples
+        .iter()
+        .copied()
+        .filter(|b| near(b, pitch, yaw))
+        .collect();
+    if agree.is_empty() {
+        group
+    } else {
+        agree
     }
 }
 
