@@ -766,20 +766,22 @@ pub const CONSENSUS_DEG: f64 = 2.0;
 /// and yaw of one of them, then those within [`CONSENSUS_DEG`] of that group's median pitch
 /// and yaw. A still of a stopped car, a truck's lines or a bend that passed as straight each
 /// imply a pose of their own; the road's markings, frame after frame, imply the same one, so
-/// the median is taken over them alone. Ties go to the earlier sample.
+/// the median is taken over them alone. Ties go to the earlier sample. The groups are counted
+/// in O(n log n) ([`super::box_counts`]): the estimate may be asked for every frame, with up
+/// to [`MAX_SAMPLES`] samples.
 pub(super) fn consensus(samples: Vec<&Sample>) -> Vec<&Sample> {
     let tol = CONSENSUS_DEG.to_radians();
     let near = |a: &Sample, pitch: f64, yaw: f64| {
         (a.pitch - pitch).abs() <= tol && (a.yaw - yaw).abs() <= tol
     };
+    let points: Vec<[f64; 2]> = samples.iter().map(|a| [a.pitch, a.yaw]).collect();
+    let counts = super::box_counts::box_counts(&points, tol);
     let Some(seed) = samples
         .iter()
+        .zip(&counts)
         .enumerate()
-        .max_by_key(|&(i, a)| {
-            let n = samples.iter().filter(|b| near(b, a.pitch, a.yaw)).count();
-            (n, std::cmp::Reverse(i))
-        })
-        .map(|(_, a)| *a)
+        .max_by_key(|&(i, (_, &n))| (n, std::cmp::Reverse(i)))
+        .map(|(_, (a, _))| *a)
     else {
         return samples;
     };

@@ -43,6 +43,7 @@
 //! trucks meet where no mounted camera looks; a camera mounted outside these ranges gets no
 //! estimate.
 
+pub mod box_counts;
 pub mod calibrator;
 pub mod ego_on_road;
 pub mod hough;

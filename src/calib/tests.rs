@@ -249,4 +249,14 @@ fn samples_far_from_the_consensus_do_not_move_the_estimate() {
     let close: Vec<Sample> = (0..5).map(|i| s(1.0 + 0.3 * i as f64, 0.0)).collect();
     assert_eq!(calibrator::consensus(close.iter().collect()).len(), 5);
     assert!(calibrator::consensus(Vec::new()).is_empty());
+    // As many samples as are kept (the groups are counted in O(n log n)), every fourth one
+    // elsewhere.
+    let many: Vec<Sample> = (0..calibrator::MAX_SAMPLES)
+        .map(|i| match i % 4 {
+            0 => s(9.7, 0.3),
+            _ => s(-3.5 + 0.001 * (i % 7) as f64, -2.6),
+        })
+        .collect();
+    let kept = calibrator::consensus(many.iter().collect());
+    assert_eq!(kept.len(), calibrator::MAX_SAMPLES * 3 / 4);
 }
