@@ -461,8 +461,9 @@ impl RowCurve {
                 minus_2eh.div(one.add(minus_slope.mul(minus_slope))),
             ];
             for (to, v) in records.iter_mut().zip([theta, slope_h, dtheta_h]) {
-                let four: &mut [f32; 4] = (&mut to[q..q + 4]).try_into().unwrap();
-                v.store(four);
+                let mut four = [0.0; 4];
+                v.store(&mut four);
+                to[q..q + 4].copy_from_slice(&four);
             }
         }
     }
