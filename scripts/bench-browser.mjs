@@ -9,7 +9,7 @@
 //
 // Usage (after `make pkg`; `make bench-browser` does both):
 //   node scripts/bench-browser.mjs [FRAMES=60] [WIDTH=640] [HEIGHT=480] [SCENARIO=highway-curve] [--no-native] [--json]
-//        [--browser=chromium|firefox|webkit]
+//        [--browser=chromium|firefox|webkit] [--trackers=ID,ID]
 // --browser=firefox and --browser=webkit run the page in Debian's Firefox ESR or in WebKitGTK
 // (Safari's engine) through the cross-browser suite's drivers (tests/e2e/drivers/).
 import { spawnSync } from 'node:child_process';
@@ -17,13 +17,16 @@ import { fileURLToPath } from 'node:url';
 import { start, open } from '../tests/e2e/browser.mjs';
 
 const WARMUP = 5;
-const USAGE = 'usage: node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO] [--no-native] [--json] [--browser=chromium|firefox|webkit]';
+const USAGE = 'usage: node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO] [--no-native] [--json] [--browser=chromium|firefox|webkit] [--trackers=ID,ID]';
 const flags = process.argv.slice(2).filter((a) => a.startsWith('--'));
 const positional = process.argv.slice(2).filter((a) => !a.startsWith('--'));
 let browserName = 'chromium';
+let trackers = null;
 for (const f of flags) {
   const m = /^--browser=(chromium|firefox|webkit)$/.exec(f);
+  const t = /^--trackers=([a-z0-9,-]+)$/.exec(f);
   if (m) browserName = m[1];
+  else if (t) trackers = t[1];
   else if (!['--no-native', '--json'].includes(f)) {
     console.error(`unknown option ${f}; ${USAGE}`);
     process.exit(2);
@@ -65,6 +68,7 @@ async function driverBench(query) {
 /** The browser figures: window.lanepfBench of www/bench.html. */
 async function browserBench() {
   const query = new URLSearchParams({ frames, width, height, scenario, seed: 1, warmup: WARMUP });
+  if (trackers) query.set('trackers', trackers);
   if (browserName !== 'chromium') return driverBench(query);
   const env = await start();
   try {

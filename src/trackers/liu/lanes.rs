@@ -88,6 +88,13 @@ impl F32x4 {
     pub fn lt(self, b: Self) -> Self {
         Self(imp::lt(self.0, b.0))
     }
+    /// For lanes in (-2^22, 2^22): the integer nearest (ties to even), by the IEEE sum and
+    /// difference with 1.5 2^23 (exact). Other lanes give unspecified values.
+    #[inline]
+    pub fn round_small(self) -> Self {
+        let rounder = Self::splat(ROUNDER);
+        Self(imp::sub(imp::add(self.0, rounder.0), rounder.0))
+    }
     /// For lanes y in (-2^22, 2^22): (n, 2^-n) with n the integer nearest y (ties to even),
     /// both exact (-126 <= n <= 126 for 2^-n to be a normal float), by the IEEE sum y + 1.5 2^23,
     /// whose last mantissa bits are then n, not by a conversion (which WebAssembly engines
@@ -114,6 +121,33 @@ impl std::ops::Sub for F32x4 {
     #[inline]
     fn sub(self, b: Self) -> Self {
         Self(imp::sub(self.0, b.0))
+    }
+}
+
+impl std::ops::Div for F32x4 {
+    type Output = Self;
+    /// Lane-wise `self / b`.
+    #[inline]
+    fn div(self, b: Self) -> Self {
+        Self(imp::div(self.0, b.0))
+    }
+}
+
+impl std::ops::BitAnd for F32x4 {
+    type Output = Self;
+    /// The bits of `self` and `b`, and-ed.
+    #[inline]
+    fn bitand(self, b: Self) -> Self {
+        Self(imp::and(self.0, b.0))
+    }
+}
+
+impl std::ops::BitOr for F32x4 {
+    type Output = Self;
+    /// The bits of `self` and `b`, or-ed.
+    #[inline]
+    fn bitor(self, b: Self) -> Self {
+        Self(imp::or(self.0, b.0))
     }
 }
 
@@ -166,6 +200,18 @@ mod imp {
     #[inline]
     pub fn mul(a: Raw, b: Raw) -> Raw {
         unsafe { _mm_mul_ps(a, b) }
+    }
+    #[inline]
+    pub fn div(a: Raw, b: Raw) -> Raw {
+        unsafe { _mm_div_ps(a, b) }
+    }
+    #[inline]
+    pub fn and(a: Raw, b: Raw) -> Raw {
+        unsafe { _mm_and_ps(a, b) }
+    }
+    #[inline]
+    pub fn or(a: Raw, b: Raw) -> Raw {
+        unsafe { _mm_or_ps(a, b) }
     }
     #[inline]
     pub fn gt(a: Raw, b: Raw) -> Raw {
@@ -267,6 +313,18 @@ mod imp {
     #[inline]
     pub fn mul(a: Raw, b: Raw) -> Raw {
         f32x4_mul(a, b)
+    }
+    #[inline]
+    pub fn div(a: Raw, b: Raw) -> Raw {
+        f32x4_div(a, b)
+    }
+    #[inline]
+    pub fn and(a: Raw, b: Raw) -> Raw {
+        v128_and(a, b)
+    }
+    #[inline]
+    pub fn or(a: Raw, b: Raw) -> Raw {
+        v128_or(a, b)
     }
     #[inline]
     pub fn gt(a: Raw, b: Raw) -> Raw {
@@ -372,6 +430,18 @@ mod imp {
         lanes(a, b, |x, y| x * y)
     }
     #[inline]
+    pub fn div(a: Raw, b: Raw) -> Raw {
+        lanes(a, b, |x, y| x / y)
+    }
+    #[inline]
+    pub fn and(a: Raw, b: Raw) -> Raw {
+        lanes(a, b, |x, y| f32::from_bits(x.to_bits() & y.to_bits()))
+    }
+    #[inline]
+    pub fn or(a: Raw, b: Raw) -> Raw {
+        lanes(a, b, |x, y| f32::from_bits(x.to_bits() | y.to_bits()))
+    }
+    #[inline]
     pub fn gt(a: Raw, b: Raw) -> Raw {
         mask(a, b, |x, y| x > y)
     }
@@ -417,7 +487,7 @@ mod imp {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use std::ops::{Add, Mul, Sub};
+    use std::ops::{Add, BitAnd, BitOr, Div, Mul, Sub};
 
     #[test]
     fn lanes_compute_what_the_scalar_operations_compute() {
@@ -428,6 +498,10 @@ mod tests {
             assert_eq!(va.add(vb).to_array()[k].to_bits(), (a[k] + b[k]).to_bits());
             assert_eq!(va.sub(vb).to_array()[k].to_bits(), (a[k] - b[k]).to_bits());
             assert_eq!(va.mul(vb).to_array()[k].to_bits(), (a[k] * b[k]).to_bits());
+            assert_eq!(va.div(vb).to_array()[k].to_bits(), (a[k] / b[k]).to_bits());
+            let (x, y) = (a[k].to_bits(), b[k].to_bits());
+            assert_eq!(va.bitand(vb).to_array()[k].to_bits(), x & y);
+            assert_eq!(va.bitor(vb).to_array()[k].to_bits(), x | y);
             assert_eq!(va.gt(vb).mask_to_array()[k], a[k] > b[k]);
             assert_eq!(va.le(vb).mask_to_array()[k], a[k] <= b[k]);
             assert_eq!(va.ge(vb).mask_to_array()[k], a[k] >= b[k]);
@@ -458,6 +532,13 @@ mod tests {
                 assert_eq!(v, (4 * i + k) as f32);
             }
         }
+    }
+
+    #[test]
+    fn rounds_small_values_to_the_nearest_integer() {
+        let v = [0.49, -0.5, 1.5, -2.7];
+        let r = F32x4::from_array(v).round_small().to_array();
+        assert_eq!(r, [0.0, -0.0, 2.0, -3.0]);
     }
 
     #[test]

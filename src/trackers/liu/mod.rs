@@ -28,6 +28,7 @@
 //! each frame by default-model lanes on the ego pair a bottom-up line detector finds
 //! ([`super::relock`]).
 
+pub mod atan32;
 pub mod config;
 pub mod descriptors;
 pub mod kernels;
