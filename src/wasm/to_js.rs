@@ -268,49 +268,29 @@ impl SeqOut {
     }
 }
 
-impl ser::SerializeSeq for SeqOut {
-    type Ok = JsValue;
-    type Error = ToJsError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), ToJsError> {
-        self.push(value)
-    }
-    fn end(self) -> Result<JsValue, ToJsError> {
-        Ok(self.done())
-    }
+/// The four sequence traits of serde, all filled by [`SeqOut::push`]: they differ only in
+/// the trait and its element method's name.
+macro_rules! seq_out {
+    ($($trait:ident :: $method:ident),*) => {$(
+        impl ser::$trait for SeqOut {
+            type Ok = JsValue;
+            type Error = ToJsError;
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), ToJsError> {
+                self.push(value)
+            }
+            fn end(self) -> Result<JsValue, ToJsError> {
+                Ok(self.done())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTuple for SeqOut {
-    type Ok = JsValue;
-    type Error = ToJsError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), ToJsError> {
-        self.push(value)
-    }
-    fn end(self) -> Result<JsValue, ToJsError> {
-        Ok(self.done())
-    }
-}
-
-impl ser::SerializeTupleStruct for SeqOut {
-    type Ok = JsValue;
-    type Error = ToJsError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), ToJsError> {
-        self.push(value)
-    }
-    fn end(self) -> Result<JsValue, ToJsError> {
-        Ok(self.done())
-    }
-}
-
-impl ser::SerializeTupleVariant for SeqOut {
-    type Ok = JsValue;
-    type Error = ToJsError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), ToJsError> {
-        self.push(value)
-    }
-    fn end(self) -> Result<JsValue, ToJsError> {
-        Ok(self.done())
-    }
-}
+seq_out!(
+    SerializeSeq::serialize_element,
+    SerializeTuple::serialize_element,
+    SerializeTupleStruct::serialize_field,
+    SerializeTupleVariant::serialize_field
+);
 
 impl MapOut {
     fn field<T: Serialize + ?Sized>(&mut self, key: &str, value: &T) -> Result<(), ToJsError> {
