@@ -32,14 +32,14 @@
 //! | `highway-curve` | straight 30-90 m, clothoid 80-160 m into an arc of radius 300-1000 m, +-; runs until 4 s past the curve's start (>= 300 frames) |
 //! | `s-curve` | straight 20-50 m, clothoid 50-90 m, arc 60-120 m of radius 250-500 m, clothoid 80-140 m to the opposite curvature (radius 250-500 m), arc 60-120 m, clothoid 50-90 m; first direction +-; runs to the middle of the second arc (300-660 frames) |
 //! | `lane-change` | 2-4 lanes; first change at 1.5-4 s, 2-4 s long, to a neighbour that exists; after 1.5-3.5 s a second change 2-4 s long, back or onward (50 %, onward only if that lane exists); sway 0-0.1 m; runs 2 s past the second change |
-//! | `occlusion` | straight 60-140 m, clothoid 80-150 m to +-0-0.0015; 2-5 cars in any lane 10-60 m ahead at speed +-3 m/s of ours, and a truck (12 x 2.5 x 3.6 m) with 50 %; one blackout starting at 3-7 s, 0.5-1.5 s long |
+//! | `occlusion` | straight 60-140 m, clothoid 80-150 m to +-0-0.0015; 2-5 cars in any lane 10-60 m ahead at speed +-3 m/s of ours (one in our lane that we would reach within 3 m goes as much faster instead), and a truck (12 x 2.5 x 3.6 m) with 50 %; one blackout starting at 3-7 s, 0.5-1.5 s long |
 //! | `shadows` | straight 60-140 m, clothoid 100-200 m to +-0-0.002; tree shadows on the left and/or right (each side 75 %, at least one) from 20-80 m for 150-350 m, reach 3-7 m, light 0.35-0.6; a bridge (80 %) at 100-250 m, 8-25 m long, light 0.2-0.4 |
 //! | `worn-markings` | straight 60-140 m, clothoid 80-150 m to +-0-0.0015; 2-4 worn stretches from 40-250 m, 40-100 m long, on all boundaries (30 %, visibility 0.2-0.5) or one (visibility 0-0.3); repair patches 0.1-0.35 |
 //! | `night` | straight 60-140 m, clothoid 80-150 m to +-0-0.002; night; sensor noise 3-5 grey levels; 0-2 cars 30-80 m ahead |
 //! | `width-change` | W_0 2.8-4.2 m; from 30-80 m over 50-100 m to W_1, then after 20-60 m over 40-80 m to W_2, each 2.8-4.2 m and >= 0.4 m from the one before; sway 0-0.15 m |
 //! | `pitch-bumps` | straight; body pitch 0.6-1.6 deg and height 0.02-0.06 m at a period of 0.7-1.4 s; vertical curvature +-2e-4-6e-4 |
 //! | `multi-lane` | 4 lanes, the car in lane 1 or 2; the lane on one side (drawn) is missing from 60-140 m for 80-140 m; the lane on the other side exists only from 40-100 m to 200-280 m; clothoid to +-0-0.001 after 100-180 m |
-//! | `urban` | 2 lanes of 2.8-3.6 m, speed 8-14 m/s; straight 20-50 m, clothoid 20-40 m into a +-100-250 m radius turn 25-60 m long, clothoid back, running to the middle of the turn (>= 300 frames); kerbs on both edges, double yellow centre line; 3-8 cars parked on the right every 15-30 m from 30-60 m; an arrow and a bar of writing at 50-120 m; hood 0.08-0.15, glare, vignette |
+//! | `urban` | 2 lanes of 2.8-3.6 m, speed 8-14 m/s; straight 20-50 m, clothoid 20-40 m into a +-100-250 m radius turn 25-60 m long, clothoid back, running to the middle of the turn (>= 300 frames); kerbs on both edges, double yellow centre line; 3-8 cars parked on the right, half on the pavement (0.2 m into the lane), every 15-30 m from 30-60 m; an arrow and a bar of writing at 50-120 m; hood 0.08-0.15, glare, vignette |
 //!
 //! The fixed roads of the scenarios before families ([`super::scenario`]) stay reachable as
 //! the **reference** members ([`reference_member`]: that road, [`CameraMount::REFERENCE`]),
