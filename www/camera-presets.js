@@ -93,6 +93,7 @@ async function fetchPresets() {
   const files = {
     'udacity-640': ['Udacity clip (640x360)', CLIP.camera],
     'udacity-1280': ['Udacity project video (1280x720)', 'clips/udacity-1280x720.camera.json'],
+    'udacity-challenge': ['Udacity challenge video (1280x720)', 'clips/udacity-challenge-1280x720.camera.json'],
     'udacity-960': ['Udacity 960x540 videos (assumed)', 'clips/udacity-960x540.camera.json'],
     kitti: ['KITTI object demo pair (stereo, 1242x375)', 'cameras/kitti-object-demo.camera.json'],
     karlsruhe: ['Karlsruhe urban pairs (stereo, 1344x391)', 'cameras/karlsruhe-urban.camera.json'],
