@@ -91,6 +91,7 @@ export const TRACKERS = {
       { path: 'marking_widths', label: 'marking widths and gradient cue (off: the previous approach)', kind: 'bool' },
       { path: 'start_iterations', label: 'start rounds on the first frame (ours; 0: the paper’s start)', min: 0, max: 30, step: 1 },
       { path: 'valid_distance_m', label: 'validity tolerance on the road (m; ours; 0: pixels only)', min: 0, max: 0.1, step: 0.005 },
+      { path: 'valid_support_frames', label: 'frames a dashed boundary’s support is remembered (ours; 1: this frame only)', min: 1, max: 15, step: 1 },
       RELOCK,
       ADJACENT,
     ],

@@ -40,6 +40,7 @@ mod presets;
 mod ranges;
 mod registry;
 pub mod relock;
+pub mod support_memory;
 #[cfg(test)]
 mod tests;
 mod tracker;

@@ -122,6 +122,11 @@ pub struct DanescuConfig {
     /// within `valid_distance_px` of a road edge (a dashed line of 3 m dashes every 12 m gives
     /// about 0.25).
     pub valid_support: f64,
+    /// Validity: the support on each side is the mean over the last this many frames (this
+    /// one included; fewer since a reset) before it is held against `valid_support`: a dashed
+    /// line's support swings with the dashes' phase ([`crate::trackers::support_memory`];
+    /// ours, beyond the paper; 1: this frame's alone, the default).
+    pub valid_support_frames: usize,
     /// Validity: the estimate's MBSAS cluster holds at least this share of the resampled
     /// particles.
     pub valid_cluster_share: f64,
@@ -198,6 +203,7 @@ impl Default for DanescuConfig {
             valid_distance_px: 2.0,
             valid_distance_m: 0.0,
             valid_support: 0.15,
+            valid_support_frames: 1,
             valid_cluster_share: 0.3,
             relock_share: 0.0,
             start_iterations: 0,

@@ -58,6 +58,7 @@ pub mod stereo;
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
+use super::support_memory::{self, SupportMemory};
 use super::{
     now, spread_indices, EgoMotion, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig,
 };
@@ -175,6 +176,8 @@ pub struct DanescuTracker {
     last_lane: Option<Lane3d>,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
+    /// The last `valid_support_frames` frames' support, for the validity.
+    support_memory: SupportMemory,
     /// The frame's schedule in progress and the last frame's times.
     stepper: Stepper,
 }
@@ -239,6 +242,7 @@ impl DanescuTracker {
         Ok(Self {
             id,
             camera,
+            support_memory: SupportMemory::new(danescu.valid_support_frames),
             config: danescu,
             right: if is_stereo {
                 vec![0; n_pixels * 4]
@@ -403,8 +407,9 @@ impl DanescuTracker {
             self.stereo.as_ref().and_then(StereoCues::usable_density),
         );
         e.support = d.support;
+        let remembered = self.support_memory.push(d.support);
         e.valid = e.cluster_share >= self.config.valid_cluster_share
-            && d.support.iter().all(|&s| s >= self.config.valid_support)
+            && support_memory::supported(d.support, remembered, self.config.valid_support)
             && self.measurement.is_valid(&e.lane);
         // Lane change (the shared rule, `super::lane_change`): the car has crossed the
         // centre of a marking; re-centre the cloud on the lane the car is now in.
@@ -585,6 +590,7 @@ impl Tracker for DanescuTracker {
         self.stepper.restart();
         self.stepper.abandon();
         self.last_lane = None;
+        self.support_memory.clear();
         self.motion = None;
         self.last_time = None;
     }
@@ -816,5 +822,7 @@ impl Scheduled for DanescuTracker {
 
 #[cfg(test)]
 mod start_tests;
+#[cfg(test)]
+mod support_memory_tests;
 #[cfg(test)]
 mod tests;

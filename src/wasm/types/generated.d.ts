@@ -943,6 +943,16 @@ export interface DanescuOptions {
    */
   valid_support?: number;
   /**
+   * Validity: the support on each side is the mean over the last this many frames (this
+   * one included; fewer since a reset) before it is held against `valid_support`: a dashed
+   * line's support swings with the dashes' phase (`support_memory`;
+   * ours, beyond the paper; 1: this frame's alone, the default).
+   *
+   * Range: 1 to 100.
+   * @defaultValue `1`
+   */
+  valid_support_frames?: number;
+  /**
    * Validity: the estimate's MBSAS cluster holds at least this share of the resampled
    * particles.
    *
