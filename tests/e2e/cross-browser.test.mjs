@@ -718,6 +718,7 @@ for (const driver of DRIVERS) {
       await page.select('#tracker', 'danescu-mono');
       await page.waitFor(() => document.querySelector('#params input[name="relock_share"]')?.value === '0.1');
       assert.equal(await page.eval(() => document.querySelector('#params input[name="start_iterations"]').value), '10');
+      assert.equal(await page.eval(() => document.querySelector('#params input[name="valid_support_frames"]').value), '5');
       // A comparison tracker runs the same preset: adachi-mmpf's real-roads options.
       await page.select('#compare', 'adachi-mmpf');
       await page.waitFor(() => window.lanepfDemo.compareOptions?.relock_share === 0.05);
