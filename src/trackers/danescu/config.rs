@@ -122,10 +122,11 @@ pub struct DanescuConfig {
     /// within `valid_distance_px` of a road edge (a dashed line of 3 m dashes every 12 m gives
     /// about 0.25).
     pub valid_support: f64,
-    /// Validity: the support on each side is the mean over the last this many frames (this
-    /// one included; fewer since a reset) before it is held against `valid_support`: a dashed
-    /// line's support swings with the dashes' phase ([`crate::trackers::support_memory`];
-    /// ours, beyond the paper; 1: this frame's alone, the default).
+    /// Validity: a side under `valid_support` this frame still counts when its mean support
+    /// over the last this many frames (this one included; fewer since a reset) reaches
+    /// `valid_support` and the other side this frame holds at least twice it: a dashed line's
+    /// support swings with the dashes' phase ([`crate::trackers::support_memory`]; ours,
+    /// beyond the paper; 1: this frame's alone, the default).
     pub valid_support_frames: usize,
     /// Validity: the estimate's MBSAS cluster holds at least this share of the resampled
     /// particles.

@@ -43,7 +43,8 @@
 //! A frame is valid when the chosen cluster holds at least `valid_cluster_share` of the
 //! resampled particles and, on each side, at least `valid_support` of the estimate's
 //! inner-edge points are within `valid_distance_px` of a road edge (our definition, as for
-//! `lee-cpf`; the paper's validation step is not spelled out).
+//! `lee-cpf`; the paper's validation step is not spelled out; `valid_support_frames`, ours,
+//! lets a side between a dashed line's dashes count on its recent support).
 //!
 //! With a positive `relock_share` (ours, off by default) a share of the particles is drawn each frame,
 //! after the drift, around the ego pair a bottom-up line detector finds ([`super::relock`]),

@@ -943,10 +943,11 @@ export interface DanescuOptions {
    */
   valid_support?: number;
   /**
-   * Validity: the support on each side is the mean over the last this many frames (this
-   * one included; fewer since a reset) before it is held against `valid_support`: a dashed
-   * line's support swings with the dashes' phase (`support_memory`;
-   * ours, beyond the paper; 1: this frame's alone, the default).
+   * Validity: a side under `valid_support` this frame still counts when its mean support
+   * over the last this many frames (this one included; fewer since a reset) reaches
+   * `valid_support` and the other side this frame holds at least twice it: a dashed line's
+   * support swings with the dashes' phase (`support_memory`; ours,
+   * beyond the paper; 1: this frame's alone, the default).
    *
    * Range: 1 to 100.
    * @defaultValue `1`
