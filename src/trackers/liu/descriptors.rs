@@ -216,6 +216,22 @@ impl Descriptors {
         self.before[base + lo] as usize..self.before[base + hi + 1] as usize
     }
 
+    /// Row y's counts of [`Descriptors::span`]: entry x is the number of mask pixels before
+    /// column x of row y in row-major order (W + 1 entries), so that the mask pixels of row y
+    /// in columns lo..=hi are `row[lo]..row[hi + 1]`.
+    #[inline]
+    pub fn row_before(&self, y: usize) -> &[u32] {
+        let w = self.width() + 1;
+        &self.before[y * w..(y + 1) * w]
+    }
+
+    /// [`Descriptors::row_before`] of the rows `rows`, in order.
+    #[inline]
+    pub fn rows_before(&self, rows: std::ops::Range<usize>) -> std::slice::ChunksExact<'_, u32> {
+        let w = self.width() + 1;
+        self.before[rows.start * w..rows.end * w].chunks_exact(w)
+    }
+
     /// The sum of the weights of the pixels `span`.
     pub fn weight_of(&self, span: std::ops::Range<usize>) -> f64 {
         self.weight_sum[span.end] - self.weight_sum[span.start]

@@ -245,6 +245,17 @@ impl PpfModel {
         (lo <= hi).then_some(lo as usize..=hi as usize)
     }
 
+    /// The mask pixels in the band around column x of one row, `before` being the row's
+    /// [`Descriptors::row_before`]: [`PpfModel::band`] then [`Descriptors::span`], empty where
+    /// there is no band.
+    #[inline]
+    fn band_span(&self, before: &[u32], x: f64) -> std::ops::Range<usize> {
+        match self.band(x) {
+            Some(cols) => before[*cols.start()] as usize..before[*cols.end() + 1] as usize,
+            None => 0..0,
+        }
+    }
+
     /// Sec. IV-A: spacings at the bottom row and at y_m.
     pub fn is_valid(&self, p: &LaneParticle) -> bool {
         // Each boundary's coefficients once for both rows (`x_at` computes them per call).
@@ -302,18 +313,23 @@ impl PpfModel {
             position_log2: (std::f64::consts::LOG2_E * c * c * 0.5 / var) as f32,
         };
         let mut sum = 0.0;
-        let mut batch = Batch::<1>::new(&cues.pixels);
-        for y in self.near_rows() {
-            let xc = a + slope * y as f64;
-            let Some(cols) = self.band(xc) else {
-                continue;
-            };
-            let span = cues.span(y, *cols.start(), *cols.end());
-            count += span.len();
-            if !self.kernel {
+        let near = self.near_rows();
+        let mut y = near.start as f64;
+        if !self.kernel {
+            for before in cues.rows_before(near) {
+                let span = self.band_span(before, a + slope * y);
+                y += 1.0;
+                count += span.len();
                 sum += cues.weight_of(span);
-                continue;
             }
+            return (sum, count);
+        }
+        let mut batch = Batch::<1>::new(&cues.pixels);
+        for before in cues.rows_before(near) {
+            let xc = a + slope * y;
+            y += 1.0;
+            let span = self.band_span(before, xc);
+            count += span.len();
             batch.push_row(span, [xc as f32], |b| {
                 sum += line.batch(b);
             });
@@ -321,9 +337,7 @@ impl PpfModel {
         if batch.used > 0 {
             sum += line.batch(&batch);
         }
-        if self.kernel {
-            sum /= (2.0 * PI * var).sqrt();
-        }
+        sum /= (2.0 * PI * var).sqrt();
         (sum, count)
     }
 
@@ -344,38 +358,19 @@ impl PpfModel {
     pub fn parabolic_sum(&self, b: &LinearParabolic, cues: &Descriptors) -> f64 {
         let [_, _, c, e] = b.coefficients();
         let d = b.d;
-        let mut sum = 0.0;
         let nodes = self.node_offsets.len();
+        if self.kernel && nodes == 3 {
+            return self.parabolic_sum_3(c, d, e, cues);
+        }
+        let mut sum = 0.0;
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
-        // The default 3-node rule (nodes y - h, y, y + h) four pixels at a time; other rules
-        // one at a time.
-        let lanes = self.kernel && nodes == 3;
-        let h = self.node_offsets[nodes - 1];
-        let (h32, e_h2) = (h as f32, (e * h * h) as f32);
-        // -2 e h: h dtheta/dy = -2 e h / (1 + slope^2).
-        let minus_2eh = (-2.0 * e * h) as f32;
-        let mut batch = Batch::<4>::new(&cues.pixels);
-        // The 3-node rule's per-row orientation records, ROW_CHUNK rows at a time
-        // ([`RowCurve::orientations`]).
-        let curve = RowCurve {
-            minus_d: -d as f32,
-            two_e: (2.0 * e) as f32,
-            minus_h: -h32,
-            minus_2eh,
-        };
-        let mut records = [[0.0f32; ROW_CHUNK]; 3];
         let far = self.far_rows();
         let mut yf = far.start as f64;
-        for y in far.clone() {
-            let i = (y - far.start) % ROW_CHUNK;
-            if lanes && i == 0 {
-                curve.orientations(y as f32, far.end - y, &mut records);
-            }
+        for before in cues.rows_before(far) {
             let xc = c + d * yf + e * yf * yf;
             yf += 1.0;
-            let Some(cols) = self.band(xc) else { continue };
-            let span = cues.span(y, *cols.start(), *cols.end());
+            let span = self.band_span(before, xc);
             if span.is_empty() {
                 continue;
             }
@@ -383,20 +378,11 @@ impl PpfModel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            if lanes {
-                // The default 3-node rule: the pixels are batched across rows and go four at
-                // a time, each with its row's curve: at the nodes y -+ h the column is
-                // xc -+ slope h + e h^2 and the orientation theta -+ h dtheta/dy.
-                let row = [xc as f32, records[0][i], records[1][i], records[2][i]];
-                batch.push_row(span, row, |b| {
-                    sum += self.parabolic_batch(b, e_h2);
-                });
-                continue;
-            }
-            // The curve and its gradient orientation (eq. 7) at the row's nodes y_k: the
-            // orientation at y, in f32 as the kernels use it, by the polynomial atan32 (an
-            // approximation within 2e-7 rad), and its first-order change across the nodes
-            // (|dtheta/dy| = 2|e| / (1 + slope^2) over +-2 rows: below 1e-6 rad off).
+            // Other rules than the default 3-node one: one pixel at a time. The curve and its
+            // gradient orientation (eq. 7) at the row's nodes y_k: the orientation at y, in
+            // f32 as the kernels use it, by the polynomial atan32 (an approximation within
+            // 2e-7 rad), and its first-order change across the nodes (|dtheta/dy| = 2|e| / (1
+            // + slope^2) over +-2 rows: below 1e-6 rad off).
             let yf = yf - 1.0;
             let slope = d + 2.0 * e * yf;
             let theta = atan32(-slope as f32);
@@ -415,17 +401,59 @@ impl PpfModel {
                 &node_theta[..nodes],
             );
         }
-        if batch.used > 0 {
-            sum += self.parabolic_batch(&batch, e_h2);
-        }
-        if lanes {
-            // The middle node's weight w_0 / sqrt(pi), which `parabolic_batch` leaves out.
-            sum *= f64::from(self.node_weights[1]);
-        }
         if self.kernel {
             sum /= (2.0 * PI * self.var_x).sqrt();
         }
         sum
+    }
+
+    /// [`PpfModel::parabolic_sum`] of the curve x = c + d y + e y^2 with the default 3-node
+    /// rule (nodes y - h, y, y + h): the pixels are batched across rows and go four at a time,
+    /// each with its row's curve: at the nodes y -+ h the column is xc -+ slope h + e h^2 and
+    /// the orientation theta -+ h dtheta/dy.
+    fn parabolic_sum_3(&self, c: f64, d: f64, e: f64, cues: &Descriptors) -> f64 {
+        let h = self.node_offsets[2];
+        let (h32, e_h2) = (h as f32, (e * h * h) as f32);
+        // -2 e h: h dtheta/dy = -2 e h / (1 + slope^2).
+        let minus_2eh = (-2.0 * e * h) as f32;
+        let mut batch = Batch::<4>::new(&cues.pixels);
+        // The per-row orientation records, ROW_CHUNK rows at a time ([`RowCurve::orientations`]).
+        let curve = RowCurve {
+            minus_d: -d as f32,
+            two_e: (2.0 * e) as f32,
+            minus_h: -h32,
+            minus_2eh,
+        };
+        let mut records = [[0.0f32; ROW_CHUNK]; 3];
+        let far = self.far_rows();
+        let mut rows = cues.rows_before(far.clone());
+        let mut sum = 0.0;
+        let mut yf = far.start as f64;
+        for first in far.clone().step_by(ROW_CHUNK) {
+            let n = (far.end - first).min(ROW_CHUNK);
+            curve.orientations(first as f32, n, &mut records);
+            let [theta, slope_h, dtheta_h] = &records;
+            for (((&theta, &slope_h), &dtheta_h), before) in theta[..n]
+                .iter()
+                .zip(&slope_h[..n])
+                .zip(&dtheta_h[..n])
+                .zip(rows.by_ref())
+            {
+                let xc = c + d * yf + e * yf * yf;
+                yf += 1.0;
+                let span = self.band_span(before, xc);
+                let row = [xc as f32, theta, slope_h, dtheta_h];
+                batch.push_row(span, row, |b| {
+                    sum += self.parabolic_batch(b, e_h2);
+                });
+            }
+        }
+        if batch.used > 0 {
+            sum += self.parabolic_batch(&batch, e_h2);
+        }
+        // The middle node's weight w_0 / sqrt(pi), which `parabolic_batch` leaves out.
+        sum *= f64::from(self.node_weights[1]);
+        sum / (2.0 * PI * self.var_x).sqrt()
     }
 }
 
@@ -486,9 +514,9 @@ impl Line {
         let position = F32x4::splat(self.position_log2);
         let orientation = F32x4::splat(HALF_LOG2_E);
         let mut acc = F32x4::splat(0.0);
-        for j in (0..batch.used).step_by(4) {
-            let [x, weight, theta_i, precision] = batch.pixels(j);
-            let [xc] = batch.rows(j);
+        for q in 0..batch.quads() {
+            let [x, weight, theta_i, precision] = batch.pixels(q);
+            let [xc] = batch.rows(q);
             // K_theta G_li = exp(-(dtheta^2 |grad I| / 2 + dist^2 / (2 var))) = 2^(-y), y the
             // same exponent times log2(e).
             let dtheta = fold_x4(theta.sub(theta_i));
@@ -498,7 +526,7 @@ impl Line {
                 .mul(position)
                 .add(dtheta.mul(dtheta).mul(precision.mul(orientation)));
             let term = weight.mul(neg_exp2_x4(y));
-            acc = acc.add(only_used(term, batch.used - j));
+            acc = acc.add(only_used(term, batch.used - 4 * q));
         }
         lane_sum(acc)
     }
@@ -548,10 +576,10 @@ impl PpfModel {
         // nodes); the caller multiplies the sum by w_0 / sqrt(pi).
         let outer_weight = F32x4::splat(self.node_weights[0] / self.node_weights[1]);
         let mut acc = F32x4::splat(0.0);
-        for j in (0..batch.used).step_by(4) {
-            let [x, weight, theta_i, precision] = batch.pixels(j);
+        for q in 0..batch.quads() {
+            let [x, weight, theta_i, precision] = batch.pixels(q);
             // Row record: the curve's column and orientation at the row, slope h, h dtheta/dy.
-            let [xc, theta, slope_h, dtheta_h] = batch.rows(j);
+            let [xc, theta, slope_h, dtheta_h] = batch.rows(q);
             // The orientation difference at the row, folded once (see `parabolic_pixels`).
             let dtheta = fold_x4(theta.sub(theta_i));
             let dx = xc.sub(x);
@@ -564,7 +592,7 @@ impl PpfModel {
             let outer = node(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h))
                 .add(node(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h)));
             let g = node(dx, dtheta).add(outer_weight.mul(outer));
-            acc = acc.add(only_used(weight.mul(g), batch.used - j));
+            acc = acc.add(only_used(weight.mul(g), batch.used - 4 * q));
         }
         lane_sum(acc)
     }
@@ -658,18 +686,20 @@ impl<'a, const R: usize> Batch<'a, R> {
         row: [f32; R],
         mut full: impl FnMut(&Self),
     ) {
-        let mut start = span.start;
+        let (mut start, end) = (span.start, span.end);
         loop {
-            let n = (span.end - start).min(ROW_COPY);
+            let n = (end - start).min(ROW_COPY);
             let j = self.used;
-            // Room: used < BATCH before every write.
+            // Room: used < BATCH before every write (checked once here for the slices below).
+            assert!(j < BATCH);
+            let index = &mut self.index[j..j + ROW_COPY];
             if start + ROW_COPY <= self.all.len() {
-                for k in 0..ROW_COPY {
-                    self.index[j + k] = (start + k) as u32;
+                for (k, to) in index.iter_mut().enumerate() {
+                    *to = (start + k) as u32;
                 }
             } else {
-                for k in 0..n {
-                    self.index[j + k] = (start + k) as u32;
+                for (k, to) in index[..n].iter_mut().enumerate() {
+                    *to = (start + k) as u32;
                 }
             }
             for (to, &v) in self.rows.iter_mut().zip(&row) {
@@ -681,25 +711,39 @@ impl<'a, const R: usize> Batch<'a, R> {
                 full(self);
                 self.used = 0;
             }
-            if start == span.end {
+            if start == end {
                 break;
             }
         }
     }
 
-    /// The pixels j..j + 4 as lanes: column, weight, orientation, precision.
+    /// The number of quads (four pixels) to read: `used` rounded up to four (the lanes past
+    /// `used` hold stale but valid entries), in quads.
     #[inline]
-    fn pixels(&self, j: usize) -> [F32x4; 4] {
-        let index = &self.index[j..j + 4];
-        F32x4::transpose(
-            [0, 1, 2, 3].map(|k| F32x4::load_array(self.all[index[k] as usize].as_array())),
-        )
+    fn quads(&self) -> usize {
+        // At most (BATCH + ROW_COPY) / 4 (used < BATCH + ROW_COPY): said for the bounds.
+        self.used.div_ceil(4).min((BATCH + ROW_COPY) / 4)
     }
 
-    /// The row records of pixels j..j + 4 as lanes (number r of the four in lane r).
+    /// The pixels of quad q (pixels 4 q..4 q + 4) as lanes: column, weight, orientation,
+    /// precision.
     #[inline]
-    fn rows(&self, j: usize) -> [F32x4; R] {
-        std::array::from_fn(|r| F32x4::load(&self.rows[r], j))
+    fn pixels(&self, q: usize) -> [F32x4; 4] {
+        let index = &self.index[4 * q..4 * q + 4];
+        F32x4::transpose([0, 1, 2, 3].map(|k| {
+            let i = index[k] as usize;
+            debug_assert!(i < self.all.len());
+            // SAFETY: every entry of `index` is below `all.len()`: `push_row` writes only
+            // indices of pixels of `all`, and the initial zeros are read only once a row has
+            // been pushed, so when `all` is not empty.
+            F32x4::load_array(unsafe { self.all.get_unchecked(i) }.as_array())
+        }))
+    }
+
+    /// The row records of quad q as lanes (number r of the four in lane r).
+    #[inline]
+    fn rows(&self, q: usize) -> [F32x4; R] {
+        std::array::from_fn(|r| F32x4::load(&self.rows[r], 4 * q))
     }
 }
 
