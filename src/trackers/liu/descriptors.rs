@@ -20,7 +20,7 @@
 
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::image::{rgba_to_gray, Image};
+use crate::image::{rgba_to_gray_rows, Image};
 use crate::math;
 use crate::vision::{Gradients, Ipm, TopViewConfig};
 use std::f64::consts::PI;
@@ -148,7 +148,8 @@ impl Descriptors {
     pub fn compute(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         // A new id before anything changes, so that no cache keeps the last frame's values.
         self.frame = NEXT_FRAME.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        rgba_to_gray(rgba, width, height, &mut self.grey)?;
+        // Grey only where the IPM reads (the road's rows; the rest of the frame is never used).
+        rgba_to_gray_rows(rgba, width, height, self.ipm.source_rows(), &mut self.grey)?;
         self.ipm.apply(&self.grey.view(), 0, &mut self.top)?;
         self.gradients.compute(&self.top.view())?;
         let norm = 1.0 / (2.0 * PI * self.intensity_variance).sqrt();
