@@ -75,6 +75,9 @@ pub struct PpfModel {
     var_x: f64,
     var_y: f64,
     band: usize,
+    /// -band_px - 1 and width + band_px: the bounds of x -+ 1/2 for a band in the view.
+    band_below: f64,
+    band_above: f64,
     /// w_k / sqrt(pi) of the Gauss-Hermite rule (f32: the parabolic sums run in f32).
     node_weights: Vec<f32>,
     /// sqrt(2 sigma_y^2) t_k.
@@ -192,6 +195,8 @@ impl PpfModel {
             var_x: config.position_variance_px2,
             var_y,
             band: config.band_px,
+            band_below: -(config.band_px as f64) - 1.0,
+            band_above: (width + config.band_px) as f64,
             node_weights,
             node_offsets,
             position_log2: (std::f64::consts::LOG2_E * 0.5 / config.position_variance_px2) as f32,
@@ -232,17 +237,23 @@ impl PpfModel {
         0..(self.y_m.floor() as usize + 1).min(self.height)
     }
 
-    /// Columns of the band around x in a row, clipped to the view.
-    fn band(&self, x: f64) -> Option<std::ops::RangeInclusive<usize>> {
-        self.band_around(band_centre(x)?)
-    }
-
-    /// Columns of the band around column `centre` ([`band_centre`]), clipped to the view.
+    /// Columns of the band around x in a row, clipped to the view: the band is centred on x
+    /// rounded half away from zero (as `f64::round`); `None` when none of its columns is in
+    /// the view, and for NaN and infinities.
     #[inline]
-    fn band_around(&self, centre: i64) -> Option<std::ops::RangeInclusive<usize>> {
+    fn band(&self, x: f64) -> Option<std::ops::RangeInclusive<usize>> {
+        // x rounded half away from zero is the integer part of x + 1/2 for x >= 0 and of
+        // x - 1/2 below (-0 gives 0 either way).
+        let r = x + 0.5f64.copysign(x);
+        // The band c -+ band_px meets columns 0..=width - 1 exactly when -band_px <= c <=
+        // width - 1 + band_px, i.e. -band_px - 1 < r < width + band_px (false for NaN).
+        if !(r > self.band_below && r < self.band_above) {
+            return None;
+        }
+        let centre = r as i64;
         let lo = (centre - self.band as i64).max(0);
         let hi = (centre + self.band as i64).min(self.width as i64 - 1);
-        (lo <= hi).then_some(lo as usize..=hi as usize)
+        Some(lo as usize..=hi as usize)
     }
 
     /// The mask pixels in the band around column x of one row, `before` being the row's
@@ -300,6 +311,8 @@ impl PpfModel {
     /// [`PpfModel::linear_sum`] and [`PpfModel::linear_count`] of boundary `b` in one pass
     /// over the near rows (the same line, a = rho / cos(theta) and slope -sin / cos, so the
     /// same bands).
+    // Out of line (one call per boundary): each loop keeps its own registers.
+    #[inline(never)]
     pub fn linear_sum_count(&self, b: &LinearParabolic, cues: &Descriptors) -> (f64, usize) {
         let (s, c) = (math::sin(b.theta), math::cos(b.theta));
         let (a, slope) = (b.rho / c, -s / c);
@@ -411,6 +424,8 @@ impl PpfModel {
     /// rule (nodes y - h, y, y + h): the pixels are batched across rows and go four at a time,
     /// each with its row's curve: at the nodes y -+ h the column is xc -+ slope h + e h^2 and
     /// the orientation theta -+ h dtheta/dy.
+    // Out of line (one call per boundary): each loop keeps its own registers.
+    #[inline(never)]
     fn parabolic_sum_3(&self, c: f64, d: f64, e: f64, cues: &Descriptors) -> f64 {
         let h = self.node_offsets[2];
         let (h32, e_h2) = (h as f32, (e * h * h) as f32);
@@ -473,7 +488,8 @@ impl RowCurve {
     /// For the ROW_CHUNK rows from `y0` (the first `rows` of them at least), four per operation: the curve's gradient orientation
     /// theta = atan(-slope) (eq. 7, slope = d + 2 e y; by the polynomial [`atan32_x4`], within
     /// 2e-7 rad), slope h and h dtheta/dy = -2 e h / (1 + slope^2), into `records[0..3]`.
-    #[inline]
+    // Out of line (one call per 64 rows): each loop keeps its own registers.
+    #[inline(never)]
     fn orientations(&self, y0: f32, rows: usize, records: &mut [[f32; ROW_CHUNK]; 3]) {
         let (minus_d, two_e) = (F32x4::splat(self.minus_d), F32x4::splat(self.two_e));
         let (minus_h, minus_2eh) = (F32x4::splat(self.minus_h), F32x4::splat(self.minus_2eh));
@@ -509,6 +525,8 @@ impl Line {
     /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
     /// line column first in its row record), four at a time, summed: per lane in f32, the four
     /// lanes then in f64 in lane order.
+    // Out of line (one call per 64 pixels): each loop keeps its own registers.
+    #[inline(never)]
     fn batch(&self, batch: &Batch<1>) -> f64 {
         let theta = F32x4::splat(self.theta);
         let position = F32x4::splat(self.position_log2);
@@ -568,6 +586,8 @@ impl PpfModel {
     /// y, y + h; `e_h2` = e h^2), four pixels at a time in the four lanes of each operation
     /// ([`F32x4`]), each lane with its own row's curve, summed: per lane in f32, the four lanes
     /// then in f64 in lane order.
+    // Out of line (one call per 64 pixels): each loop keeps its own registers.
+    #[inline(never)]
     fn parabolic_batch(&self, batch: &Batch<4>, e_h2: f32) -> f64 {
         let position = F32x4::splat(self.position_log2);
         let orientation = F32x4::splat(HALF_LOG2_E);
@@ -596,20 +616,6 @@ impl PpfModel {
         }
         lane_sum(acc)
     }
-}
-
-/// The column a band is centred on: x rounded half away from zero (as f64::round) by
-/// saturating casts, without the libm call; `None` for NaN and infinities.
-#[inline]
-fn band_centre(x: f64) -> Option<i64> {
-    if !x.is_finite() {
-        return None;
-    }
-    Some(if x >= 0.0 {
-        (x + 0.5) as i64
-    } else {
-        (x - 0.5) as i64
-    })
 }
 
 /// `term` with the lanes from `left` on set to 0 (`left` pixels of the batch are left from
@@ -686,35 +692,66 @@ impl<'a, const R: usize> Batch<'a, R> {
         row: [f32; R],
         mut full: impl FnMut(&Self),
     ) {
-        let (mut start, end) = (span.start, span.end);
-        loop {
-            let n = (end - start).min(ROW_COPY);
-            let j = self.used;
-            // Room: used < BATCH before every write (checked once here for the slices below).
-            assert!(j < BATCH);
-            let index = &mut self.index[j..j + ROW_COPY];
-            if start + ROW_COPY <= self.all.len() {
-                for (k, to) in index.iter_mut().enumerate() {
-                    *to = (start + k) as u32;
-                }
-            } else {
-                for (k, to) in index[..n].iter_mut().enumerate() {
-                    *to = (start + k) as u32;
-                }
-            }
-            for (to, &v) in self.rows.iter_mut().zip(&row) {
-                to[j..j + ROW_COPY].fill(v);
-            }
-            self.used = j + n;
+        // The first ROW_COPY pixels (a whole band of the default 7 columns) here, the rest of
+        // a wider band out of line.
+        let n = span.len().min(ROW_COPY);
+        self.push_copy(span.start, n, row);
+        if self.used >= BATCH {
+            full(self);
+            self.used = 0;
+        }
+        if n < span.len() {
+            self.push_rest(span.start + n..span.end, row, full);
+        }
+    }
+
+    /// [`Batch::push_row`] of the pixels past a row's first ROW_COPY.
+    #[cold]
+    #[inline(never)]
+    fn push_rest(
+        &mut self,
+        span: std::ops::Range<usize>,
+        row: [f32; R],
+        mut full: impl FnMut(&Self),
+    ) {
+        let mut start = span.start;
+        while start < span.end {
+            let n = (span.end - start).min(ROW_COPY);
+            self.push_copy(start, n, row);
             start += n;
             if self.used >= BATCH {
                 full(self);
                 self.used = 0;
             }
-            if start == end {
-                break;
+        }
+    }
+
+    /// Adds the `n <= ROW_COPY` pixels from `all[start]` with the row record `row` (room:
+    /// `used < BATCH` before, so that they fit).
+    #[inline]
+    fn push_copy(&mut self, start: usize, n: usize, row: [f32; R]) {
+        let j = self.used;
+        // Checked once here for the slices below.
+        assert!(j < BATCH && n <= ROW_COPY);
+        let index = &mut self.index[j..j + ROW_COPY];
+        if start + ROW_COPY <= self.all.len() {
+            for (k, to) in index.iter_mut().enumerate() {
+                *to = (start + k) as u32;
+            }
+        } else {
+            for (k, to) in index[..n].iter_mut().enumerate() {
+                *to = (start + k) as u32;
             }
         }
+        // The row's record in all eight entries, four per store (a plain `fill` became 32
+        // scalar stores in WebAssembly).
+        for (to, &v) in self.rows.iter_mut().zip(&row) {
+            let (v, to) = (F32x4::splat(v), &mut to[j..j + ROW_COPY]);
+            let (low, high) = to.split_at_mut(4);
+            v.store(low.try_into().expect("4 of 8"));
+            v.store(high.try_into().expect("4 of 8"));
+        }
+        self.used = j + n;
     }
 
     /// The number of quads (four pixels) to read: `used` rounded up to four (the lanes past
