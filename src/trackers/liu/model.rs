@@ -42,12 +42,12 @@
 //! `min_spacing_m` to the right of its left neighbour, and neighbouring spacings differ by less
 //! than `max_spacing_difference_m`; other particles get weight 0 in stage 0.
 
-use super::atan32::{atan32, atan32_x4};
+use super::atan32::{atan32, Atan32Lanes};
 use super::config::{LiuConfig, MAX_BOUNDARIES};
 use super::descriptors::{wrap_half_turn, Descriptors, MaskPixel};
 use super::kernels::GaussHermite;
 use super::lanes::F32x4;
-use super::neg_exp::{neg_exp, neg_exp2_x4};
+use super::neg_exp::{neg_exp, NegExp2Lanes};
 use crate::calib::ego_on_road::EgoOnRoad;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
@@ -493,6 +493,7 @@ impl RowCurve {
     fn orientations(&self, y0: f32, rows: usize, records: &mut [[f32; ROW_CHUNK]; 3]) {
         let (minus_d, two_e) = (F32x4::splat(self.minus_d), F32x4::splat(self.two_e));
         let (minus_h, minus_2eh) = (F32x4::splat(self.minus_h), F32x4::splat(self.minus_2eh));
+        let atan = Atan32Lanes::new();
         let one = F32x4::splat(1.0);
         let quad = F32x4::from_array([0.0, 1.0, 2.0, 3.0]);
         for q in (0..rows.min(ROW_CHUNK)).step_by(4) {
@@ -500,7 +501,7 @@ impl RowCurve {
             // -slope = -d - 2 e y.
             let minus_slope = minus_d.sub(two_e.mul(y));
             let [theta, slope_h, dtheta_h] = [
-                atan32_x4(minus_slope),
+                atan.eval(minus_slope),
                 minus_slope.mul(minus_h),
                 minus_2eh.div(one.add(minus_slope.mul(minus_slope))),
             ];
@@ -531,19 +532,20 @@ impl Line {
         let theta = F32x4::splat(self.theta);
         let position = F32x4::splat(self.position_log2);
         let orientation = F32x4::splat(HALF_LOG2_E);
+        let k = NegExp2Lanes::new();
         let mut acc = F32x4::splat(0.0);
         for q in 0..batch.quads() {
             let [x, weight, theta_i, precision] = batch.pixels(q);
             let [xc] = batch.rows(q);
             // K_theta G_li = exp(-(dtheta^2 |grad I| / 2 + dist^2 / (2 var))) = 2^(-y), y the
             // same exponent times log2(e).
-            let dtheta = fold_x4(theta.sub(theta_i));
+            let dtheta = fold_x4(theta.sub(theta_i), &k);
             let dx = xc.sub(x);
             let y = dx
                 .mul(dx)
                 .mul(position)
                 .add(dtheta.mul(dtheta).mul(precision.mul(orientation)));
-            let term = weight.mul(neg_exp2_x4(y));
+            let term = weight.mul(k.eval(y));
             acc = acc.add(only_used(term, batch.used - 4 * q));
         }
         lane_sum(acc)
@@ -595,19 +597,20 @@ impl PpfModel {
         // The outer nodes' weight relative to the middle one's (w_-+ / w_0 = 1/4 for 3
         // nodes); the caller multiplies the sum by w_0 / sqrt(pi).
         let outer_weight = F32x4::splat(self.node_weights[0] / self.node_weights[1]);
+        let k = NegExp2Lanes::new();
         let mut acc = F32x4::splat(0.0);
         for q in 0..batch.quads() {
             let [x, weight, theta_i, precision] = batch.pixels(q);
             // Row record: the curve's column and orientation at the row, slope h, h dtheta/dy.
             let [xc, theta, slope_h, dtheta_h] = batch.rows(q);
             // The orientation difference at the row, folded once (see `parabolic_pixels`).
-            let dtheta = fold_x4(theta.sub(theta_i));
+            let dtheta = fold_x4(theta.sub(theta_i), &k);
             let dx = xc.sub(x);
             // K'_x K'_theta at a node (eqs. 13-14) = exp(-(dx^2 / (2 sigma_x^2) + dt^2
             // |grad I| / 2)) = 2^(-y), y the same exponent times log2(e).
             let precision = precision.mul(orientation);
             let node = |dx: F32x4, dt: F32x4| {
-                neg_exp2_x4(dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision)))
+                k.eval(dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision)))
             };
             let outer = node(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h))
                 .add(node(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h)));
@@ -645,9 +648,9 @@ const HALF_LOG2_E: f32 = 0.5 * super::neg_exp::LOG2_E;
 /// [`fold32`] but for d within an f32 rounding of -+pi/2, where either end is as good (the
 /// kernels use the square, and the nodes' orientation changes by below 1e-3 rad).
 #[inline]
-fn fold_x4(d: F32x4) -> F32x4 {
-    let k = d.mul(F32x4::splat(FRAC_1_PI_32)).round_small();
-    d.sub(k.mul(F32x4::splat(PI_32)))
+fn fold_x4(d: F32x4, k: &NegExp2Lanes) -> F32x4 {
+    let n = d.mul(k.frac_1_pi).round_small_by(k.rounder());
+    d.sub(n.mul(k.pi))
 }
 
 /// Pixels per [`Batch`] (a multiple of 4).
@@ -786,7 +789,6 @@ impl<'a, const R: usize> Batch<'a, R> {
 
 const PI_32: f32 = std::f32::consts::PI;
 const FRAC_PI_2_32: f32 = std::f32::consts::FRAC_PI_2;
-const FRAC_1_PI_32: f32 = std::f32::consts::FRAC_1_PI;
 
 /// A difference of two orientations in (-pi/2, pi/2] each, folded into (-pi/2, pi/2].
 #[inline]
