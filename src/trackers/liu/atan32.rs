@@ -68,7 +68,7 @@ pub struct Atan32Lanes {
 impl Atan32Lanes {
     /// The constants, as values the compiler cannot see through.
     #[inline]
-    pub fn new() -> Self {
+    pub fn opaque() -> Self {
         std::hint::black_box(Self::splat())
     }
 

@@ -493,7 +493,7 @@ impl RowCurve {
     fn orientations(&self, y0: f32, rows: usize, records: &mut [[f32; ROW_CHUNK]; 3]) {
         let (minus_d, two_e) = (F32x4::splat(self.minus_d), F32x4::splat(self.two_e));
         let (minus_h, minus_2eh) = (F32x4::splat(self.minus_h), F32x4::splat(self.minus_2eh));
-        let atan = Atan32Lanes::new();
+        let atan = Atan32Lanes::opaque();
         let one = F32x4::splat(1.0);
         let quad = F32x4::from_array([0.0, 1.0, 2.0, 3.0]);
         for q in (0..rows.min(ROW_CHUNK)).step_by(4) {
@@ -532,7 +532,7 @@ impl Line {
         let theta = F32x4::splat(self.theta);
         let position = F32x4::splat(self.position_log2);
         let orientation = F32x4::splat(HALF_LOG2_E);
-        let k = NegExp2Lanes::new();
+        let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
         for q in 0..batch.quads() {
             let [x, weight, theta_i, precision] = batch.pixels(q);
@@ -597,7 +597,7 @@ impl PpfModel {
         // The outer nodes' weight relative to the middle one's (w_-+ / w_0 = 1/4 for 3
         // nodes); the caller multiplies the sum by w_0 / sqrt(pi).
         let outer_weight = F32x4::splat(self.node_weights[0] / self.node_weights[1]);
-        let k = NegExp2Lanes::new();
+        let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
         for q in 0..batch.quads() {
             let [x, weight, theta_i, precision] = batch.pixels(q);
@@ -751,8 +751,11 @@ impl<'a, const R: usize> Batch<'a, R> {
         for (to, &v) in self.rows.iter_mut().zip(&row) {
             let (v, to) = (F32x4::splat(v), &mut to[j..j + ROW_COPY]);
             let (low, high) = to.split_at_mut(4);
-            v.store(low.try_into().expect("4 of 8"));
-            v.store(high.try_into().expect("4 of 8"));
+            // Always both (four and four of the eight).
+            if let (Ok(low), Ok(high)) = (low.try_into(), high.try_into()) {
+                v.store(low);
+                v.store(high);
+            }
         }
         self.used = j + n;
     }

@@ -82,7 +82,7 @@ pub struct NegExp2Lanes {
 impl NegExp2Lanes {
     /// The constants, as values the compiler cannot see through (once per kernel batch).
     #[inline]
-    pub fn new() -> Self {
+    pub fn opaque() -> Self {
         std::hint::black_box(Self::splat())
     }
 
