@@ -9,4 +9,4 @@ pub use io::{
     decode_rgba, read_disparity_png, read_rgba, write_disparity_png, write_gray_png,
     write_rgba_png, RgbaFrame,
 };
-pub use rgba::{check_rgba, gray_to_rgba, luma, rgba_to_gray};
+pub use rgba::{check_rgba, gray_to_rgba, luma, rgba_to_gray, rgba_to_gray_rows};

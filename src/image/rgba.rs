@@ -46,6 +46,37 @@ pub fn rgba_to_gray(rgba: &[u8], width: usize, height: usize, out: &mut Image<u8
     Ok(())
 }
 
+/// [`rgba_to_gray`] of the rows `rows` alone (clipped to the frame): the other rows of `out`
+/// keep what they held (zeros in a new image). For a reader of only those rows, such as an
+/// IPM ([`crate::vision::Ipm::source_rows`]).
+///
+/// # Errors
+/// See [`check_rgba`].
+pub fn rgba_to_gray_rows(
+    rgba: &[u8],
+    width: usize,
+    height: usize,
+    rows: std::ops::Range<usize>,
+    out: &mut Image<u8>,
+) -> Result<()> {
+    check_rgba(rgba, width, height)?;
+    if out.width() != width || out.height() != height {
+        out.resize(width, height)?;
+    }
+    let (first, end) = (rows.start.min(height), rows.end.min(height));
+    if first >= end {
+        return Ok(());
+    }
+    let grey = &mut out.data_mut()[first * width..end * width];
+    for (px, g) in rgba[first * width * 4..end * width * 4]
+        .chunks_exact(4)
+        .zip(grey.iter_mut())
+    {
+        *g = luma(px[0], px[1], px[2]);
+    }
+    Ok(())
+}
+
 /// Expands a grey image to opaque RGBA (for drawing intermediate images on a canvas).
 pub fn gray_to_rgba(gray: &Image<u8>, out: &mut Vec<u8>) {
     out.clear();
@@ -77,5 +108,20 @@ mod tests {
         let e = rgba_to_gray(&rgba[..11], 3, 1, &mut g).unwrap_err();
         assert!(e.to_string().contains("needs 12"), "{e}");
         assert!(rgba_to_gray(&[], 0, 0, &mut g).is_err());
+    }
+
+    #[test]
+    fn converts_only_the_rows_asked_for() {
+        let rgba: Vec<u8> = (0..3 * 4 * 4).map(|i| (i * 7 % 256) as u8).collect();
+        let mut all = Image::new(1, 1).unwrap();
+        rgba_to_gray(&rgba, 3, 4, &mut all).unwrap();
+        let mut some = Image::new(3, 4).unwrap();
+        rgba_to_gray_rows(&rgba, 3, 4, 1..3, &mut some).unwrap();
+        assert_eq!(&some.data()[3..9], &all.data()[3..9]);
+        assert_eq!(&some.data()[..3], &[0; 3]);
+        assert_eq!(&some.data()[9..], &[0; 3]);
+        rgba_to_gray_rows(&rgba, 3, 4, 2..9, &mut some).unwrap();
+        assert_eq!(&some.data()[6..], &all.data()[6..]);
+        assert!(rgba_to_gray_rows(&rgba[..5], 3, 4, 0..1, &mut some).is_err());
     }
 }

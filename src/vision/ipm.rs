@@ -117,6 +117,8 @@ pub struct Ipm {
     height: usize,
     taps: Vec<Tap>,
     valid: Image<u8>,
+    /// The source rows the taps read (see [`Ipm::source_rows`]).
+    source_rows: std::ops::Range<usize>,
 }
 
 impl Ipm {
@@ -144,6 +146,12 @@ impl Ipm {
                 }));
             }
         }
+        // The rows `apply` reads: v0 of every valid tap, and v0 + 1 where its weight b > 0.
+        let (mut first, mut end) = (usize::MAX, 0);
+        for tap in taps.iter().filter(|t| t.u0 != INVALID) {
+            first = first.min(tap.v0 as usize);
+            end = end.max(tap.v0 as usize + 1 + usize::from(tap.b > 0));
+        }
         Ok(Self {
             config,
             src_width: sw,
@@ -152,7 +160,14 @@ impl Ipm {
             height,
             taps,
             valid,
+            source_rows: first.min(end)..end,
         })
+    }
+
+    /// The rows of the source image that [`Ipm::apply`] reads (empty when the top view sees
+    /// none of it): the others may hold anything.
+    pub fn source_rows(&self) -> std::ops::Range<usize> {
+        self.source_rows.clone()
     }
 
     /// Top-view width, pixels.

@@ -50,18 +50,64 @@ fn odd(x: f32) -> f32 {
 /// the lane's taken by a select).
 #[inline]
 pub fn atan32_x4(x: F32x4) -> F32x4 {
-    let sign = F32x4::splat(-0.0);
-    let t = x & F32x4::splat(f32::from_bits(0x7fff_ffff));
-    let one = F32x4::splat(1.0);
-    let small = t.le(one);
-    let u = small.select(t, one / t);
-    let z = u * u;
-    let a = A.map(F32x4::splat);
-    let p = a[0]
-        + z * (a[1] + z * (a[2] + z * (a[3] + z * (a[4] + z * (a[5] + z * (a[6] + z * a[7]))))));
-    let q = u * p;
-    let r = small.select(q, F32x4::splat(std::f32::consts::FRAC_PI_2) - q);
-    r | (x & sign)
+    Atan32Lanes::splat().eval(x)
+}
+
+/// The constants of [`atan32_x4`] as lanes, made once before a loop and passed through
+/// [`std::hint::black_box`] (otherwise they are constants at every use, which WebAssembly
+/// engines may build anew in each iteration). The same operations, so the same bits.
+#[derive(Clone, Copy, Debug)]
+pub struct Atan32Lanes {
+    a: [F32x4; 8],
+    sign: F32x4,
+    abs: F32x4,
+    one: F32x4,
+    half_pi: F32x4,
+}
+
+impl Atan32Lanes {
+    /// The constants, as values the compiler cannot see through.
+    #[inline]
+    pub fn opaque() -> Self {
+        std::hint::black_box(Self::splat())
+    }
+
+    #[inline]
+    fn splat() -> Self {
+        Self {
+            a: A.map(F32x4::splat),
+            sign: F32x4::splat(-0.0),
+            abs: F32x4::splat(f32::from_bits(0x7fff_ffff)),
+            one: F32x4::splat(1.0),
+            half_pi: F32x4::splat(std::f32::consts::FRAC_PI_2),
+        }
+    }
+
+    /// [`atan32`] of each lane.
+    #[inline]
+    pub fn eval(&self, x: F32x4) -> F32x4 {
+        let t = x & self.abs;
+        let small = t.le(self.one);
+        // 1 / t only where a lane needs it (the selects below give the same lanes).
+        let all_small = small.all();
+        let u = if all_small {
+            t
+        } else {
+            small.select(t, self.one / t)
+        };
+        let z = u * u;
+        let a = self.a;
+        let p = a[0]
+            + z * (a[1]
+                + z * (a[2] + z * (a[3] + z * (a[4] + z * (a[5] + z * (a[6] + z * a[7]))))));
+        let q = u * p;
+        let r = if all_small {
+            q
+        } else {
+            small.select(q, self.half_pi - q)
+        };
+        r | (x & self.sign)
+    }
 }
 
 #[cfg(test)]

@@ -20,7 +20,7 @@
 
 use crate::camera::Camera;
 use crate::error::Result;
-use crate::image::{rgba_to_gray, Image};
+use crate::image::{rgba_to_gray_rows, Image};
 use crate::math;
 use crate::vision::{Gradients, Ipm, TopViewConfig};
 use std::f64::consts::PI;
@@ -148,7 +148,8 @@ impl Descriptors {
     pub fn compute(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
         // A new id before anything changes, so that no cache keeps the last frame's values.
         self.frame = NEXT_FRAME.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        rgba_to_gray(rgba, width, height, &mut self.grey)?;
+        // Grey only where the IPM reads (the road's rows; the rest of the frame is never used).
+        rgba_to_gray_rows(rgba, width, height, self.ipm.source_rows(), &mut self.grey)?;
         self.ipm.apply(&self.grey.view(), 0, &mut self.top)?;
         self.gradients.compute(&self.top.view())?;
         let norm = 1.0 / (2.0 * PI * self.intensity_variance).sqrt();
@@ -214,6 +215,22 @@ impl Descriptors {
     pub fn span(&self, y: usize, lo: usize, hi: usize) -> std::ops::Range<usize> {
         let base = y * (self.width() + 1);
         self.before[base + lo] as usize..self.before[base + hi + 1] as usize
+    }
+
+    /// Row y's counts of [`Descriptors::span`]: entry x is the number of mask pixels before
+    /// column x of row y in row-major order (W + 1 entries), so that the mask pixels of row y
+    /// in columns lo..=hi are `row[lo]..row[hi + 1]`.
+    #[inline]
+    pub fn row_before(&self, y: usize) -> &[u32] {
+        let w = self.width() + 1;
+        &self.before[y * w..(y + 1) * w]
+    }
+
+    /// [`Descriptors::row_before`] of the rows `rows`, in order.
+    #[inline]
+    pub fn rows_before(&self, rows: std::ops::Range<usize>) -> std::slice::ChunksExact<'_, u32> {
+        let w = self.width() + 1;
+        self.before[rows.start * w..rows.end * w].chunks_exact(w)
     }
 
     /// The sum of the weights of the pixels `span`.

@@ -92,7 +92,11 @@ impl F32x4 {
     /// difference with 1.5 2^23 (exact). Other lanes give unspecified values.
     #[inline]
     pub fn round_small(self) -> Self {
-        let rounder = Self::splat(ROUNDER);
+        self.round_small_by(Self::splat(ROUNDER))
+    }
+    /// [`F32x4::round_small`] with `rounder` = 1.5 2^23 in every lane given.
+    #[inline]
+    pub fn round_small_by(self, rounder: Self) -> Self {
         Self(imp::sub(imp::add(self.0, rounder.0), rounder.0))
     }
     /// For lanes y in (-2^22, 2^22): (n, 2^-n) with n the integer nearest y (ties to even),
@@ -101,7 +105,13 @@ impl F32x4 {
     /// emulate in several instructions). Other lanes give unspecified values.
     #[inline]
     pub fn pow2_neg_round(self) -> (Self, Self) {
-        let (n, scale) = imp::pow2_neg_round(self.0);
+        self.pow2_neg_round_by(Self::splat(ROUNDER), Self::splat(f32::from_bits(127)))
+    }
+    /// [`F32x4::pow2_neg_round`] with its constants given as lanes: `rounder` 1.5 2^23 and
+    /// `bias` the bits of the integer 127 in every lane (for loops that make them once).
+    #[inline]
+    pub fn pow2_neg_round_by(self, rounder: Self, bias: Self) -> (Self, Self) {
+        let (n, scale) = imp::pow2_neg_round(self.0, rounder.0, bias.0);
         (Self(n), Self(scale))
     }
 }
@@ -256,13 +266,12 @@ mod imp {
         }
     }
     #[inline]
-    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
+    pub fn pow2_neg_round(y: Raw, rounder: Raw, bias: Raw) -> (Raw, Raw) {
         // (127 - n) << 23 is the bit pattern of 2^-n.
         unsafe {
-            let rounder = _mm_set1_ps(super::ROUNDER);
             let t = _mm_add_ps(y, rounder);
             let n = _mm_sub_epi32(_mm_castps_si128(t), _mm_castps_si128(rounder));
-            let bits = _mm_slli_epi32::<23>(_mm_sub_epi32(_mm_set1_epi32(127), n));
+            let bits = _mm_slli_epi32::<23>(_mm_sub_epi32(_mm_castps_si128(bias), n));
             (_mm_sub_ps(t, rounder), _mm_castsi128_ps(bits))
         }
     }
@@ -373,11 +382,10 @@ mod imp {
         [m & 1 != 0, m & 2 != 0, m & 4 != 0, m & 8 != 0]
     }
     #[inline]
-    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
-        let rounder = f32x4_splat(super::ROUNDER);
+    pub fn pow2_neg_round(y: Raw, rounder: Raw, bias: Raw) -> (Raw, Raw) {
         let t = f32x4_add(y, rounder);
         let n = i32x4_sub(t, rounder);
-        let bits = i32x4_shl(i32x4_sub(i32x4_splat(127), n), 23);
+        let bits = i32x4_shl(i32x4_sub(bias, n), 23);
         (f32x4_sub(t, rounder), bits)
     }
 }
@@ -474,12 +482,12 @@ mod imp {
         [0, 1, 2, 3].map(|k| rows.map(|r| r[k]))
     }
     #[inline]
-    pub fn pow2_neg_round(y: Raw) -> (Raw, Raw) {
-        let t = y.map(|v| v + super::ROUNDER);
-        let n = t.map(|v| v.to_bits().wrapping_sub(super::ROUNDER.to_bits()));
+    pub fn pow2_neg_round(y: Raw, rounder: Raw, bias: Raw) -> (Raw, Raw) {
+        let t = [0, 1, 2, 3].map(|k| y[k] + rounder[k]);
+        let n = [0, 1, 2, 3].map(|k| t[k].to_bits().wrapping_sub(rounder[k].to_bits()));
         (
-            t.map(|v| v - super::ROUNDER),
-            n.map(|v| f32::from_bits(127u32.wrapping_sub(v) << 23)),
+            [0, 1, 2, 3].map(|k| t[k] - rounder[k]),
+            [0, 1, 2, 3].map(|k| f32::from_bits(bias[k].to_bits().wrapping_sub(n[k]) << 23)),
         )
     }
 }

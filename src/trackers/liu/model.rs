@@ -42,12 +42,12 @@
 //! `min_spacing_m` to the right of its left neighbour, and neighbouring spacings differ by less
 //! than `max_spacing_difference_m`; other particles get weight 0 in stage 0.
 
-use super::atan32::{atan32, atan32_x4};
+use super::atan32::{atan32, Atan32Lanes};
 use super::config::{LiuConfig, MAX_BOUNDARIES};
 use super::descriptors::{wrap_half_turn, Descriptors, MaskPixel};
 use super::kernels::GaussHermite;
 use super::lanes::F32x4;
-use super::neg_exp::{neg_exp, neg_exp2_x4};
+use super::neg_exp::{neg_exp, NegExp2Lanes};
 use crate::calib::ego_on_road::EgoOnRoad;
 use crate::filter::{InitialDistribution, PartitionedModel, Rng};
 use crate::lane::LinearParabolic;
@@ -75,6 +75,9 @@ pub struct PpfModel {
     var_x: f64,
     var_y: f64,
     band: usize,
+    /// -band_px - 1 and width + band_px: the bounds of x -+ 1/2 for a band in the view.
+    band_below: f64,
+    band_above: f64,
     /// w_k / sqrt(pi) of the Gauss-Hermite rule (f32: the parabolic sums run in f32).
     node_weights: Vec<f32>,
     /// sqrt(2 sigma_y^2) t_k.
@@ -192,6 +195,8 @@ impl PpfModel {
             var_x: config.position_variance_px2,
             var_y,
             band: config.band_px,
+            band_below: -(config.band_px as f64) - 1.0,
+            band_above: (width + config.band_px) as f64,
             node_weights,
             node_offsets,
             position_log2: (std::f64::consts::LOG2_E * 0.5 / config.position_variance_px2) as f32,
@@ -232,17 +237,34 @@ impl PpfModel {
         0..(self.y_m.floor() as usize + 1).min(self.height)
     }
 
-    /// Columns of the band around x in a row, clipped to the view.
-    fn band(&self, x: f64) -> Option<std::ops::RangeInclusive<usize>> {
-        self.band_around(band_centre(x)?)
-    }
-
-    /// Columns of the band around column `centre` ([`band_centre`]), clipped to the view.
+    /// Columns of the band around x in a row, clipped to the view: the band is centred on x
+    /// rounded half away from zero (as `f64::round`); `None` when none of its columns is in
+    /// the view, and for NaN and infinities.
     #[inline]
-    fn band_around(&self, centre: i64) -> Option<std::ops::RangeInclusive<usize>> {
+    fn band(&self, x: f64) -> Option<std::ops::RangeInclusive<usize>> {
+        // x rounded half away from zero is the integer part of x + 1/2 for x >= 0 and of
+        // x - 1/2 below (-0 gives 0 either way).
+        let r = x + 0.5f64.copysign(x);
+        // The band c -+ band_px meets columns 0..=width - 1 exactly when -band_px <= c <=
+        // width - 1 + band_px, i.e. -band_px - 1 < r < width + band_px (false for NaN).
+        if !(r > self.band_below && r < self.band_above) {
+            return None;
+        }
+        let centre = r as i64;
         let lo = (centre - self.band as i64).max(0);
         let hi = (centre + self.band as i64).min(self.width as i64 - 1);
-        (lo <= hi).then_some(lo as usize..=hi as usize)
+        Some(lo as usize..=hi as usize)
+    }
+
+    /// The mask pixels in the band around column x of one row, `before` being the row's
+    /// [`Descriptors::row_before`]: [`PpfModel::band`] then [`Descriptors::span`], empty where
+    /// there is no band.
+    #[inline]
+    fn band_span(&self, before: &[u32], x: f64) -> std::ops::Range<usize> {
+        match self.band(x) {
+            Some(cols) => before[*cols.start()] as usize..before[*cols.end() + 1] as usize,
+            None => 0..0,
+        }
     }
 
     /// Sec. IV-A: spacings at the bottom row and at y_m.
@@ -289,6 +311,8 @@ impl PpfModel {
     /// [`PpfModel::linear_sum`] and [`PpfModel::linear_count`] of boundary `b` in one pass
     /// over the near rows (the same line, a = rho / cos(theta) and slope -sin / cos, so the
     /// same bands).
+    // Out of line (one call per boundary): each loop keeps its own registers.
+    #[inline(never)]
     pub fn linear_sum_count(&self, b: &LinearParabolic, cues: &Descriptors) -> (f64, usize) {
         let (s, c) = (math::sin(b.theta), math::cos(b.theta));
         let (a, slope) = (b.rho / c, -s / c);
@@ -302,18 +326,23 @@ impl PpfModel {
             position_log2: (std::f64::consts::LOG2_E * c * c * 0.5 / var) as f32,
         };
         let mut sum = 0.0;
-        let mut batch = Batch::<1>::new(&cues.pixels);
-        for y in self.near_rows() {
-            let xc = a + slope * y as f64;
-            let Some(cols) = self.band(xc) else {
-                continue;
-            };
-            let span = cues.span(y, *cols.start(), *cols.end());
-            count += span.len();
-            if !self.kernel {
+        let near = self.near_rows();
+        let mut y = near.start as f64;
+        if !self.kernel {
+            for before in cues.rows_before(near) {
+                let span = self.band_span(before, a + slope * y);
+                y += 1.0;
+                count += span.len();
                 sum += cues.weight_of(span);
-                continue;
             }
+            return (sum, count);
+        }
+        let mut batch = Batch::<1>::new(&cues.pixels);
+        for before in cues.rows_before(near) {
+            let xc = a + slope * y;
+            y += 1.0;
+            let span = self.band_span(before, xc);
+            count += span.len();
             batch.push_row(span, [xc as f32], |b| {
                 sum += line.batch(b);
             });
@@ -321,9 +350,7 @@ impl PpfModel {
         if batch.used > 0 {
             sum += line.batch(&batch);
         }
-        if self.kernel {
-            sum /= (2.0 * PI * var).sqrt();
-        }
+        sum /= (2.0 * PI * var).sqrt();
         (sum, count)
     }
 
@@ -344,38 +371,19 @@ impl PpfModel {
     pub fn parabolic_sum(&self, b: &LinearParabolic, cues: &Descriptors) -> f64 {
         let [_, _, c, e] = b.coefficients();
         let d = b.d;
-        let mut sum = 0.0;
         let nodes = self.node_offsets.len();
+        if self.kernel && nodes == 3 {
+            return self.parabolic_sum_3(c, d, e, cues);
+        }
+        let mut sum = 0.0;
         let mut node_x = [0.0f32; 20];
         let mut node_theta = [0.0f32; 20];
-        // The default 3-node rule (nodes y - h, y, y + h) four pixels at a time; other rules
-        // one at a time.
-        let lanes = self.kernel && nodes == 3;
-        let h = self.node_offsets[nodes - 1];
-        let (h32, e_h2) = (h as f32, (e * h * h) as f32);
-        // -2 e h: h dtheta/dy = -2 e h / (1 + slope^2).
-        let minus_2eh = (-2.0 * e * h) as f32;
-        let mut batch = Batch::<4>::new(&cues.pixels);
-        // The 3-node rule's per-row orientation records, ROW_CHUNK rows at a time
-        // ([`RowCurve::orientations`]).
-        let curve = RowCurve {
-            minus_d: -d as f32,
-            two_e: (2.0 * e) as f32,
-            minus_h: -h32,
-            minus_2eh,
-        };
-        let mut records = [[0.0f32; ROW_CHUNK]; 3];
         let far = self.far_rows();
         let mut yf = far.start as f64;
-        for y in far.clone() {
-            let i = (y - far.start) % ROW_CHUNK;
-            if lanes && i == 0 {
-                curve.orientations(y as f32, far.end - y, &mut records);
-            }
+        for before in cues.rows_before(far) {
             let xc = c + d * yf + e * yf * yf;
             yf += 1.0;
-            let Some(cols) = self.band(xc) else { continue };
-            let span = cues.span(y, *cols.start(), *cols.end());
+            let span = self.band_span(before, xc);
             if span.is_empty() {
                 continue;
             }
@@ -383,20 +391,11 @@ impl PpfModel {
                 sum += cues.weight_of(span);
                 continue;
             }
-            if lanes {
-                // The default 3-node rule: the pixels are batched across rows and go four at
-                // a time, each with its row's curve: at the nodes y -+ h the column is
-                // xc -+ slope h + e h^2 and the orientation theta -+ h dtheta/dy.
-                let row = [xc as f32, records[0][i], records[1][i], records[2][i]];
-                batch.push_row(span, row, |b| {
-                    sum += self.parabolic_batch(b, e_h2);
-                });
-                continue;
-            }
-            // The curve and its gradient orientation (eq. 7) at the row's nodes y_k: the
-            // orientation at y, in f32 as the kernels use it, by the polynomial atan32 (an
-            // approximation within 2e-7 rad), and its first-order change across the nodes
-            // (|dtheta/dy| = 2|e| / (1 + slope^2) over +-2 rows: below 1e-6 rad off).
+            // Other rules than the default 3-node one: one pixel at a time. The curve and its
+            // gradient orientation (eq. 7) at the row's nodes y_k: the orientation at y, in
+            // f32 as the kernels use it, by the polynomial atan32 (an approximation within
+            // 2e-7 rad), and its first-order change across the nodes (|dtheta/dy| = 2|e| / (1
+            // + slope^2) over +-2 rows: below 1e-6 rad off).
             let yf = yf - 1.0;
             let slope = d + 2.0 * e * yf;
             let theta = atan32(-slope as f32);
@@ -415,17 +414,61 @@ impl PpfModel {
                 &node_theta[..nodes],
             );
         }
-        if batch.used > 0 {
-            sum += self.parabolic_batch(&batch, e_h2);
-        }
-        if lanes {
-            // The middle node's weight w_0 / sqrt(pi), which `parabolic_batch` leaves out.
-            sum *= f64::from(self.node_weights[1]);
-        }
         if self.kernel {
             sum /= (2.0 * PI * self.var_x).sqrt();
         }
         sum
+    }
+
+    /// [`PpfModel::parabolic_sum`] of the curve x = c + d y + e y^2 with the default 3-node
+    /// rule (nodes y - h, y, y + h): the pixels are batched across rows and go four at a time,
+    /// each with its row's curve: at the nodes y -+ h the column is xc -+ slope h + e h^2 and
+    /// the orientation theta -+ h dtheta/dy.
+    // Out of line (one call per boundary): each loop keeps its own registers.
+    #[inline(never)]
+    fn parabolic_sum_3(&self, c: f64, d: f64, e: f64, cues: &Descriptors) -> f64 {
+        let h = self.node_offsets[2];
+        let (h32, e_h2) = (h as f32, (e * h * h) as f32);
+        // -2 e h: h dtheta/dy = -2 e h / (1 + slope^2).
+        let minus_2eh = (-2.0 * e * h) as f32;
+        let mut batch = Batch::<4>::new(&cues.pixels);
+        // The per-row orientation records, ROW_CHUNK rows at a time ([`RowCurve::orientations`]).
+        let curve = RowCurve {
+            minus_d: -d as f32,
+            two_e: (2.0 * e) as f32,
+            minus_h: -h32,
+            minus_2eh,
+        };
+        let mut records = [[0.0f32; ROW_CHUNK]; 3];
+        let far = self.far_rows();
+        let mut rows = cues.rows_before(far.clone());
+        let mut sum = 0.0;
+        let mut yf = far.start as f64;
+        for first in far.clone().step_by(ROW_CHUNK) {
+            let n = (far.end - first).min(ROW_CHUNK);
+            curve.orientations(first as f32, n, &mut records);
+            let [theta, slope_h, dtheta_h] = &records;
+            for (((&theta, &slope_h), &dtheta_h), before) in theta[..n]
+                .iter()
+                .zip(&slope_h[..n])
+                .zip(&dtheta_h[..n])
+                .zip(rows.by_ref())
+            {
+                let xc = c + d * yf + e * yf * yf;
+                yf += 1.0;
+                let span = self.band_span(before, xc);
+                let row = [xc as f32, theta, slope_h, dtheta_h];
+                batch.push_row(span, row, |b| {
+                    sum += self.parabolic_batch(b, e_h2);
+                });
+            }
+        }
+        if batch.used > 0 {
+            sum += self.parabolic_batch(&batch, e_h2);
+        }
+        // The middle node's weight w_0 / sqrt(pi), which `parabolic_batch` leaves out.
+        sum *= f64::from(self.node_weights[1]);
+        sum / (2.0 * PI * self.var_x).sqrt()
     }
 }
 
@@ -445,10 +488,12 @@ impl RowCurve {
     /// For the ROW_CHUNK rows from `y0` (the first `rows` of them at least), four per operation: the curve's gradient orientation
     /// theta = atan(-slope) (eq. 7, slope = d + 2 e y; by the polynomial [`atan32_x4`], within
     /// 2e-7 rad), slope h and h dtheta/dy = -2 e h / (1 + slope^2), into `records[0..3]`.
-    #[inline]
+    // Out of line (one call per 64 rows): each loop keeps its own registers.
+    #[inline(never)]
     fn orientations(&self, y0: f32, rows: usize, records: &mut [[f32; ROW_CHUNK]; 3]) {
         let (minus_d, two_e) = (F32x4::splat(self.minus_d), F32x4::splat(self.two_e));
         let (minus_h, minus_2eh) = (F32x4::splat(self.minus_h), F32x4::splat(self.minus_2eh));
+        let atan = Atan32Lanes::opaque();
         let one = F32x4::splat(1.0);
         let quad = F32x4::from_array([0.0, 1.0, 2.0, 3.0]);
         for q in (0..rows.min(ROW_CHUNK)).step_by(4) {
@@ -456,7 +501,7 @@ impl RowCurve {
             // -slope = -d - 2 e y.
             let minus_slope = minus_d.sub(two_e.mul(y));
             let [theta, slope_h, dtheta_h] = [
-                atan32_x4(minus_slope),
+                atan.eval(minus_slope),
                 minus_slope.mul(minus_h),
                 minus_2eh.div(one.add(minus_slope.mul(minus_slope))),
             ];
@@ -481,24 +526,27 @@ impl Line {
     /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
     /// line column first in its row record), four at a time, summed: per lane in f32, the four
     /// lanes then in f64 in lane order.
+    // Out of line (one call per 64 pixels): each loop keeps its own registers.
+    #[inline(never)]
     fn batch(&self, batch: &Batch<1>) -> f64 {
         let theta = F32x4::splat(self.theta);
         let position = F32x4::splat(self.position_log2);
         let orientation = F32x4::splat(HALF_LOG2_E);
+        let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
-        for j in (0..batch.used).step_by(4) {
-            let [x, weight, theta_i, precision] = batch.pixels(j);
-            let [xc] = batch.rows(j);
+        for q in 0..batch.quads() {
+            let [x, weight, theta_i, precision] = batch.pixels(q);
+            let [xc] = batch.rows(q);
             // K_theta G_li = exp(-(dtheta^2 |grad I| / 2 + dist^2 / (2 var))) = 2^(-y), y the
             // same exponent times log2(e).
-            let dtheta = fold_x4(theta.sub(theta_i));
+            let dtheta = fold_x4(theta.sub(theta_i), &k);
             let dx = xc.sub(x);
             let y = dx
                 .mul(dx)
                 .mul(position)
                 .add(dtheta.mul(dtheta).mul(precision.mul(orientation)));
-            let term = weight.mul(neg_exp2_x4(y));
-            acc = acc.add(only_used(term, batch.used - j));
+            let term = weight.mul(k.eval(y));
+            acc = acc.add(only_used(term, batch.used - 4 * q));
         }
         lane_sum(acc)
     }
@@ -540,6 +588,8 @@ impl PpfModel {
     /// y, y + h; `e_h2` = e h^2), four pixels at a time in the four lanes of each operation
     /// ([`F32x4`]), each lane with its own row's curve, summed: per lane in f32, the four lanes
     /// then in f64 in lane order.
+    // Out of line (one call per 64 pixels): each loop keeps its own registers.
+    #[inline(never)]
     fn parabolic_batch(&self, batch: &Batch<4>, e_h2: f32) -> f64 {
         let position = F32x4::splat(self.position_log2);
         let orientation = F32x4::splat(HALF_LOG2_E);
@@ -547,41 +597,28 @@ impl PpfModel {
         // The outer nodes' weight relative to the middle one's (w_-+ / w_0 = 1/4 for 3
         // nodes); the caller multiplies the sum by w_0 / sqrt(pi).
         let outer_weight = F32x4::splat(self.node_weights[0] / self.node_weights[1]);
+        let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
-        for j in (0..batch.used).step_by(4) {
-            let [x, weight, theta_i, precision] = batch.pixels(j);
+        for q in 0..batch.quads() {
+            let [x, weight, theta_i, precision] = batch.pixels(q);
             // Row record: the curve's column and orientation at the row, slope h, h dtheta/dy.
-            let [xc, theta, slope_h, dtheta_h] = batch.rows(j);
+            let [xc, theta, slope_h, dtheta_h] = batch.rows(q);
             // The orientation difference at the row, folded once (see `parabolic_pixels`).
-            let dtheta = fold_x4(theta.sub(theta_i));
+            let dtheta = fold_x4(theta.sub(theta_i), &k);
             let dx = xc.sub(x);
             // K'_x K'_theta at a node (eqs. 13-14) = exp(-(dx^2 / (2 sigma_x^2) + dt^2
             // |grad I| / 2)) = 2^(-y), y the same exponent times log2(e).
             let precision = precision.mul(orientation);
             let node = |dx: F32x4, dt: F32x4| {
-                neg_exp2_x4(dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision)))
+                k.eval(dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision)))
             };
             let outer = node(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h))
                 .add(node(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h)));
             let g = node(dx, dtheta).add(outer_weight.mul(outer));
-            acc = acc.add(only_used(weight.mul(g), batch.used - j));
+            acc = acc.add(only_used(weight.mul(g), batch.used - 4 * q));
         }
         lane_sum(acc)
     }
-}
-
-/// The column a band is centred on: x rounded half away from zero (as f64::round) by
-/// saturating casts, without the libm call; `None` for NaN and infinities.
-#[inline]
-fn band_centre(x: f64) -> Option<i64> {
-    if !x.is_finite() {
-        return None;
-    }
-    Some(if x >= 0.0 {
-        (x + 0.5) as i64
-    } else {
-        (x - 0.5) as i64
-    })
 }
 
 /// `term` with the lanes from `left` on set to 0 (`left` pixels of the batch are left from
@@ -611,9 +648,9 @@ const HALF_LOG2_E: f32 = 0.5 * super::neg_exp::LOG2_E;
 /// [`fold32`] but for d within an f32 rounding of -+pi/2, where either end is as good (the
 /// kernels use the square, and the nodes' orientation changes by below 1e-3 rad).
 #[inline]
-fn fold_x4(d: F32x4) -> F32x4 {
-    let k = d.mul(F32x4::splat(FRAC_1_PI_32)).round_small();
-    d.sub(k.mul(F32x4::splat(PI_32)))
+fn fold_x4(d: F32x4, k: &NegExp2Lanes) -> F32x4 {
+    let n = d.mul(k.frac_1_pi).round_small_by(k.rounder());
+    d.sub(n.mul(k.pi))
 }
 
 /// Pixels per [`Batch`] (a multiple of 4).
@@ -658,54 +695,103 @@ impl<'a, const R: usize> Batch<'a, R> {
         row: [f32; R],
         mut full: impl FnMut(&Self),
     ) {
+        // The first ROW_COPY pixels (a whole band of the default 7 columns) here, the rest of
+        // a wider band out of line.
+        let n = span.len().min(ROW_COPY);
+        self.push_copy(span.start, n, row);
+        if self.used >= BATCH {
+            full(self);
+            self.used = 0;
+        }
+        if n < span.len() {
+            self.push_rest(span.start + n..span.end, row, full);
+        }
+    }
+
+    /// [`Batch::push_row`] of the pixels past a row's first ROW_COPY.
+    #[cold]
+    #[inline(never)]
+    fn push_rest(
+        &mut self,
+        span: std::ops::Range<usize>,
+        row: [f32; R],
+        mut full: impl FnMut(&Self),
+    ) {
         let mut start = span.start;
-        loop {
+        while start < span.end {
             let n = (span.end - start).min(ROW_COPY);
-            let j = self.used;
-            // Room: used < BATCH before every write.
-            if start + ROW_COPY <= self.all.len() {
-                for k in 0..ROW_COPY {
-                    self.index[j + k] = (start + k) as u32;
-                }
-            } else {
-                for k in 0..n {
-                    self.index[j + k] = (start + k) as u32;
-                }
-            }
-            for (to, &v) in self.rows.iter_mut().zip(&row) {
-                to[j..j + ROW_COPY].fill(v);
-            }
-            self.used = j + n;
+            self.push_copy(start, n, row);
             start += n;
             if self.used >= BATCH {
                 full(self);
                 self.used = 0;
             }
-            if start == span.end {
-                break;
-            }
         }
     }
 
-    /// The pixels j..j + 4 as lanes: column, weight, orientation, precision.
+    /// Adds the `n <= ROW_COPY` pixels from `all[start]` with the row record `row` (room:
+    /// `used < BATCH` before, so that they fit).
     #[inline]
-    fn pixels(&self, j: usize) -> [F32x4; 4] {
-        let index = &self.index[j..j + 4];
-        F32x4::transpose(
-            [0, 1, 2, 3].map(|k| F32x4::load_array(self.all[index[k] as usize].as_array())),
-        )
+    fn push_copy(&mut self, start: usize, n: usize, row: [f32; R]) {
+        let j = self.used;
+        // Checked once here for the slices below.
+        assert!(j < BATCH && n <= ROW_COPY);
+        let index = &mut self.index[j..j + ROW_COPY];
+        if start + ROW_COPY <= self.all.len() {
+            for (k, to) in index.iter_mut().enumerate() {
+                *to = (start + k) as u32;
+            }
+        } else {
+            for (k, to) in index[..n].iter_mut().enumerate() {
+                *to = (start + k) as u32;
+            }
+        }
+        // The row's record in all eight entries, four per store (a plain `fill` became 32
+        // scalar stores in WebAssembly).
+        for (to, &v) in self.rows.iter_mut().zip(&row) {
+            let (v, to) = (F32x4::splat(v), &mut to[j..j + ROW_COPY]);
+            let (low, high) = to.split_at_mut(4);
+            // Always both (four and four of the eight).
+            if let (Ok(low), Ok(high)) = (low.try_into(), high.try_into()) {
+                v.store(low);
+                v.store(high);
+            }
+        }
+        self.used = j + n;
     }
 
-    /// The row records of pixels j..j + 4 as lanes (number r of the four in lane r).
+    /// The number of quads (four pixels) to read: `used` rounded up to four (the lanes past
+    /// `used` hold stale but valid entries), in quads.
     #[inline]
-    fn rows(&self, j: usize) -> [F32x4; R] {
-        std::array::from_fn(|r| F32x4::load(&self.rows[r], j))
+    fn quads(&self) -> usize {
+        // At most (BATCH + ROW_COPY) / 4 (used < BATCH + ROW_COPY): said for the bounds.
+        self.used.div_ceil(4).min((BATCH + ROW_COPY) / 4)
+    }
+
+    /// The pixels of quad q (pixels 4 q..4 q + 4) as lanes: column, weight, orientation,
+    /// precision.
+    #[inline]
+    fn pixels(&self, q: usize) -> [F32x4; 4] {
+        let index = &self.index[4 * q..4 * q + 4];
+        F32x4::transpose([0, 1, 2, 3].map(|k| {
+            let i = index[k] as usize;
+            debug_assert!(i < self.all.len());
+            // SAFETY: every entry of `index` is below `all.len()`: `push_row` writes only
+            // indices of pixels of `all`, and the initial zeros are read only once a row has
+            // been pushed, so when `all` is not empty.
+            F32x4::load_array(unsafe { self.all.get_unchecked(i) }.as_array())
+        }))
+    }
+
+    /// The row records of quad q as lanes (number r of the four in lane r).
+    #[inline]
+    fn rows(&self, q: usize) -> [F32x4; R] {
+        std::array::from_fn(|r| F32x4::load(&self.rows[r], 4 * q))
     }
 }
 
 const PI_32: f32 = std::f32::consts::PI;
 const FRAC_PI_2_32: f32 = std::f32::consts::FRAC_PI_2;
-const FRAC_1_PI_32: f32 = std::f32::consts::FRAC_1_PI;
 
 /// A difference of two orientations in (-pi/2, pi/2] each, folded into (-pi/2, pi/2].
 #[inline]

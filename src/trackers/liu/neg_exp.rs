@@ -60,13 +60,61 @@ pub fn neg_exp_x4(a: F32x4) -> F32x4 {
 /// [`neg_exp2`] of four lanes, by the same operations lane by lane.
 #[inline]
 pub fn neg_exp2_x4(y: F32x4) -> F32x4 {
-    let (n, scale) = y.pow2_neg_round();
-    let f = y.sub(n);
-    let c = C.map(F32x4::splat);
-    let p = c[0].add(f.mul(c[1].add(f.mul(c[2].add(f.mul(c[3]))))));
-    // Lanes at or beyond the range (or NaN) computed garbage: 0 there (the mask's bits and-ed
-    // with the value: all ones keep it, zeros give +0).
-    y.lt(F32x4::splat(RANGE2)) & p.mul(scale)
+    NegExp2Lanes::splat().eval(y)
+}
+
+/// The constants of [`neg_exp2_x4`] (and of the orientation fold) as lanes, made once before
+/// a loop and passed through [`std::hint::black_box`]: otherwise they are constants at every
+/// use, which WebAssembly engines may build anew in each iteration. The same operations, so
+/// the same bits.
+#[derive(Clone, Copy, Debug)]
+pub struct NegExp2Lanes {
+    c: [F32x4; 4],
+    range: F32x4,
+    rounder: F32x4,
+    bias: F32x4,
+    /// 1 / pi and pi, for the orientation fold of the kernels.
+    pub frac_1_pi: F32x4,
+    /// pi.
+    pub pi: F32x4,
+}
+
+impl NegExp2Lanes {
+    /// The constants, as values the compiler cannot see through (once per kernel batch).
+    #[inline]
+    pub fn opaque() -> Self {
+        std::hint::black_box(Self::splat())
+    }
+
+    #[inline]
+    fn splat() -> Self {
+        Self {
+            c: C.map(F32x4::splat),
+            range: F32x4::splat(RANGE2),
+            rounder: F32x4::splat(ROUNDER),
+            bias: F32x4::splat(f32::from_bits(127)),
+            frac_1_pi: F32x4::splat(std::f32::consts::FRAC_1_PI),
+            pi: F32x4::splat(std::f32::consts::PI),
+        }
+    }
+
+    /// 1.5 2^23 in every lane ([`F32x4::round_small_by`]).
+    #[inline]
+    pub fn rounder(&self) -> F32x4 {
+        self.rounder
+    }
+
+    /// 2^(-y) for each lane, as [`neg_exp2`].
+    #[inline]
+    pub fn eval(&self, y: F32x4) -> F32x4 {
+        let (n, scale) = y.pow2_neg_round_by(self.rounder, self.bias);
+        let f = y.sub(n);
+        let c = self.c;
+        let p = c[0].add(f.mul(c[1].add(f.mul(c[2].add(f.mul(c[3]))))));
+        // Lanes at or beyond the range (or NaN) computed garbage: 0 there (the mask's bits
+        // and-ed with the value: all ones keep it, zeros give +0).
+        y.lt(self.range) & p.mul(scale)
+    }
 }
 
 #[cfg(test)]
