@@ -6,6 +6,7 @@
 const PARTICLES = { path: 'particles', label: 'particles N', min: 20, max: 2000, step: 10 };
 /** Options beyond the papers (ours), for real roads: each paper's filter is the default (off). */
 const RELOCK = { path: 'relock_share', label: 're-lock share: particles drawn around a line detector’s ego pair (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 };
+const SUPPORT_FRAMES = { path: 'valid_support_frames', label: 'frames a dashed boundary’s support is remembered (ours; 1: this frame only)', min: 1, max: 15, step: 1 };
 const ADJACENT = { path: 'adjacent_lanes', label: 'adjacent lanes: report the marked lanes beside the ego lane (ours, beyond the paper)', kind: /** @type {const} */ ('bool') };
 
 /**
@@ -51,6 +52,7 @@ export const TRACKERS = {
       { path: 'start_pair_share', label: 'start: share drawn around a line detector’s ego pair (ours; 0: uniform)', min: 0, max: 1, step: 0.05 },
       RELOCK,
       { path: 'curvature_prior_sd', label: 'curvature prior σ of δ (1/m; 0: off): far-stage bends need evidence (ours, beyond the paper)', min: 0, max: 0.02, step: 0.0005 },
+      SUPPORT_FRAMES,
       ADJACENT,
     ],
   },
@@ -71,6 +73,7 @@ export const TRACKERS = {
       RELOCK,
       { path: 'vote_pair_share', label: 'vote-pair share: particles redrawn each frame around those pairs (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 },
       { path: 'paired_edges', label: 'paired edges: only a bright stripe’s two edges vote, not a seam, kerb or shadow (ours, beyond the paper)', kind: /** @type {const} */ ('bool') },
+      SUPPORT_FRAMES,
     ],
   },
   'danescu-stereo': {
@@ -91,7 +94,7 @@ export const TRACKERS = {
       { path: 'marking_widths', label: 'marking widths and gradient cue (off: the previous approach)', kind: 'bool' },
       { path: 'start_iterations', label: 'start rounds on the first frame (ours; 0: the paper’s start)', min: 0, max: 30, step: 1 },
       { path: 'valid_distance_m', label: 'validity tolerance on the road (m; ours; 0: pixels only)', min: 0, max: 0.1, step: 0.005 },
-      { path: 'valid_support_frames', label: 'frames a dashed boundary’s support is remembered (ours; 1: this frame only)', min: 1, max: 15, step: 1 },
+      SUPPORT_FRAMES,
       RELOCK,
       ADJACENT,
     ],

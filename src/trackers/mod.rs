@@ -42,6 +42,8 @@ mod registry;
 pub mod relock;
 pub mod support_memory;
 #[cfg(test)]
+mod support_memory_tests;
+#[cfg(test)]
 mod tests;
 mod tracker;
 

@@ -94,6 +94,7 @@ pub(super) const LEE: &[&[OptionRange]] = &[
         r("kalman_measurement_sd[4]", 1e-9, 100.0),
         r("kalman_measurement_sd[5]", 1e-9, 0.1),
         r("valid_fraction", 0.0, 1.0),
+        r("valid_support_frames", 1.0, 100.0),
     ],
 ];
 
@@ -139,6 +140,7 @@ pub(super) const ADACHI: &[&[OptionRange]] = &[&[
     r("width_range_m", 0.5, 10.0),
     r("transitions", 0.0, 1.0),
     r("valid_support", 0.0, 1.0),
+    r("valid_support_frames", 1.0, 100.0),
     r("max_heading_rad", 0.0, 0.5),
     r("max_curvature_per_m", 0.0, 0.05),
     r("shape_gain", 0.01, 1.0),

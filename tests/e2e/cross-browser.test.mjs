@@ -704,6 +704,7 @@ for (const driver of DRIVERS) {
       assert.equal(v.relock_share, 0.05);
       assert.equal(v.curvature_prior_sd, 0.004);
       assert.equal(v.adjacent_lanes, true);
+      assert.equal(v.valid_support_frames, 5);
       assert.match(await text(page, '#params-preset'), /real roads \(ours.*relock_share.*\)/);
       // Back to the paper's filter, and to real roads again, with the buttons.
       await page.click('#params-reset');
@@ -711,6 +712,7 @@ for (const driver of DRIVERS) {
       v = await values();
       assert.equal(v.adjacent_lanes, false);
       assert.equal(v.curvature_prior_sd, 0);
+      assert.equal(v.valid_support_frames, 1);
       assert.match(await text(page, '#params-preset'), /the paper’s filter/);
       await page.click('#params-real-roads');
       await page.waitFor(() => document.querySelector('#params input[name="relock_share"]').value === '0.05');

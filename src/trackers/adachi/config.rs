@@ -85,6 +85,11 @@ pub struct AdachiConfig {
     /// [`super::likelihood::Likelihood::support`]). Not in the paper, which does not define a
     /// valid frame.
     pub valid_support: f64,
+    /// Validity: a side under `valid_support` this frame still counts when its mean support
+    /// over the last this many frames (this one included; fewer since a reset) reaches
+    /// `valid_support` and the other side this frame holds at least twice it
+    /// ([`crate::trackers::support_memory`]; ours; 1: this frame's alone, the default).
+    pub valid_support_frames: usize,
     /// `straight` (the paper) or `curved` (ours: see [`super::road_shape`]).
     pub lane_shape: LaneShape,
     /// `curved` only: the largest heading of the lane to the car searched, radians (0 to 0.5).
@@ -155,6 +160,7 @@ impl Default for AdachiConfig {
                 vec![0.0, 1.0 / 8.0, 1.0 / 8.0, 6.0 / 8.0],
             ],
             valid_support: 0.08,
+            valid_support_frames: 1,
             lane_shape: LaneShape::Straight,
             max_heading_rad: 0.1,
             max_curvature_per_m: 0.012,

@@ -56,6 +56,7 @@ pub mod votes;
 
 use super::lane_change::EgoLane;
 use super::relock::RelockDetector;
+use super::support_memory::{self, SupportMemory};
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -109,6 +110,8 @@ pub struct AdachiTracker {
     pairs: VotePairs,
     /// A boundary's position minus its voting edge's, metres (by polarity).
     pair_offset: f64,
+    /// The last `valid_support_frames` frames' support, for the validity.
+    support_memory: SupportMemory,
 }
 
 /// The steps of one frame after [`AdachiTracker::begin`] (per-step mode).
@@ -220,6 +223,7 @@ impl AdachiTracker {
                 config::Polarity::RightEdge => -adachi.marking_width_m / 2.0,
                 config::Polarity::Both => 0.0,
             },
+            support_memory: SupportMemory::new(adachi.valid_support_frames),
             config: adachi,
         })
     }
@@ -401,6 +405,7 @@ impl AdachiTracker {
             self.likelihood
                 .support(&self.votes, q + OFFSETS[1] * w / 2.0),
         ];
+        let remembered = self.support_memory.push(support);
         AdachiEstimate {
             q,
             w,
@@ -409,7 +414,7 @@ impl AdachiTracker {
             change,
             votes,
             support,
-            valid: support[0].min(support[1]) >= self.config.valid_support,
+            valid: support_memory::supported(support, remembered, self.config.valid_support),
             ess: self.filter.ess(),
             shape: self.votes.shape(),
         }
@@ -502,6 +507,7 @@ impl Tracker for AdachiTracker {
         self.stepper.abandon();
         self.q_track = None;
         self.lane_index = 0;
+        self.support_memory.clear();
     }
 
     fn stage_times(&self) -> StageTimes {

@@ -824,6 +824,4 @@ impl Scheduled for DanescuTracker {
 #[cfg(test)]
 mod start_tests;
 #[cfg(test)]
-mod support_memory_tests;
-#[cfg(test)]
 mod tests;

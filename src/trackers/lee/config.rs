@@ -136,6 +136,12 @@ pub struct LeeConfig {
     /// A frame is valid when, on each boundary, at least this fraction of the estimate's near
     /// points lie within sigma_D of a marking candidate (D >= exp(-1/2)).
     pub valid_fraction: f64,
+    /// Validity: a side under `valid_fraction` this frame still counts when its mean support
+    /// over the last this many frames (this one included; fewer since a reset) reaches
+    /// `valid_fraction` and the other side this frame holds at least twice it
+    /// ([`crate::trackers::support_memory`]; ours, beyond the paper; 1: this frame's alone,
+    /// the default).
+    pub valid_support_frames: usize,
 }
 
 impl LeeConfig {
@@ -195,6 +201,7 @@ impl Default for LeeConfig {
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],
             valid_fraction: 0.15,
+            valid_support_frames: 1,
         }
     }
 }

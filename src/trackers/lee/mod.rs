@@ -64,6 +64,7 @@ pub mod motion;
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
+use super::support_memory::{self, SupportMemory};
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -248,6 +249,8 @@ pub struct LeeTracker {
     stages: StageResults,
     /// Consecutive frames whose estimate no marking supports (see `lost_restart`).
     lost: usize,
+    /// The last `valid_support_frames` frames' support, for the validity.
+    support_memory: SupportMemory,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
 }
@@ -383,6 +386,7 @@ impl LeeTracker {
             lost: 0,
             detector,
             camera,
+            support_memory: SupportMemory::new(lee.valid_support_frames),
             config: lee,
         })
     }
@@ -429,6 +433,7 @@ impl LeeTracker {
         self.smoother.reset();
         self.stepper.restart();
         self.lost = 0;
+        self.support_memory.clear();
     }
 
     /// Replaces every k-th stage-1 particle (k = 1 / `start_fresh`) with a draw from the
@@ -924,6 +929,7 @@ impl Scheduled for LeeTracker {
             raw
         };
         let support = self.measurement.near_support(&raw, None, &self.map);
+        let remembered = self.support_memory.push(support);
         let lost = support[0].max(support[1]) < LOST_SUPPORT;
         self.lost = if lost { self.lost + 1 } else { 0 };
         if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {
@@ -932,7 +938,7 @@ impl Scheduled for LeeTracker {
         LeeEstimate {
             state,
             raw,
-            valid: support[0].min(support[1]) >= self.config.valid_fraction,
+            valid: support_memory::supported(support, remembered, self.config.valid_fraction),
             support,
             change: self.stages.change,
             candidates: self.candidates.count,

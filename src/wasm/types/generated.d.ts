@@ -545,6 +545,16 @@ export interface AdachiOptions {
    */
   valid_support?: number;
   /**
+   * Validity: a side under `valid_support` this frame still counts when its mean support
+   * over the last this many frames (this one included; fewer since a reset) reaches
+   * `valid_support` and the other side this frame holds at least twice it
+   * (`support_memory`; ours; 1: this frame's alone, the default).
+   *
+   * Range: 1 to 100.
+   * @defaultValue `1`
+   */
+  valid_support_frames?: number;
+  /**
    * `straight` (the paper) or `curved` (ours: see `road_shape`).
    *
    * - `'straight'`: Straight lines parallel to the car: the paper's model (Sec. 3.2).
@@ -1313,6 +1323,17 @@ export interface LeeOptions {
    * @defaultValue `0.15`
    */
   valid_fraction?: number;
+  /**
+   * Validity: a side under `valid_fraction` this frame still counts when its mean support
+   * over the last this many frames (this one included; fewer since a reset) reaches
+   * `valid_fraction` and the other side this frame holds at least twice it
+   * (`support_memory`; ours, beyond the paper; 1: this frame's alone,
+   * the default).
+   *
+   * Range: 1 to 100.
+   * @defaultValue `1`
+   */
+  valid_support_frames?: number;
 }
 
 /**
