@@ -25,7 +25,9 @@ if [ "$(grep -c '^export class Tracker {$' "$dts")" != 1 ]; then
   exit 1
 fi
 sed -i 's/^export class Tracker {$/export class Tracker<Id extends TrackerId = TrackerId> {/' "$dts"
-node_modules/.bin/wasm-opt -O3 "${features[@]}" "$out/lanepf_bg.wasm" -o "$out/lanepf_bg.wasm"
+# The producers and target_features custom sections are for tools, not for the browser.
+node_modules/.bin/wasm-opt -O3 --strip-producers --strip-target-features "${features[@]}" \
+  "$out/lanepf_bg.wasm" -o "$out/lanepf_bg.wasm"
 rm -f "$out/.gitignore"
 # What builds before the committed bundler entry generated the `bundler` target there.
 rm -f pkg/bundler/lanepf.js pkg/bundler/lanepf.d.ts pkg/bundler/lanepf_bg.js pkg/bundler/lanepf_bg.wasm \

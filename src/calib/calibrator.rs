@@ -644,9 +644,9 @@ impl Calibrator {
         }
         let vps: Option<Vec<[f64; 2]>> = self.recent.iter().copied().collect();
         let Some(vps) = vps else { return false };
-        let mut us: Vec<f64> = vps.iter().map(|p| p[0]).collect();
-        let mut vs: Vec<f64> = vps.iter().map(|p| p[1]).collect();
-        let (mu, mv) = (median(&mut us), median(&mut vs));
+        let us: Vec<f64> = vps.iter().map(|p| p[0]).collect();
+        let vs: Vec<f64> = vps.iter().map(|p| p[1]).collect();
+        let (mu, mv) = (median(&us), median(&vs));
         let tol = 0.015 * self.width as f64;
         vps.iter()
             .all(|p| (p[0] - mu).abs() <= tol && (p[1] - mv).abs() <= tol)
@@ -681,8 +681,12 @@ impl Calibrator {
     fn chosen_samples(&self) -> Vec<&Sample> {
         let mut chosen = consensus(self.samples.iter().collect());
         if chosen.len() >= 10 {
-            chosen.sort_by(|a, b| a.bend.total_cmp(&b.bend));
-            chosen.truncate(chosen.len().div_ceil(2));
+            // The same order as `chosen.sort_by(|a, b| a.bend.total_cmp(&b.bend))` (stable),
+            // through the one instance of the stable sort in box_counts.
+            let mut order: Vec<usize> = (0..chosen.len()).collect();
+            super::box_counts::sort_indices_by(&mut order, &|i| chosen[i].bend);
+            order.truncate(chosen.len().div_ceil(2));
+            chosen = order.iter().map(|&i| chosen[i]).collect();
         }
         chosen
     }
@@ -695,10 +699,10 @@ impl Calibrator {
         }
         let chosen = self.chosen_samples();
         let column = |f: fn(&Sample) -> f64| -> (f64, f64) {
-            let mut v: Vec<f64> = chosen.iter().map(|s| f(s)).collect();
-            let m = median(&mut v);
-            let mut dev: Vec<f64> = v.iter().map(|x| (x - m).abs()).collect();
-            (m, 1.4826 * median(&mut dev))
+            let v: Vec<f64> = chosen.iter().map(|s| f(s)).collect();
+            let m = median(&v);
+            let dev: Vec<f64> = v.iter().map(|x| (x - m).abs()).collect();
+            (m, 1.4826 * median(&dev))
         };
         let (pitch, sp) = column(|s| s.pitch);
         let (yaw, sy) = column(|s| s.yaw);
@@ -790,9 +794,9 @@ pub(super) fn consensus(samples: Vec<&Sample>) -> Vec<&Sample> {
         .copied()
         .filter(|b| near(b, seed.pitch, seed.yaw))
         .collect();
-    let mut pitches: Vec<f64> = group.iter().map(|a| a.pitch).collect();
-    let mut yaws: Vec<f64> = group.iter().map(|a| a.yaw).collect();
-    let (pitch, yaw) = (median(&mut pitches), median(&mut yaws));
+    let pitches: Vec<f64> = group.iter().map(|a| a.pitch).collect();
+    let yaws: Vec<f64> = group.iter().map(|a| a.yaw).collect();
+    let (pitch, yaw) = (median(&pitches), median(&yaws));
     let agree: Vec<&Sample> = samples
         .iter()
         .copied()
@@ -815,17 +819,19 @@ fn crossing(a: &LineFit, b: &LineFit) -> Option<[f64; 2]> {
     Some([a.x_at(y), y])
 }
 
-/// Median of `v` (reordered); NaN when empty.
-fn median(v: &mut [f64]) -> f64 {
+/// Median of `v`; NaN when empty.
+fn median(v: &[f64]) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }
-    // Unstable is the same bits here: values equal under total_cmp are the same bits.
-    v.sort_unstable_by(f64::total_cmp);
+    // By the one instance of the stable sort in box_counts (values equal under total_cmp are
+    // the same bits, so any sort gives these middle values); `v` is left as it was.
+    let mut order: Vec<usize> = (0..v.len()).collect();
+    super::box_counts::sort_indices_by(&mut order, &|i| v[i]);
     let n = v.len();
     if n % 2 == 1 {
-        v[n / 2]
+        v[order[n / 2]]
     } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
+        0.5 * (v[order[n / 2 - 1]] + v[order[n / 2]])
     }
 }
