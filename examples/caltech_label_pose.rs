@@ -1,0 +1,134 @@
+//! The camera pose Caltech's own labels imply, beside the dataset's `camera.json` and the
+//! auto-calibration: is the "true camera" of the calibration goal (issue 18) true?
+//!
+//! `cargo run --release --example caltech_label_pose -- [DATA_DIR]` (`../shared/data` by
+//! default). For every labelled frame whose ego pair ([`lanepf::eval::caltech::ego_lanes`]) is
+//! straight (each Bezier, sampled at 21 points, within `STRAIGHT_PX` of its least-squares
+//! line), the two lines meet at the road's vanishing point; with the dataset's intrinsics that
+//! gives pitch and yaw (`pose_from_vanishing_point`, no roll), and with the dataset's height the
+//! lane width at the lowest labelled row. Prints each frame and the medians, then the dataset's
+//! pose and what `Calibrator` estimates from the frames (intrinsics given), so the three are
+//! compared in one run.
+
+use lanepf::calib::pose::{lateral_at_unit_height, pose_from_vanishing_point, Pinhole};
+use lanepf::calib::{Calibrator, CalibratorConfig};
+use lanepf::camera::CameraFile;
+use lanepf::eval::caltech::{bezier_polyline, ego_lanes, read_labels};
+use lanepf::image::read_rgba;
+use std::path::PathBuf;
+
+type Res<T> = Result<T, Box<dyn std::error::Error>>;
+
+/// Largest distance, pixels, of a labelled lane's samples from its fitted line for the lane
+/// to count as straight.
+const STRAIGHT_PX: f64 = 2.0;
+
+/// x = a + b y fitted to `pts`, and the largest residual.
+fn fit_line(pts: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
+    let n = pts.len() as f64;
+    let my = pts.iter().map(|p| p[1]).sum::<f64>() / n;
+    let mx = pts.iter().map(|p| p[0]).sum::<f64>() / n;
+    let syy: f64 = pts.iter().map(|p| (p[1] - my).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p[1] - my) * (p[0] - mx)).sum();
+    if pts.len() < 2 || syy < 1e-9 {
+        return None;
+    }
+    let b = sxy / syy;
+    let a = mx - b * my;
+    let worst = pts
+        .iter()
+        .map(|p| (p[0] - a - b * p[1]).abs())
+        .fold(0.0, f64::max);
+    Some((a, b, worst))
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+fn main() -> Res<()> {
+    let data = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "../shared/data".into()),
+    )
+    .join("caltech-cordova1");
+    let camera = CameraFile::read(&data.join("camera.json"))?;
+    let labels = read_labels(&data.join("labels.json"))?;
+    let k = Pinhole {
+        fx: camera.fx,
+        fy: camera.fy,
+        cx: camera.cx,
+        cy: camera.cy,
+    };
+    let size = [camera.width, camera.height];
+    let (mut pitches, mut yaws, mut widths) = (Vec::new(), Vec::new(), Vec::new());
+    println!("frame        pitch   yaw     lane width at the dataset's height");
+    for frame in &labels.frames {
+        let [Some(li), Some(ri)] = ego_lanes(&frame.lanes, size) else {
+            continue;
+        };
+        let sample = |i: usize| bezier_polyline(&frame.lanes[i].bezier_xy, 20);
+        let (lp, rp) = (sample(li), sample(ri));
+        let (Some(l), Some(r)) = (fit_line(&lp), fit_line(&rp)) else {
+            continue;
+        };
+        if l.2 > STRAIGHT_PX || r.2 > STRAIGHT_PX || (l.1 - r.1).abs() < 1e-6 {
+            continue;
+        }
+        let y = (r.0 - l.0) / (l.1 - r.1);
+        let [pitch, yaw] = pose_from_vanishing_point(&k, [l.0 + l.1 * y, y]);
+        // The lowest row both lanes reach.
+        let low = |p: &[[f64; 2]]| p.iter().map(|q| q[1]).fold(f64::MIN, f64::max);
+        let row = low(&lp).min(low(&rp));
+        let at = |f: &(f64, f64, f64)| [f.0 + f.1 * row, row];
+        let (Some(yl), Some(yr)) = (
+            lateral_at_unit_height(&k, pitch, yaw, at(&l)),
+            lateral_at_unit_height(&k, pitch, yaw, at(&r)),
+        ) else {
+            continue;
+        };
+        let width = camera.height_m * (yl - yr);
+        println!(
+            "{:12} {:6.2}  {:6.2}  {:.2} m",
+            frame.frame,
+            pitch.to_degrees(),
+            yaw.to_degrees(),
+            width
+        );
+        pitches.push(pitch.to_degrees());
+        yaws.push(yaw.to_degrees());
+        widths.push(width);
+    }
+    println!(
+        "\nlabels ({} straight frames), medians: pitch {:.2} deg, yaw {:.2} deg, lane width {:.2} m at {:.2} m",
+        pitches.len(),
+        median(&mut pitches),
+        median(&mut yaws),
+        median(&mut widths),
+        camera.height_m
+    );
+    println!(
+        "camera.json:  pitch {:.2} deg, yaw {:.2} deg, height {:.2} m",
+        camera.pitch_deg, camera.yaw_deg, camera.height_m
+    );
+    let mut calibrator = Calibrator::new(
+        camera.width,
+        camera.height,
+        Some(&camera),
+        CalibratorConfig::default(),
+    )?;
+    for frame in &labels.frames {
+        let image = read_rgba(&data.join("frames").join(&frame.frame))?;
+        calibrator.feed_rgba(&image.data, image.width, image.height)?;
+    }
+    match calibrator.estimate() {
+        Some(e) => println!(
+            "calibrator:   pitch {:.2} deg, yaw {:.2} deg, height {:.2} m ({} frames, confidence {:.2})",
+            e.camera.pitch_deg, e.camera.yaw_deg, e.camera.height_m, e.frames_used, e.confidence
+        ),
+        None => println!("calibrator:   no estimate"),
+    }
+    Ok(())
+}
