@@ -262,6 +262,21 @@ fn eval_scores_ground_truth_as_perfect_and_a_shifted_copy_lower() {
         .as_f64()
         .unwrap();
     assert!((rmse - 0.5).abs() < 1e-9, "{rmse}");
+    // --per-frame: after the report, one line a ground-truth frame, each marked missed.
+    let (code, stdout, err) = lanepf(&[
+        "eval",
+        "--pred",
+        pred.to_str().unwrap(),
+        "--gt",
+        gt.to_str().unwrap(),
+        "--format",
+        "synthetic",
+        "--per-frame",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let rows: Vec<&str> = stdout.lines().filter(|l| l.contains("<- missed")).collect();
+    assert_eq!(rows.len(), 4, "{stdout}");
+    assert!(rows[0].trim_start().starts_with("000000.png"), "{stdout}");
     let (code, _, err) = lanepf(&["eval", "--pred", o, "--gt", o, "--format", "kitti"]);
     assert_eq!(code, 1);
     assert!(

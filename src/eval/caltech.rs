@@ -252,6 +252,28 @@ impl AlyCounts {
     }
 }
 
+/// One frame's counts in one mode: labelled lanes, predicted boundaries, matched pairs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct FrameCounts {
+    /// Labelled lanes.
+    pub gt_lanes: usize,
+    /// Predicted boundaries (none when the prediction is missing or invalid).
+    pub predicted: usize,
+    /// Matched pairs.
+    pub matched: usize,
+}
+
+/// One labelled frame's counts, all lanes and ego lanes.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CaltechFrameScore {
+    /// The labelled frame's name.
+    pub frame: String,
+    /// All lanes.
+    pub all_lanes: FrameCounts,
+    /// Ego lanes.
+    pub ego_lanes: FrameCounts,
+}
+
 /// The Caltech figures of a prediction set.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CaltechReport {
@@ -259,6 +281,29 @@ pub struct CaltechReport {
     pub all_lanes: AlyCounts,
     /// Ego lanes ("2 lanes" mode).
     pub ego_lanes: AlyCounts,
+    /// Each labelled frame's counts, in label order (they sum to the two above).
+    pub frames: Vec<CaltechFrameScore>,
+}
+
+impl CaltechReport {
+    /// One line a frame: ego and all lanes as matched / predicted / labelled, and a mark where
+    /// a labelled ego lane was missed or a predicted one is a false positive.
+    pub fn frames_table(&self) -> String {
+        let mut out = String::from("  frame                 ego m/p/gt   all m/p/gt\n");
+        for f in &self.frames {
+            let (e, a) = (f.ego_lanes, f.all_lanes);
+            let mark = if e.matched < e.gt_lanes || e.matched < e.predicted {
+                "  <- ego"
+            } else {
+                ""
+            };
+            out.push_str(&format!(
+                "  {:<20} {:>3}/{}/{}   {:>5}/{}/{}{mark}\n",
+                f.frame, e.matched, e.predicted, e.gt_lanes, a.matched, a.predicted, a.gt_lanes
+            ));
+        }
+        out
+    }
 }
 
 /// Scores predictions (`preds[i]` belongs to `labels.frames[i]`); `image_size` overrides the
@@ -277,6 +322,7 @@ pub fn evaluate(
     let size = image_size.unwrap_or(labels.image_size);
     let mut all = AlyCounts::default();
     let mut ego = AlyCounts::default();
+    let mut frames = Vec::with_capacity(labels.frames.len());
     let mut scratch = (Vec::new(), Vec::new());
     for (i, frame) in labels.frames.iter().enumerate() {
         let gt: Vec<Vec<[f64; 2]>> = frame
@@ -305,6 +351,11 @@ pub fn evaluate(
         };
         let matched = match_pairs(gt.len(), boundaries.len(), quality).len();
         all.add(gt.len(), boundaries.len(), matched);
+        let all_lanes = FrameCounts {
+            gt_lanes: gt.len(),
+            predicted: boundaries.len(),
+            matched,
+        };
 
         let gt_ego: Vec<usize> = ego_lanes(&frame.lanes, size)
             .into_iter()
@@ -321,10 +372,20 @@ pub fn evaluate(
         })
         .len();
         ego.add(gt_ego.len(), pred_ego.len(), matched);
+        frames.push(CaltechFrameScore {
+            frame: frame.frame.clone(),
+            all_lanes,
+            ego_lanes: FrameCounts {
+                gt_lanes: gt_ego.len(),
+                predicted: pred_ego.len(),
+                matched,
+            },
+        });
     }
     Ok(CaltechReport {
         all_lanes: all.finish(),
         ego_lanes: ego.finish(),
+        frames,
     })
 }
 

@@ -440,6 +440,19 @@ pub struct CulaneReport {
     pub recall: Option<f64>,
     /// 2 TP / (2 TP + FP + FN).
     pub f1: Option<f64>,
+    /// Each labelled frame's counts, in label order (they sum to `counts`; empty for a report
+    /// made by [`CulaneReport::from_counts`]).
+    pub frames: Vec<CulaneFrameScore>,
+}
+
+/// One labelled frame's counts.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CulaneFrameScore {
+    /// The labelled frame's name.
+    pub frame: String,
+    /// Its counts.
+    #[serde(flatten)]
+    pub counts: Counts,
 }
 
 impl CulaneReport {
@@ -451,7 +464,21 @@ impl CulaneReport {
             precision: ratio(c.tp, c.tp + c.fp),
             recall: ratio(c.tp, c.tp + c.fn_),
             f1: ratio(2 * c.tp, 2 * c.tp + c.fp + c.fn_),
+            frames: Vec::new(),
         }
+    }
+
+    /// One line a frame: TP, FP and FN.
+    pub fn frames_table(&self) -> String {
+        let mut out = String::from("  frame                  TP  FP  FN\n");
+        for f in &self.frames {
+            let c = f.counts;
+            out.push_str(&format!(
+                "  {:<20} {:>4} {:>3} {:>3}\n",
+                f.frame, c.tp, c.fp, c.fn_
+            ));
+        }
+        out
     }
 }
 
@@ -470,6 +497,7 @@ pub fn evaluate(
     }
     let mut scorer = CulaneScorer::new();
     let mut total = Counts::default();
+    let mut frames = Vec::with_capacity(labels.len());
     for (i, frame) in labels.iter().enumerate() {
         let size = frame.image_size.or(image_size).unwrap_or(CULANE_SIZE);
         let gt: Vec<&[[f64; 2]]> = frame.lanes.iter().map(Vec::as_slice).collect();
@@ -481,8 +509,15 @@ pub fn evaluate(
         total.tp += c.tp;
         total.fp += c.fp;
         total.fn_ += c.fn_;
+        frames.push(CulaneFrameScore {
+            frame: frame.frame.clone(),
+            counts: c,
+        });
     }
-    Ok(CulaneReport::from_counts(total))
+    Ok(CulaneReport {
+        frames,
+        ..CulaneReport::from_counts(total)
+    })
 }
 
 impl fmt::Display for CulaneReport {

@@ -195,6 +195,19 @@ impl fmt::Display for EvalReport {
     }
 }
 
+impl EvalReport {
+    /// The format's per-frame table (`lanepf eval --per-frame`): one line a ground-truth frame,
+    /// in the ground truth's order.
+    pub fn frames_table(&self) -> String {
+        match &self.metrics {
+            Metrics::Synthetic(r) => r.boundaries.frames_table(),
+            Metrics::Caltech(r) => r.frames_table(),
+            Metrics::Tusimple(r) => r.frames_table(),
+            Metrics::Culane(r) => r.frames_table(),
+        }
+    }
+}
+
 /// Reads a whole text file of at most [`limits::MAX_FILE_BYTES`].
 pub(crate) fn read_text(path: &Path) -> Result<String> {
     limits::read_text(path)

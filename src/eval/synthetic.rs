@@ -199,6 +199,36 @@ pub struct BoundaryAccuracy {
     pub extra_predicted: usize,
     /// Per role, in role order.
     pub per_role: Vec<RoleAccuracy>,
+    /// Each ground-truth frame's boundaries, in frame order (they sum to `gt` and `correct`).
+    pub frames: Vec<FrameBoundaries>,
+}
+
+/// One ground-truth frame's boundary-level counts.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FrameBoundaries {
+    /// The ground-truth frame's name.
+    pub frame: String,
+    /// Ground-truth boundaries scored.
+    pub gt: usize,
+    /// Correct ones.
+    pub correct: usize,
+    /// Whether the prediction was there and valid.
+    pub valid: bool,
+}
+
+impl BoundaryAccuracy {
+    /// One line a frame: correct / ground-truth boundaries and whether the prediction was valid.
+    pub fn frames_table(&self) -> String {
+        let mut out = String::from("  frame                 correct / gt   valid\n");
+        for f in &self.frames {
+            let mark = if f.correct < f.gt { "  <- missed" } else { "" };
+            out.push_str(&format!(
+                "  {:<20} {:>8} / {:<4} {:>6}{mark}\n",
+                f.frame, f.correct, f.gt, f.valid
+            ));
+        }
+        out
+    }
 }
 
 /// Lateral-offset error under which a tracker counts as recovered, metres.
@@ -245,11 +275,19 @@ pub fn boundary_accuracy(gt: &[LaneEstimate], preds: &[Option<&LaneEstimate>]) -
     // (gt, compared, correct, sum of mean dx) per role.
     let mut per: BTreeMap<Role, (usize, usize, usize, f64)> = BTreeMap::new();
     let mut extra = 0;
+    let mut frames = Vec::with_capacity(gt.len());
     for (i, g) in gt.iter().enumerate() {
         let pred = preds.get(i).copied().flatten().filter(|p| p.valid);
+        let mut frame = FrameBoundaries {
+            frame: g.frame.clone(),
+            gt: 0,
+            correct: 0,
+            valid: pred.is_some(),
+        };
         for b in g.boundaries.iter().filter(|b| b.points.len() >= 2) {
             let e = per.entry(b.role).or_insert((0, 0, 0, 0.0));
             e.0 += 1;
+            frame.gt += 1;
             let Some(pb) = pred.and_then(|p| p.boundaries.iter().find(|pb| pb.role == b.role))
             else {
                 continue;
@@ -260,7 +298,9 @@ pub fn boundary_accuracy(gt: &[LaneEstimate], preds: &[Option<&LaneEstimate>]) -
                 e.3 += m;
             }
             e.2 += usize::from(c.correct);
+            frame.correct += usize::from(c.correct);
         }
+        frames.push(frame);
         if let Some(p) = pred {
             extra += p
                 .boundaries
@@ -293,6 +333,7 @@ pub fn boundary_accuracy(gt: &[LaneEstimate], preds: &[Option<&LaneEstimate>]) -
         mean_abs_dx_px: (compared > 0).then(|| dx_sum / compared as f64),
         extra_predicted: extra,
         per_role,
+        frames,
     }
 }
 

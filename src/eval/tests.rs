@@ -339,3 +339,118 @@ fn culane_labels_as_predictions_give_f1_1() {
     assert_eq!(c.counts.fp + c.counts.fn_, 0);
     assert!(c.counts.tp > 200, "{c:?}");
 }
+
+// ---- Per-frame figures (`lanepf eval --per-frame`) -------------------------------------
+
+#[test]
+fn synthetic_per_frame_figures_follow_the_ground_truth_and_sum_to_the_totals() {
+    let preds = read_predictions(&fixture("synthetic/pred.jsonl")).unwrap();
+    let r = evaluate(Format::Synthetic, &preds, &fixture("synthetic")).unwrap();
+    let Metrics::Synthetic(s) = &r.metrics else {
+        panic!("{r:?}")
+    };
+    // Frame 0 exact (2 of 2), frame 1 invalid, frame 2 without a prediction.
+    let got: Vec<(&str, usize, usize, bool)> = s
+        .boundaries
+        .frames
+        .iter()
+        .map(|f| (f.frame.as_str(), f.correct, f.gt, f.valid))
+        .collect();
+    assert_eq!(
+        got,
+        vec![
+            ("000000.png", 2, 2, true),
+            ("000001.png", 0, 2, false),
+            ("000002.png", 0, 2, false)
+        ]
+    );
+    let table = r.frames_table();
+    assert_eq!(table.lines().count(), 4, "{table}");
+    assert_eq!(table.matches("<- missed").count(), 2, "{table}");
+}
+
+/// The labels as predictions with frame `broken` left out: only it is short in the per-frame
+/// figures, and they sum to the totals.
+#[test]
+fn caltech_and_culane_per_frame_figures_name_the_frame_that_fails() {
+    if let Some(dir) = shared("caltech-cordova1") {
+        let labels = caltech::read_labels(&dir.join("labels.json")).unwrap();
+        let size = labels.image_size;
+        let broken = "f00123.png";
+        let preds: Vec<LaneEstimate> = labels
+            .frames
+            .iter()
+            .filter(|f| f.frame != broken)
+            .map(|f| {
+                let [left, right] = caltech::ego_lanes(&f.lanes, size);
+                let ego = [(left, Role::EgoLeft), (right, Role::EgoRight)];
+                let mut e = estimate(&f.frame, Vec::new(), 319.5);
+                // The roles of the labels' ego-lane rule (the bottom points may differ).
+                for (i, role) in ego.into_iter().filter_map(|(i, r)| Some((i?, r))) {
+                    let mut points = caltech::bezier_polyline(&f.lanes[i].bezier_xy, 100);
+                    if points[0][1] < points[points.len() - 1][1] {
+                        points.reverse();
+                    }
+                    e.boundaries.push(Boundary {
+                        role,
+                        points,
+                        road_points: Vec::new(),
+                    });
+                }
+                e
+            })
+            .collect();
+        let r = evaluate(Format::Caltech, &preds, &dir).unwrap();
+        let Metrics::Caltech(c) = &r.metrics else {
+            panic!("{r:?}")
+        };
+        assert_eq!(c.frames.len(), labels.frames.len());
+        let sum = |f: fn(&caltech::CaltechFrameScore) -> caltech::FrameCounts| {
+            c.frames.iter().map(f).fold([0; 3], |s, n| {
+                [s[0] + n.gt_lanes, s[1] + n.predicted, s[2] + n.matched]
+            })
+        };
+        let e = &c.ego_lanes;
+        assert_eq!(sum(|f| f.ego_lanes), [e.gt_lanes, e.predicted, e.matched]);
+        let a = &c.all_lanes;
+        assert_eq!(sum(|f| f.all_lanes), [a.gt_lanes, a.predicted, a.matched]);
+        let short: Vec<&str> = c
+            .frames
+            .iter()
+            .filter(|f| f.ego_lanes.matched < f.ego_lanes.gt_lanes)
+            .map(|f| f.frame.as_str())
+            .collect();
+        assert_eq!(short, vec![broken]);
+        let table = r.frames_table();
+        assert_eq!(table.matches("<- ego").count(), 1, "{table}");
+        let line = table.lines().find(|l| l.contains(broken)).unwrap();
+        assert!(
+            line.contains(" 0/0/2 ") && line.ends_with("<- ego"),
+            "{line}"
+        );
+    }
+    if let Some(dir) = shared("culane/06030819_0755.MP4") {
+        let labels = culane::read_labels(&dir).unwrap();
+        let broken = labels[7].frame.clone();
+        let preds: Vec<LaneEstimate> = labels
+            .iter()
+            .filter(|f| f.frame != broken)
+            .map(|f| estimate(&f.frame, f.lanes.clone(), 819.5))
+            .collect();
+        let r = evaluate(Format::Culane, &preds, &dir).unwrap();
+        let Metrics::Culane(c) = &r.metrics else {
+            panic!("{r:?}")
+        };
+        assert_eq!(c.frames.len(), 60);
+        let fns: Vec<(&str, usize)> = c
+            .frames
+            .iter()
+            .filter(|f| f.counts.fn_ > 0 || f.counts.fp > 0)
+            .map(|f| (f.frame.as_str(), f.counts.fn_))
+            .collect();
+        assert_eq!(fns, vec![(broken.as_str(), labels[7].lanes.len())]);
+        let tp: usize = c.frames.iter().map(|f| f.counts.tp).sum();
+        assert_eq!(tp, c.counts.tp);
+        assert_eq!(r.frames_table().lines().count(), 61);
+    }
+}

@@ -349,6 +349,28 @@ pub fn evaluate(
     })
 }
 
+impl TusimpleReport {
+    /// One line a frame: accuracy, FP and FN rates, labelled and predicted lanes.
+    pub fn frames_table(&self) -> String {
+        let mut out = String::from(
+            "  frame                                   accuracy     FP     FN  gt  pred\n",
+        );
+        for f in &self.frames {
+            let s = f.score;
+            let mark = if s.false_positive > 0.0 || s.false_negative > 0.0 {
+                "  <- FP / FN"
+            } else {
+                ""
+            };
+            out.push_str(&format!(
+                "  {:<38} {:>9.3} {:>6.3} {:>6.3} {:>3} {:>5}{mark}\n",
+                f.frame, s.accuracy, s.false_positive, s.false_negative, f.gt_lanes, f.pred_lanes
+            ));
+        }
+        out
+    }
+}
+
 impl fmt::Display for TusimpleReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "  TuSimple (official rules)    value")?;

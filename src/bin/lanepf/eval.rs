@@ -17,9 +17,12 @@ pub struct Args {
     /// synthetic, caltech, tusimple or culane.
     #[arg(long)]
     format: String,
-    /// Print the report as JSON.
+    /// Print the report as JSON (it holds every frame's figures).
     #[arg(long)]
     json: bool,
+    /// After the report, one line per ground-truth frame with its figures (which frames fail).
+    #[arg(long)]
+    per_frame: bool,
     /// Ignore TuSimple's 200 ms per frame rule (e.g. for debug builds).
     #[arg(long)]
     no_time_limit: bool,
@@ -39,7 +42,12 @@ pub fn run(args: Args) -> Result<()> {
             serde_json::to_string_pretty(&report).map_err(|e| Error::Config(e.to_string()))?;
         super::out(&format!("{text}\n"))?;
     } else {
-        super::out(&report.to_string())?;
+        let text = report.to_string();
+        super::out(&text)?;
+        if args.per_frame {
+            let gap = if text.ends_with('\n') { "\n" } else { "\n\n" };
+            super::out(&format!("{gap}{}", report.frames_table()))?;
+        }
     }
     Ok(())
 }
