@@ -5,7 +5,9 @@
 //! (defaults `../shared/data`, `target/real-data`, 300 frames of each Udacity video). Writes
 //! OUT_DIR/report.md (the table, also printed) and OUT_DIR/sheet-<video>-<camera>.png: one
 //! row of sampled frames per tracker with its boundaries drawn (ego-left red, ego-right blue,
-//! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye.
+//! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye,
+//! and OUT_DIR/per-frame/<row> -- <dataset>.txt, each labelled frame's figures with the
+//! failing ones marked (`lanepf eval --per-frame`).
 //! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/. With the environment
 //! variable `REAL_DATA_ROWS` set, only the rows whose name contains it run (e.g.
 //! `REAL_DATA_ROWS=adachi`); with `REAL_DATA_RUNS` set, only the datasets (columns) whose
@@ -554,6 +556,8 @@ fn main() -> Res<()> {
         let (cam, note) = camera(&run.camera, &frames)?;
         notes.push(format!("- {}: {note}", run.label));
         let mut all = Vec::new();
+        let per_frame = out.join("per-frame");
+        std::fs::create_dir_all(&per_frame)?;
         for (k, row) in TRACKERS.iter().enumerate() {
             if !selected[k] {
                 continue;
@@ -566,7 +570,14 @@ fn main() -> Res<()> {
                         tusimple_time_limit_ms: None,
                         ..EvalOptions::default()
                     };
-                    summary(&evaluate_with(*format, &preds, gt, &options)?.metrics)
+                    let report = evaluate_with(*format, &preds, gt, &options)?;
+                    // Which frames fail, for this row and dataset.
+                    let file = format!("{} -- {}.txt", row_name(&row())?, run.label).replace(
+                        |c: char| !c.is_ascii_alphanumeric() && c != '-' && c != '.',
+                        "_",
+                    );
+                    std::fs::write(per_frame.join(file), report.frames_table())?;
+                    summary(&report.metrics)
                 }
                 None => format!(
                     "valid {:.0} %",
