@@ -29,10 +29,10 @@ import { weightsByGroup, weighing } from './particle-weights.js';
  */
 /** @typedef {{ data: Uint8ClampedArray<ArrayBuffer>, width: number, height: number }} Frame */
 
-// The simulator's module, once started (its wasm is fetched beside the main one).
-/** @type {Promise<unknown> | null} */
-let simReady = null;
-const sim = () => (simReady ??= initSim());
+// The simulator's module, started now so that its wasm is fetched and compiled while the main
+// one is (serve() starts that with the first request); the ops that need it wait for it.
+const simReady = initSim();
+const sim = () => simReady;
 // The open synthetic source: a simulator scene or the test road (null: none).
 /** @type {Scene | TestRoad | null} */
 let road = null;
