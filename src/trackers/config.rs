@@ -30,7 +30,7 @@ pub struct TrackerConfig {
 }
 
 /// The seed a config without one gets.
-pub(crate) const DEFAULT_SEED: u64 = 1;
+pub const DEFAULT_SEED: u64 = 1;
 
 fn default_seed() -> u64 {
     DEFAULT_SEED

@@ -79,7 +79,7 @@ pub fn read_value(value: &JsValue, what: &str, kind: Kind) -> Result<Value, Thro
     // The text back as a tree of plain values (no getters, proxies or cycles left to meet),
     // read into a `Value` here rather than by serde_json's text parser: the same values, and
     // the parser's code (about 21 kB of the wasm) is not in the package (issue 21 part 5).
-    let tree = js_sys::JSON::parse(&String::from(&text))
+    let tree = parse(&text)
         .map_err(|e| fail(format!("{what} cannot be read: {}", exception_message(&e))))?;
     let parsed = tree_value(&tree, 0).map_err(|m| fail(format!("{what} cannot be read: {m}")))?;
     if !parsed.is_object() {
@@ -127,6 +127,14 @@ fn mark_unrepresentable(_key: JsValue, value: JsValue) -> JsValue {
         None => return value,
     };
     JsValue::from_str(&format!("{MARK}{what}"))
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// `JSON.parse` of a JS string as it is (js_sys's takes a `&str`: the text would be
+    /// copied out of JavaScript and back).
+    #[wasm_bindgen(catch, js_namespace = JSON, js_name = parse)]
+    fn parse(text: &js_sys::JsString) -> Result<JsValue, JsValue>;
 }
 
 /// serde_json's nesting limit, which its parser applied here before: a value inside 128 arrays
