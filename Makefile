@@ -36,7 +36,8 @@ pkg:
 types:
 	LANEPF_BLESS=1 cargo test --lib typegen
 
-## rustfmt and clippy, then the JavaScript: the demo type-checked against the package's .d.ts
+## rustfmt and clippy (native; wasm32 with the whole binding and with each of the package's two
+## modules alone), then the JavaScript: the demo type-checked against the package's .d.ts
 ## (tsc, www/tsconfig*.json) and ESLint (eslint.config.js).
 lint: lint-rust lint-js
 
@@ -45,6 +46,8 @@ lint-rust:
 	cargo clippy --all-targets -- -D warnings
 	cargo clippy --lib --no-default-features -- -D warnings
 	cargo clippy --lib --target wasm32-unknown-unknown -- -D warnings
+	cargo clippy --lib --target wasm32-unknown-unknown --no-default-features --features wasm-track -- -D warnings
+	cargo clippy --lib --target wasm32-unknown-unknown --no-default-features --features wasm-sim -- -D warnings
 
 # The demo's types need the generated pkg/web/lanepf.d.ts, hence `pkg` (built once per make run:
 # `make test` builds it here, in its lint step, not again later).

@@ -12,10 +12,13 @@ if (![n, w, h].every((v) => Number.isInteger(v) && v > 0) || n <= WARMUP) {
   console.error(`usage: node scripts/bench-node.mjs [TRACKER] [FRAMES > ${WARMUP}] [WIDTH] [HEIGHT] [SCENARIO]`);
   process.exit(2);
 }
-const pkg = new URL('../pkg/web/', import.meta.url);
-const m = await import(new URL('lanepf.js', pkg));
-m.initSync({ module: readFileSync(new URL('lanepf_bg.wasm', pkg)) });
-const scene = new m.Scene(scenario, { width: w, height: h, seed: 1 });
+const pkg = new URL('../pkg/', import.meta.url);
+const m = await import(new URL('web/lanepf.js', pkg));
+m.initSync({ module: readFileSync(new URL('web/lanepf_bg.wasm', pkg)) });
+// The frames come from the simulator's module (lanepf/sim).
+const sim = await import(new URL('sim/lanepf_sim.js', pkg));
+sim.initSync({ module: readFileSync(new URL('sim/lanepf_sim_bg.wasm', pkg)) });
+const scene = new sim.Scene(scenario, { width: w, height: h, seed: 1 });
 const rendered = Array.from({ length: n }, (_, f) => scene.render(f));
 const tracker = new m.Tracker(id, { camera: scene.camera() });
 const times = [];

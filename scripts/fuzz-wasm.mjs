@@ -85,14 +85,19 @@ function printReport(r) {
 async function fuzz({ calls, seed, wide, traceFrom, progress }) {
   const pkg = await import('../pkg/web/lanepf.js');
   const wasm = pkg.initSync({ module: readFileSync(new URL('../pkg/web/lanepf_bg.wasm', import.meta.url)) });
-  const { Calibrator, Camera, Scene, TestRoad, Tracker } = pkg;
+  // The simulator is its own module (lanepf/sim), with its own memory.
+  const sim = await import('../pkg/sim/lanepf_sim.js');
+  const simWasm = sim.initSync({ module: readFileSync(new URL('../pkg/sim/lanepf_sim_bg.wasm', import.meta.url)) });
+  const memoryBytes = () => wasm.memory.buffer.byteLength + simWasm.memory.buffer.byteLength;
+  const { Calibrator, Camera, Tracker } = pkg;
+  const { Scene, TestRoad } = sim;
   const rng = mulberry32(seed);
   const R = makeRandom(rng);
 
   // Valid material: small cameras (so that a step is milliseconds) and their frames.
   const SIZES = [[64, 48], [96, 72], [128, 96]];
   const ids = pkg.trackerIds();
-  const names = pkg.scenarios().map((s) => s.name);
+  const names = sim.scenarios().map((s) => s.name);
   const defaults = Object.fromEntries(ids.map((id) => [id, pkg.trackerDefaults(id)]));
   const material = SIZES.map(([w, h]) => {
     const scene = new Scene('highway-curve', { width: w, height: h, seed: 3 });
@@ -109,7 +114,7 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
     seed, wide, cases: 0, returned: 0, cleanErrors: 0, freedErrors: 0, crashes: 0, unclassified: 0,
     locked: 0, hangs: 0, slowestMs: 0, slowest: '',
     byKind: { LanepfConfigError: 0, LanepfInputError: 0, LanepfStateError: 0 },
-    memory: { start: wasm.memory.buffer.byteLength, half: 0, end: 0 }, memoryBounded: true, failures: [],
+    memory: { start: memoryBytes(), half: 0, end: 0 }, memoryBounded: true, failures: [],
   };
 
   // --- argument generators --------------------------------------------------------------
@@ -330,7 +335,7 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
 
   const functionCall = () => R.pick([
     () => { const id = R.chance(0.7) ? R.pick(ids) : hostileValue(); setCall(() => `trackerDefaults(${show(id)})`); return pkg.trackerDefaults(id); },
-    () => pkg.trackerIds(), () => pkg.scenarios(), () => pkg.version(),
+    () => pkg.trackerIds(), () => sim.scenarios(), () => pkg.version(), () => sim.version(),
   ])();
 
   let describeCall = () => '';
@@ -375,10 +380,10 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
     if (ms > stats.slowestMs) { stats.slowestMs = ms; stats.slowest = describeCall().slice(0, 160); }
     if (ms > HANG_MS) { stats.hangs++; fail(i, `took ${ms.toFixed(0)} ms`); }
     stats.cases++;
-    if (i === half) stats.memory.half = wasm.memory.buffer.byteLength;
+    if (i === half) stats.memory.half = memoryBytes();
   }
   for (const e of live) if (!e.freed) e.obj.free();
-  stats.memory.end = wasm.memory.buffer.byteLength;
+  stats.memory.end = memoryBytes();
   // Bounded: at most 1 GiB, and the second half of the run grew memory by at most 64 MiB (a
   // leak of a frame or a tracker per call would grow it steadily).
   stats.memoryBounded = stats.memory.end <= 2 ** 30 && stats.memory.end - stats.memory.half <= 64 * 2 ** 20;

@@ -16,9 +16,107 @@
 //! sequence, expected struct ...`.
 
 use serde::de::{self, DeserializeOwned, DeserializeSeed, Unexpected, Visitor};
-use serde_json::{Error, Map, Value};
+use serde_json::{Map, Value};
 use std::cell::RefCell;
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
+
+/// What went wrong, in serde_json's words: its error messages, written here rather than by
+/// serde's `Unexpected` (whose `{:?}` of a string the wasm then need not carry; issue 21
+/// part 5). A string is quoted as Rust's `{:?}` quotes it, but for characters beyond ASCII,
+/// which are written as they are. Boxed, a thin pointer as serde_json's error is: a wider
+/// error makes every reader's result wider (14.5 kB more wasm).
+#[derive(Debug)]
+#[allow(clippy::box_collection)] // the thin pointer is the point
+pub(crate) struct Error(Box<String>);
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for Error {}
+
+impl de::Error for Error {
+    #[cold]
+    fn custom<T: fmt::Display>(msg: T) -> Self {
+        Error(Box::new(msg.to_string()))
+    }
+
+    #[cold]
+    fn invalid_type(unexp: Unexpected, exp: &dyn de::Expected) -> Self {
+        Error(Box::new(format!(
+            "invalid type: {}, expected {exp}",
+            Shown(unexp)
+        )))
+    }
+
+    #[cold]
+    fn invalid_value(unexp: Unexpected, exp: &dyn de::Expected) -> Self {
+        Error(Box::new(format!(
+            "invalid value: {}, expected {exp}",
+            Shown(unexp)
+        )))
+    }
+}
+
+/// An unexpected value as serde_json's errors name it.
+struct Shown<'a>(Unexpected<'a>);
+
+impl fmt::Display for Shown<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            Unexpected::Unit => f.write_str("null"),
+            // serde_json's float writer (zmij), as its message has it, through serde_json's
+            // `Number` (a direct call would build a second, larger copy of zmij into the wasm).
+            Unexpected::Float(v) => match serde_json::Number::from_f64(v) {
+                Some(n) => write!(f, "floating point `{n}`"),
+                None if v.is_nan() => f.write_str("floating point `NaN`"),
+                None if v > 0.0 => f.write_str("floating point `inf`"),
+                None => f.write_str("floating point `-inf`"),
+            },
+            Unexpected::Bool(b) => write!(f, "boolean `{b}`"),
+            Unexpected::Unsigned(i) => write!(f, "integer `{i}`"),
+            Unexpected::Signed(i) => write!(f, "integer `{i}`"),
+            Unexpected::Char(c) => write!(f, "character `{c}`"),
+            Unexpected::Str(s) => write!(f, "string {}", quoted(s)),
+            Unexpected::Other(other) => f.write_str(other),
+            Unexpected::Bytes(_) => f.write_str("byte array"),
+            Unexpected::Option => f.write_str("Option value"),
+            Unexpected::NewtypeStruct => f.write_str("newtype struct"),
+            Unexpected::Seq => f.write_str("sequence"),
+            Unexpected::Map => f.write_str("map"),
+            Unexpected::Enum => f.write_str("enum"),
+            Unexpected::UnitVariant => f.write_str("unit variant"),
+            Unexpected::NewtypeVariant => f.write_str("newtype variant"),
+            Unexpected::TupleVariant => f.write_str("tuple variant"),
+            Unexpected::StructVariant => f.write_str("struct variant"),
+        }
+    }
+}
+
+/// `s` in double quotes with Rust's `{:?}` escapes for ASCII (`\"`, `\\`, `\n`, `\r`, `\t`,
+/// `\0`, other control characters as `\u{1b}`); characters beyond ASCII as they are.
+pub(crate) fn quoted(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\r' => out.push_str("\\r"),
+            '\t' => out.push_str("\\t"),
+            '\0' => out.push_str("\\0"),
+            c if c.is_ascii_control() => {
+                let _ = write!(out, "\\u{{{:x}}}", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
 
 /// Reads `value` into `T`.
 ///

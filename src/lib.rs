@@ -17,9 +17,10 @@
 //! JavaScript users see only the `wasm` module's classes.
 //!
 //! Cargo features, both on by default: `wasm` (the JavaScript binding, `lanepf::wasm`: wasm-bindgen,
-//! js-sys, web-sys, console_error_panic_hook) and `cli` (the `lanepf` program: clap). With
-//! `default-features = false` the crate is the trackers, the simulator and the evaluation
-//! alone.
+//! js-sys, web-sys, console_error_panic_hook; it is `wasm-track`, the package's main module with
+//! the trackers and the calibrator, and `wasm-sim`, the simulator's module `lanepf/sim`, each of
+//! which builds alone) and `cli` (the `lanepf` program: clap). With `default-features = false`
+//! the crate is the trackers, the simulator and the evaluation alone.
 
 #![deny(missing_docs)]
 // A panic in wasm kills the module (and in the CLI, a batch run): library code returns errors
@@ -41,7 +42,7 @@ pub mod math;
 pub mod synth;
 pub mod trackers;
 pub mod vision;
-#[cfg(feature = "wasm")]
+#[cfg(feature = "wasm-base")]
 pub mod wasm;
 
 pub use error::{Error, Result};

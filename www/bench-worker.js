@@ -1,10 +1,12 @@
 // @ts-check
-// The benchmark's worker: renders the frames of a scenario with the package's Scene, then steps
+// The benchmark's worker: renders the frames of a scenario with the simulator's Scene (its own
+// module, lanepf/sim), then steps
 // each tracker over them as the demo does (the right frame for a stereo tracker, the car's
 // motion from the ground truth for all, both in step's options) and times each step with
 // performance.now().
 // Message in: the page's params; out: { type: 'progress' | 'version' | 'done' | 'error', ... }.
-import init, { version, trackerIds, Scene, Tracker } from '../pkg/web/lanepf.js';
+import init, { version, trackerIds, Tracker } from '../pkg/web/lanepf.js';
+import initSim, { Scene } from '../pkg/sim/lanepf_sim.js';
 
 /** @typedef {import('../pkg/web/lanepf.js').StepOptions} StepOptions */
 /** @typedef {import('../pkg/web/lanepf.js').EgoMotion} EgoMotion */
@@ -24,7 +26,7 @@ const quantile = (sorted, p) => sorted[Math.round((sorted.length - 1) * p)];
 
 /** @param {BenchParams} params */
 async function bench({ frames, width, height, scenario, seed, warmup, trackers }) {
-  await init();
+  await Promise.all([init(), initSim()]);
   self.postMessage({ type: 'version', version: version() });
   const ids = trackers ?? trackerIds();
   const scene = new Scene(scenario, { width, height, seed });

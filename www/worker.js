@@ -9,9 +9,9 @@
 // A frame travels as `frame: { data, width, height }` with its buffer transferred; it comes
 // back with the answer, or on the Error when the op throws (serve.js hands it back).
 import { serve } from '../pkg/worker/serve.js';
-import {
-  version, trackerIds, trackerDefaults, trackerPreset, scenarios, Calibrator, Scene, TestRoad, Tracker,
-} from '../pkg/web/lanepf.js';
+import { version, trackerIds, trackerDefaults, trackerPreset, Calibrator, Tracker } from '../pkg/web/lanepf.js';
+// The simulator is a module of its own (lanepf/sim), started with the first request.
+import initSim, { scenarios, Scene, TestRoad } from '../pkg/sim/lanepf_sim.js';
 import { topViewTable, topView } from './top-view.js';
 import { weightsByGroup, weighing } from './particle-weights.js';
 
@@ -29,6 +29,10 @@ import { weightsByGroup, weighing } from './particle-weights.js';
  */
 /** @typedef {{ data: Uint8ClampedArray<ArrayBuffer>, width: number, height: number }} Frame */
 
+// The simulator's module, started now so that its wasm is fetched and compiled while the main
+// one is (serve() starts that with the first request); the ops that need it wait for it.
+const simReady = initSim();
+const sim = () => simReady;
 // The open synthetic source: a simulator scene or the test road (null: none).
 /** @type {Scene | TestRoad | null} */
 let road = null;
@@ -153,19 +157,22 @@ function reply(frame, result) {
 const topOf = (frame, want) => (want?.top ? topView(topTable, frame.data, frame.width, frame.height) : null);
 
 serve({
-  hello() {
+  async hello() {
+    await sim();
     return { result: { version: version(), trackers: trackerIds(), scenarios: scenarios() } };
   },
   defaults({ trackerId }) {
     return { result: { paper: trackerDefaults(trackerId), realRoads: trackerPreset(trackerId, 'real-roads') } };
   },
-  openTestRoad({ camera, options }) {
+  async openTestRoad({ camera, options }) {
+    await sim();
     road?.free();
     road = null;
     road = new TestRoad(camera, options ?? {});
     return { result: { width: road.width, height: road.height } };
   },
-  openScene({ name, options }) {
+  async openScene({ name, options }) {
+    await sim();
     road?.free();
     road = null;
     const scene = new Scene(name, options ?? {});

@@ -29,8 +29,11 @@ pub struct TrackerConfig {
     pub options: Options,
 }
 
+/// The seed a config without one gets.
+pub const DEFAULT_SEED: u64 = 1;
+
 fn default_seed() -> u64 {
-    1
+    DEFAULT_SEED
 }
 
 impl TrackerConfig {

@@ -50,7 +50,7 @@ mod tracker;
 pub(crate) use crate::filter::now;
 pub use crate::filter::StageTimes;
 pub(crate) use config::parse_options;
-pub use config::{TrackerConfig, MAX_PARTICLES};
+pub use config::{TrackerConfig, DEFAULT_SEED, MAX_PARTICLES};
 pub use defaults::{default_options, preset_options};
 pub use ego_motion::EgoMotion;
 pub use hypothesis::{spread_indices, Hypothesis};

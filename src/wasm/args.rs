@@ -211,7 +211,7 @@ pub fn describe(value: &JsValue) -> String {
     }
     if let Some(s) = value.dyn_ref::<js_sys::JsString>() {
         return if s.length() <= MAX_NAME {
-            format!("the string {:?}", String::from(s))
+            format!("the string {}", crate::keypath::quoted(&String::from(s)))
         } else {
             format!("a string of {} characters", s.length())
         };

@@ -6,7 +6,9 @@ use super::object;
 use crate::camera::{Camera, CameraFile};
 use wasm_bindgen::prelude::*;
 
-/// A validated camera (intrinsics, distortion, height and angles).
+/// A validated camera (intrinsics, distortion, height and angles). In the main module only:
+/// the simulator's takes cameras as plain objects (`camera_from_js`).
+#[cfg(feature = "wasm-track")]
 #[wasm_bindgen(js_name = Camera)]
 pub struct JsCamera {
     inner: Camera,
@@ -18,6 +20,7 @@ pub fn camera_from_js(value: &JsValue) -> Result<Camera, Thrown> {
     Camera::from_file(&file).map_err(config)
 }
 
+#[cfg(feature = "wasm-track")]
 #[wasm_bindgen(js_class = Camera)]
 impl JsCamera {
     /// `new Camera({ width, height, fx, fy, cx, cy, height_m, pitch_deg, yaw_deg?, roll_deg?,
@@ -101,6 +104,7 @@ impl JsCamera {
     }
 }
 
+#[cfg(feature = "wasm-track")]
 impl JsCamera {
     /// The core camera.
     pub fn inner(&self) -> &Camera {

@@ -76,12 +76,16 @@ pub fn read_value(value: &JsValue, what: &str, kind: Kind) -> Result<Value, Thro
             text.length()
         )));
     }
-    let parsed: Value = serde_json::from_str(&String::from(text))
-        .map_err(|e| fail(format!("{what} cannot be read: {e}")))?;
+    // The text back as a tree of plain values (no getters, proxies or cycles left to meet),
+    // read into a `Value` here rather than by serde_json's text parser: the same values, and
+    // the parser's code (about 21 kB of the wasm) is not in the package (issue 21 part 5).
+    let tree = parse(&text)
+        .map_err(|e| fail(format!("{what} cannot be read: {}", exception_message(&e))))?;
+    let parsed = tree_value(&tree, 0).map_err(|m| fail(format!("{what} cannot be read: {m}")))?;
     if !parsed.is_object() {
         return Err(fail(format!(
             "{what} must be an object, but its JSON is {}",
-            first_chars(&parsed.to_string(), 40)
+            first_chars(&String::from(text), 40)
         )));
     }
     check(&parsed, "").map_err(|m| fail(format!("invalid {what}: {m}")))?;
@@ -123,6 +127,85 @@ fn mark_unrepresentable(_key: JsValue, value: JsValue) -> JsValue {
         None => return value,
     };
     JsValue::from_str(&format!("{MARK}{what}"))
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// `JSON.parse` of a JS string as it is (js_sys's takes a `&str`: the text would be
+    /// copied out of JavaScript and back).
+    #[wasm_bindgen(catch, js_namespace = JSON, js_name = parse)]
+    fn parse(text: &js_sys::JsString) -> Result<JsValue, JsValue>;
+}
+
+/// serde_json's nesting limit, which its parser applied here before: a value inside 128 arrays
+/// or objects is refused.
+const MAX_DEPTH: usize = 128;
+
+/// The `Value` serde_json's `from_str` gave for the JSON text of `value`, a tree `JSON.parse`
+/// made (so only null, booleans, finite numbers, strings, arrays and plain objects), inside
+/// `open` arrays and objects.
+fn tree_value(value: &JsValue, open: usize) -> Result<Value, String> {
+    if value.is_null() {
+        return Ok(Value::Null);
+    }
+    if let Some(b) = value.as_bool() {
+        return Ok(Value::Bool(b));
+    }
+    if let Some(x) = value.as_f64() {
+        return Ok(number(x));
+    }
+    if let Some(s) = value.as_string() {
+        return Ok(Value::String(s));
+    }
+    if open + 1 >= MAX_DEPTH {
+        return Err(format!("deeper than {} levels", MAX_DEPTH - 1));
+    }
+    if js_sys::Array::is_array(value) {
+        let items = js_sys::Array::from(value);
+        let mut out = Vec::with_capacity(items.length() as usize);
+        for item in items.iter() {
+            out.push(tree_value(&item, open + 1)?);
+        }
+        return Ok(Value::Array(out));
+    }
+    let mut map = serde_json::Map::new();
+    for entry in js_sys::Object::entries(value.unchecked_ref()).iter() {
+        let entry = js_sys::Array::from(&entry);
+        let key = entry.get(0).as_string().unwrap_or_default();
+        map.insert(key, tree_value(&entry.get(1), open + 1)?);
+    }
+    Ok(Value::Object(map))
+}
+
+/// A finite number as serde_json read `JSON.stringify`'s text of it: a whole number written
+/// without an exponent (below 1e21) is an integer when its digits fit a `u64` (an `i64` when
+/// negative), anything else an `f64`. Above 2^53 the digits are JavaScript's shortest ones
+/// (2^60 is written 1152921504606847000), so those are read from the same text.
+fn number(x: f64) -> Value {
+    const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
+    if x.fract() == 0.0 && x.abs() < 1e21 {
+        if x.abs() < EXACT {
+            // (-0 is written "0".)
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            return if x >= 0.0 {
+                Value::from(x as u64)
+            } else {
+                Value::from(x as i64)
+            };
+        }
+        let text = String::from(
+            js_sys::Number::from(x)
+                .to_string_with_radix(10)
+                .unwrap_or_default(),
+        );
+        if let Ok(u) = text.parse::<u64>() {
+            return Value::from(u);
+        }
+        if let Ok(i) = text.parse::<i64>() {
+            return Value::from(i);
+        }
+    }
+    serde_json::Number::from_f64(x).map_or(Value::Null, Value::Number)
 }
 
 /// At most `n` characters of `text`, with `...` when cut.

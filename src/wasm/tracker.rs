@@ -9,6 +9,7 @@ use super::step_input;
 use crate::camera::CameraFile;
 use crate::filter::ResampleDecision;
 use crate::trackers::{self, TrackerConfig};
+use std::collections::BTreeMap;
 use wasm_bindgen::prelude::*;
 
 /// A lane tracker built by id (see `trackerIds()`).
@@ -25,24 +26,51 @@ pub struct JsTracker {
     resamplings: Vec<ResampleDecision>,
 }
 
-/// Reads a tracker config: the camera first (so that its errors name `camera.<key>`), then the
-/// whole; returns it with the camera's frame size.
+/// Reads a tracker config: the camera first (so that its errors name `camera.<key>`), then
+/// `particles` and `seed`; every other key is the tracker's own option, read when the tracker
+/// is built. The same values and messages as `TrackerConfig`'s `Deserialize` (whose flattened
+/// options need serde's buffering of values, about 4 kB of the wasm; issue 21 part 5). Returns
+/// the config with the camera's frame size.
 fn read_config(value: &JsValue) -> Result<(TrackerConfig, [usize; 2]), Thrown> {
     const WHAT: &str = "tracker config";
-    let config = object::read_value(value, WHAT, Kind::Config)?;
-    let size = match config.get("camera") {
-        Some(camera) => {
-            let camera: CameraFile =
-                object::deserialize(camera.clone(), WHAT, "camera", Kind::Config)?;
-            [camera.width, camera.height]
-        }
-        None => {
-            return Err(Thrown::config(format!(
-                "invalid {WHAT}: `camera` is missing"
-            )))
-        }
+    let serde_json::Value::Object(config) = object::read_value(value, WHAT, Kind::Config)? else {
+        return Err(Thrown::config(format!("invalid {WHAT}: not an object")));
     };
-    Ok((object::deserialize(config, WHAT, "", Kind::Config)?, size))
+    if !config.contains_key("camera") {
+        return Err(Thrown::config(format!(
+            "invalid {WHAT}: `camera` is missing"
+        )));
+    }
+    // In key order (camera, particles and seed meet their errors in the order the derive did:
+    // the other keys wait for the tracker). Taken apart and inserted, not removed or
+    // collected: BTreeMap's remove and collect (which sorts) would add their code.
+    let (mut camera, mut particles, mut seed) = (None, None, trackers::DEFAULT_SEED);
+    let mut options = BTreeMap::new();
+    for (key, value) in config {
+        match key.as_str() {
+            "camera" => camera = Some(object::deserialize(value, WHAT, "camera", Kind::Config)?),
+            "particles" => {
+                particles = object::deserialize(value, WHAT, "particles", Kind::Config)?;
+            }
+            "seed" => seed = object::deserialize(value, WHAT, "seed", Kind::Config)?,
+            _ => {
+                options.insert(key, value);
+            }
+        }
+    }
+    let Some(camera): Option<CameraFile> = camera else {
+        return Err(Thrown::config(format!(
+            "invalid {WHAT}: `camera` is missing"
+        )));
+    };
+    let size = [camera.width, camera.height];
+    let config = TrackerConfig {
+        camera,
+        particles,
+        seed,
+        options: trackers::Options::ByName(options),
+    };
+    Ok((config, size))
 }
 
 /// The ids `new Tracker(id, ...)` accepts.

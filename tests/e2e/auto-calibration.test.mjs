@@ -24,9 +24,9 @@ const FPS = 30;
 
 /** Renders the scenario's 300 frames through TRUTH and encodes them as VP9 WebM; returns the lane width. */
 function makeVideo(path) {
-  const pkg = new URL('../../pkg/web/', import.meta.url);
-  return import(new URL('lanepf.js', pkg)).then((m) => {
-    m.initSync({ module: readFileSync(new URL('lanepf_bg.wasm', pkg)) });
+  const pkg = new URL('../../pkg/sim/', import.meta.url);
+  return import(new URL('lanepf_sim.js', pkg)).then((m) => {
+    m.initSync({ module: readFileSync(new URL('lanepf_sim_bg.wasm', pkg)) });
     const scene = new m.Scene('highway-straight', { camera: TRUTH, seed: 1 });
     const frames = [];
     for (let f = 0; f < scene.frames; f++) frames.push(Buffer.from(scene.render(f).buffer));

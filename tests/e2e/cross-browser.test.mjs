@@ -68,9 +68,9 @@ const setValue = (page, selector, value) => page.eval((s, v) => {
   i.dispatchEvent(new Event('input', { bubbles: true }));
   i.dispatchEvent(new Event('change', { bubbles: true }));
 }, selector, value);
-/** PNG files (base64) of frames of a simulator scene, made in the page by the wasm package. */
+/** PNG files (base64) of frames of a simulator scene, made in the page by the simulator's module. */
 const scenePngs = (page, scenario, seed, frames, stereo = false) => page.eval(async (scenario, seed, frames, stereo) => {
-  const m = await import('/pkg/web/lanepf.js');
+  const m = await import('/pkg/sim/lanepf_sim.js');
   await m.default();
   const scene = new m.Scene(scenario, { width: 640, height: 480, seed });
   const png = async (parts) => {
@@ -410,7 +410,7 @@ for (const driver of DRIVERS) {
       await page.click('#play');
       await idle(page);
       const { truth, camera } = await page.eval(async () => {
-        const m = await import('/pkg/web/lanepf.js');
+        const m = await import('/pkg/sim/lanepf_sim.js');
         await m.default();
         const scene = new m.Scene('highway-straight', { width: 640, height: 480, seed: 1 });
         return { truth: window.lanepfDemo.lastTruth, camera: scene.camera() };
@@ -488,6 +488,7 @@ for (const driver of DRIVERS) {
       const requests = page.requests();
       const foreign = requests.filter((u) => !u.startsWith(b.base) && !u.startsWith('data:') && u !== 'about:blank');
       assert.ok(requests.some((u) => u.endsWith('/pkg/web/lanepf_bg.wasm')), 'requests are seen');
+      assert.ok(requests.some((u) => u.endsWith('/pkg/sim/lanepf_sim_bg.wasm')), 'the simulator\'s module is loaded');
       assert.deepEqual(foreign, [], 'no requests beyond the page\'s own files');
       await page.close();
     });
@@ -529,9 +530,9 @@ for (const driver of DRIVERS) {
       await idle(page);
       assert.equal(await enabled(page, '#step-stage'), true);
       const names = await page.eval(async () => {
-        const m = await import('/pkg/web/lanepf.js');
-        await m.default();
-        const scene = new m.Scene('highway-curve', { width: 320, height: 240, seed: 1 });
+        const [m, sim] = await Promise.all([import('/pkg/web/lanepf.js'), import('/pkg/sim/lanepf_sim.js')]);
+        await Promise.all([m.default(), sim.default()]);
+        const scene = new sim.Scene('highway-curve', { width: 320, height: 240, seed: 1 });
         return new m.Tracker('lee-cpf', { camera: scene.camera() }).stepNames();
       });
       assert.ok(names.length >= 4, names.join());

@@ -65,7 +65,7 @@ test('still images with an imported camera file are tracked as a sequence', asyn
   await running(page);
   // Five frames of a simulator scene as PNG files, and the scene's camera as a camera.json.
   const { pngs, camera, truth } = await page.evaluate(async () => {
-    const m = await import('/pkg/web/lanepf.js');
+    const m = await import('/pkg/sim/lanepf_sim.js');
     await m.default();
     const scene = new m.Scene('highway-straight', { width: 640, height: 480, seed: 3 });
     const canvas = new OffscreenCanvas(640, 480);

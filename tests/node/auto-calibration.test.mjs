@@ -9,9 +9,11 @@ import { readFileSync } from 'node:fs';
 import {
   AutoCalibration, moved, APPLY_CONFIDENCE, APPLY_AFTER_FRAMES,
 } from '../../www/auto-calibration.js';
-import init, { Calibrator, Scene, Tracker } from '../../pkg/web/lanepf.js';
+import init, { Calibrator, Tracker } from '../../pkg/web/lanepf.js';
+import initSim, { Scene } from '../../pkg/sim/lanepf_sim.js';
 
 await init({ module_or_path: readFileSync(new URL('../../pkg/web/lanepf_bg.wasm', import.meta.url)) });
+await initSim({ module_or_path: readFileSync(new URL('../../pkg/sim/lanepf_sim_bg.wasm', import.meta.url)) });
 
 const cam = (pitch, yaw, h) => ({ width: 640, height: 480, fx: 500, fy: 500, cx: 320, cy: 240, height_m: h, pitch_deg: pitch, yaw_deg: yaw });
 const estimate = (confidence, camera = cam(3, 1, 1.4)) => ({ camera, confidence, frames_used: 40, frames_seen: 60 });

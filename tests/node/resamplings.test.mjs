@@ -5,9 +5,11 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import init, { Scene, Tracker } from '../../pkg/web/lanepf.js';
+import init, { Tracker } from '../../pkg/web/lanepf.js';
+import initSim, { Scene } from '../../pkg/sim/lanepf_sim.js';
 
 await init({ module_or_path: readFileSync(new URL('../../pkg/web/lanepf_bg.wasm', import.meta.url)) });
+await initSim({ module_or_path: readFileSync(new URL('../../pkg/sim/lanepf_sim_bg.wasm', import.meta.url)) });
 
 const W = 320, H = 240;
 const scene = new Scene('highway-straight', { width: W, height: H, seed: 1 });

@@ -6,10 +6,12 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import init, {
-  Calibrator, Camera, Scene, TestRoad, Tracker, trackerDefaults, trackerIds, trackerPreset,
+  Calibrator, Camera, Tracker, trackerDefaults, trackerIds, trackerPreset,
 } from '../../pkg/web/lanepf.js';
+import initSim, { Scene, TestRoad } from '../../pkg/sim/lanepf_sim.js';
 
 const wasm = await init({ module_or_path: readFileSync(new URL('../../pkg/web/lanepf_bg.wasm', import.meta.url)) });
+await initSim({ module_or_path: readFileSync(new URL('../../pkg/sim/lanepf_sim_bg.wasm', import.meta.url)) });
 const memory = () => wasm.memory.buffer.byteLength;
 
 const KINDS = ['LanepfConfigError', 'LanepfInputError', 'LanepfStateError'];

@@ -82,19 +82,23 @@ test.after(() => env.close());
 
 // --- the checks ------------------------------------------------------------------------------
 
-test('the tarball holds one wasm, the entries, their types and the README, and nothing else', () => {
+test('the tarball holds two wasm modules, the entries, their types and the README, and nothing else', () => {
   const expected = ['README.md', 'package.json', 'web/lanepf.js', 'web/lanepf.d.ts', 'web/lanepf_bg.wasm',
-    'web/lanepf_bg.wasm.d.ts', 'bundler/index.js', 'bundler/index.d.ts', 'worker/index.js',
+    'web/lanepf_bg.wasm.d.ts', 'sim/lanepf_sim.js', 'sim/lanepf_sim.d.ts', 'sim/lanepf_sim_bg.wasm',
+    'sim/lanepf_sim_bg.wasm.d.ts', 'bundler/index.js', 'bundler/index.d.ts', 'worker/index.js',
     'worker/index.d.ts', 'worker/worker.js', 'worker/serve.js', 'worker/serve.d.ts',
     'frames/index.js', 'frames/index.d.ts'];
   assert.deepEqual([...packedFiles].sort(), expected.sort());
-  assert.equal(packedFiles.filter((f) => f.endsWith('.wasm')).length, 1);
+  assert.deepEqual(packedFiles.filter((f) => f.endsWith('.wasm')).sort(), ['sim/lanepf_sim_bg.wasm', 'web/lanepf_bg.wasm']);
 });
 
 /** Asserts what every fixture reports: a rendered frame, a tracked lane, a clear error. */
 function assertResult(r, where) {
   assert.ok(r && !r.failed, `${where}: ${r?.failed ?? 'no result'}`);
   assert.match(r.version, /^\d+\.\d+\.\d+/, where);
+  assert.equal(r.simVersion, r.version, `${where}: lanepf/sim is the same version`);
+  assert.deepEqual(r.mainHas, [], `${where}: the main module has no simulator`);
+  assert.equal(r.scenarios, 12, `${where}: lanepf/sim's scenarios()`);
   assert.deepEqual([...r.ids].sort(), ['adachi-mmpf', 'danescu-mono', 'danescu-stereo', 'lee-cpf',
     'liu-ppf', 'liu-ppf-nokernel'], where);
   assert.equal(r.frame.length, 320 * 240 * 4, where);
@@ -120,8 +124,9 @@ async function serveFolder(root) {
 }
 
 /** Serves `root`, opens `page` in Chromium and returns its `window.result`, checking that every
- * request stayed on the server and a .wasm file was fetched. */
-async function resultOf(root, page, exactlyOneWasm = false) {
+ * request stayed on the server and a .wasm file was fetched (with `bothWasm`, exactly the two
+ * modules, the main one shared by the page and its workers). */
+async function resultOf(root, page, bothWasm = false) {
   const site = await serveFolder(root);
   try {
     const { page: p, errors } = await open(env.browser, 'about:blank');
@@ -134,9 +139,9 @@ async function resultOf(root, page, exactlyOneWasm = false) {
     assert.deepEqual(errors, [], `${page}: page errors`);
     assert.ok(requests.every((u) => u.startsWith(site.base) || /^(data|blob):/.test(u)), `${page}: ${requests.join(', ')}`);
     assert.ok(requests.some((u) => u.endsWith('.wasm')), `${page}: no .wasm fetched`);
-    if (exactlyOneWasm) {
+    if (bothWasm) {
       const wasms = new Set(requests.filter((u) => u.endsWith('.wasm')));
-      assert.equal(wasms.size, 1, `${page}: one wasm file for the page and its workers: ${[...wasms]}`);
+      assert.equal(wasms.size, 2, `${page}: the main and the simulator's wasm for the page and its workers: ${[...wasms]}`);
     }
     await p.close();
     return result;
@@ -248,7 +253,7 @@ async function viteBuild(config, outDir) {
   const vite = join(tmp, 'vite');
   const { stdout, stderr } = await run(bin('vite'), ['build', '--config', config], vite);
   const assets = readdirSync(join(vite, outDir, 'assets'));
-  assert.equal(assets.filter((f) => f.endsWith('.wasm')).length, 1, `vite emitted one wasm: ${assets}`);
+  assert.equal(assets.filter((f) => f.endsWith('.wasm')).length, 2, `vite emitted the two modules: ${assets}`);
   return { dist: join(vite, outDir), log: `${stdout}\n${stderr}` };
 }
 
@@ -289,7 +294,7 @@ test('in a webpack 5 app: lanepf/bundler and lanepf/worker, no configuration but
   assert.deepEqual(info.warnings.map((w) => w.message).filter((m) => !/asset size limit|entrypoint size limit|performance/i.test(m)),
     [], 'webpack warnings (other than its size hints)');
   const emitted = info.assets.map((a) => a.name);
-  assert.equal(emitted.filter((f) => f.endsWith('.wasm')).length, 1, `webpack emitted one wasm: ${emitted}`);
+  assert.equal(emitted.filter((f) => f.endsWith('.wasm')).length, 2, `webpack emitted the two modules: ${emitted}`);
   cpSync(join(app, 'index.html'), join(app, 'dist', 'index.html'));
   const b = await resultOf(join(app, 'dist'), 'index.html', true);
   assertResult(b.bundler, 'webpack lanepf/bundler');

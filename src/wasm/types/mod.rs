@@ -333,15 +333,6 @@ export interface RgbaFrame {
   height: number;
 }
 
-/** The older form of `step` and `beginFrame`: the bytes and the size (declaration merging adds
- *  these overloads to the class, whose type parameter `scripts/build-pkg.sh` declares). */
-export interface Tracker<Id extends TrackerId = TrackerId> {
-  /** Processes one frame of RGBA bytes (`ImageData.data`) of `width` x `height` pixels. */
-  step(rgba: Rgba, width: number, height: number): LaneEstimate;
-  /** Starts a frame of RGBA bytes of `width` x `height` pixels in per-step mode. */
-  beginFrame(rgba: Rgba, width: number, height: number): void;
-}
-
 /**
  * What `step(frame, options)` and `beginFrame(frame, options)` take besides the frame, for this
  * frame only. Unknown keys and `null` are refused.
@@ -352,5 +343,20 @@ export interface StepOptions {
   right?: RgbaFrame;
   /** The car's motion at this frame (the Danescu trackers drift by it; the others ignore it). */
   motion?: EgoMotion;
+}
+"#;
+
+/// The older form of `Tracker.step` and `beginFrame`, as overloads merged into the class: only
+/// in the main module's `.d.ts`, which declares the class.
+#[cfg(feature = "wasm-track")]
+#[wasm_bindgen(typescript_custom_section)]
+const TRACKER_OVERLOADS: &'static str = r#"
+/** The older form of `step` and `beginFrame`: the bytes and the size (declaration merging adds
+ *  these overloads to the class, whose type parameter `scripts/build-pkg.sh` declares). */
+export interface Tracker<Id extends TrackerId = TrackerId> {
+  /** Processes one frame of RGBA bytes (`ImageData.data`) of `width` x `height` pixels. */
+  step(rgba: Rgba, width: number, height: number): LaneEstimate;
+  /** Starts a frame of RGBA bytes of `width` x `height` pixels in per-step mode. */
+  beginFrame(rgba: Rgba, width: number, height: number): void;
 }
 "#;
