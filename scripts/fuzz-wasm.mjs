@@ -187,7 +187,9 @@ async function fuzz({ calls, seed, wide, traceFrom, progress }) {
     if (typeof v === 'number') return near(v);
     if (typeof v === 'boolean') return !v;
     if (hostile.has(v)) return v;
-    // A frame's pixels: cut short, never spread (a 1280x720 frame has 3.7 million indices).
+    // A frame's pixels: cut short, never spread (a 1280x720 frame has 3.7 million indices). A
+    // DataView (one of the hostile values) has no subarray: it is cut by a new view.
+    if (v instanceof DataView) return R.chance(0.5) ? v : new DataView(v.buffer, v.byteOffset, R.int(0, v.byteLength));
     if (ArrayBuffer.isView(v)) return R.chance(0.5) ? v : v.subarray(0, R.int(0, v.length));
     if (Array.isArray(v)) return v.map((x) => (R.chance(0.5) ? mutate(x) : x));
     if (v && typeof v === 'object') return mutateObject(v);
