@@ -74,6 +74,7 @@ export const TRACKERS = {
       { path: 'vote_pair_share', label: 'vote-pair share: particles redrawn each frame around those pairs (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 },
       { path: 'paired_edges', label: 'paired edges: only a bright stripe’s two edges vote, not a seam, kerb or shadow (ours, beyond the paper)', kind: /** @type {const} */ ('bool') },
       SUPPORT_FRAMES,
+      ADJACENT,
     ],
   },
   'danescu-stereo': {

@@ -4,7 +4,7 @@
 //!
 //! | tracker | `real-roads` |
 //! |---|---|
-//! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold` |
+//! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold`, `adjacent_lanes` |
 //! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03, `valid_support_frames` 5 |
 //! | danescu-stereo | `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03 |
 //! | lee-cpf | `relock_share` 0.05, `curvature_prior_sd` 0.004, `adjacent_lanes`, `valid_support_frames` 5, `kalman_process_sd` three times its defaults |
@@ -83,6 +83,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             relock_share: 0.05,
             paired_edges: true,
             width_scaled_threshold: true,
+            adjacent_lanes: true,
             ..c
         }),
         TrackerOptions::DanescuMono(c) => TrackerOptions::DanescuMono(DanescuConfig {

@@ -127,6 +127,11 @@ pub struct AdachiConfig {
     /// the same edge's gradient per pixel is about half: the markings of 1280x720 dash-cam
     /// video fall under the threshold that suits 640x480.
     pub width_scaled_threshold: bool,
+    /// Report the lanes beside the ego lane that the estimate's model r leaves out, where the
+    /// bottom-up detector's markings run beside an ego boundary at a lane's width
+    /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, whose neighbours come
+    /// from r alone; off by default).
+    pub adjacent_lanes: bool,
 }
 
 /// The image width [`AdachiConfig::width_scaled_threshold`] takes `edge_threshold` for, pixels.
@@ -170,6 +175,7 @@ impl Default for AdachiConfig {
             vote_pair_share: 0.0,
             paired_edges: false,
             width_scaled_threshold: false,
+            adjacent_lanes: false,
         }
     }
 }

@@ -54,6 +54,7 @@ pub mod pairs;
 pub mod road_shape;
 pub mod votes;
 
+use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::EgoLane;
 use super::relock::RelockDetector;
 use super::support_memory::{self, SupportMemory};
@@ -199,7 +200,7 @@ impl AdachiTracker {
             config.seed,
             &initial,
         )?;
-        let detector = if adachi.relock_share > 0.0 {
+        let detector = if adachi.relock_share > 0.0 || adachi.adjacent_lanes {
             Some(RelockDetector::new(&camera)?)
         } else {
             None
@@ -454,7 +455,20 @@ impl AdachiTracker {
 
     /// The estimate as the shared output type.
     pub fn to_lane_estimate(&self, e: &AdachiEstimate) -> LaneEstimate {
-        let boundaries = self.boundaries(e.r, e.q, e.w, e.shape);
+        let mut boundaries = self.boundaries(e.r, e.q, e.w, e.shape);
+        if let Some(d) = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.adjacent_lanes)
+        {
+            // Only the sides model r leaves out: the paper's own neighbours stay.
+            let adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            let missing: Vec<Boundary> = adjacent
+                .into_iter()
+                .filter(|a| boundaries.iter().all(|b| b.role != a.role))
+                .collect();
+            boundaries.extend(missing);
+        }
         let state = [
             ("adachi.q", e.q),
             ("adachi.w", e.w),

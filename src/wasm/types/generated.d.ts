@@ -636,6 +636,15 @@ export interface AdachiOptions {
    * @defaultValue `false`
    */
   width_scaled_threshold?: boolean;
+  /**
+   * Report the lanes beside the ego lane that the estimate's model r leaves out, where the
+   * bottom-up detector's markings run beside an ego boundary at a lane's width
+   * (`adjacent_lanes`; ours, beyond the paper, whose neighbours come
+   * from r alone; off by default).
+   *
+   * @defaultValue `false`
+   */
+  adjacent_lanes?: boolean;
 }
 
 /**
