@@ -1,6 +1,6 @@
 //! The lanes beside the ego lane, for trackers whose paper follows the ego lane only (option
-//! `adjacent_lanes`, ours, beyond the papers; `lee-cpf`, `danescu-*` and `adachi-mmpf`, whose paper
-//! has neighbours only where its lane-configuration model r has them).
+//! `adjacent_lanes`, ours, beyond the papers; `lee-cpf`, `danescu-*` and `adachi-mmpf`, whose
+//! paper has neighbours only where its lane-configuration model r has them).
 //!
 //! Lee et al. and Danescu & Nedevschi estimate the ego lane; a user on a multi-lane road wants
 //! its neighbours too (Caltech's "all lanes" and CULane score every labelled lane, up to four).

@@ -69,11 +69,12 @@ const DANESCU_VALID_SUPPORT_FRAMES: usize = 5;
 const LEE_VALID_SUPPORT_FRAMES: usize = 5;
 
 /// lee-cpf's Kalman smoother in `real-roads`: its process standard deviations (our design: the
-/// paper gives none) three times the defaults', so that the smoother lags the particle filter less (RESULTS.md,
-/// *`kalman_process_sd`*: option_compare's synthetic seeds 201-213 boundaries 89.3 -> 89.8 %
-/// and 214-239 94.4 -> 94.6; Caltech tracker seeds 1-5 ego lanes 94.0 -> 95.2 % at 3.7 ->
-/// 2.4 % false positives; TuSimple 88.6 -> 88.5; the estimate's frame-to-frame change on the
-/// Udacity videos 1.4 times the default's, the smoother off 1.6 times).
+/// paper gives none) three times the defaults', so that the smoother lags the particle filter
+/// less (RESULTS.md, *`kalman_process_sd`*: option_compare's synthetic seeds 201-213
+/// boundaries 89.3 -> 89.8 % and 214-239 94.4 -> 94.6; Caltech tracker seeds 1-5 ego lanes
+/// 94.0 -> 95.2 % at 3.7 -> 2.4 % false positives; TuSimple 88.6 -> 88.5; the estimate's
+/// frame-to-frame change on the Udacity videos 1.4 times the default's, the smoother off 1.6
+/// times).
 const LEE_KALMAN_PROCESS_SD: [f64; 6] = [0.009, 0.09, 0.03, 0.0015, 6.0, 0.0006];
 
 /// `real-roads` for tracker `id`'s options (`paper` are its defaults).
