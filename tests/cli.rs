@@ -774,9 +774,9 @@ fn eval_suite_rejects_bad_arguments_with_one_clear_line() {
                 "--seeds",
                 "1",
                 "--options",
-                r#"{"adjacent_lanes": true}"#,
+                r#"{"curvature_prior_sd": 0.004}"#,
             ],
-            "adjacent_lanes",
+            "curvature_prior_sd",
         ),
     ] {
         let mut full = vec!["eval-suite"];
