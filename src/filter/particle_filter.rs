@@ -233,16 +233,6 @@ impl<S: Clone> ParticleFilter<S> {
         self.normalise();
     }
 
-    /// [`ParticleFilter::partitioned_weigh`] with the stage's log-likelihoods of all the
-    /// particles at once: `add` adds particle i's to entry i of a slice of zeros (in an order
-    /// of its own, e.g. term by term across the particles). The same weights as
-    /// `partitioned_weigh` for the same values.
-    pub fn partitioned_weigh_all(&mut self, add: impl FnOnce(&[S], &mut [f64])) {
-        self.clear_log_weights();
-        add(&self.states, &mut self.log_weights);
-        self.normalise();
-    }
-
     /// Adds precomputed log-likelihoods (one per particle) to the weights and normalises.
     ///
     /// # Errors

@@ -611,11 +611,8 @@ impl Scheduled for LiuTracker {
     }
     /// The kernel density of partition k (eqs. 20-21, 24-25; 26-27 without the kernels).
     fn weigh(&mut self, stage: usize) {
-        // Boundary by boundary over the particles (`PpfModel::log_likelihoods`): the same
-        // weights as `partitioned_weigh`.
-        let (model, cues) = (&self.model, &self.descriptors);
         self.filter
-            .partitioned_weigh_all(|states, out| model.log_likelihoods(stage, states, cues, out));
+            .partitioned_weigh(&self.model, stage, &self.descriptors);
     }
     fn estimate(&mut self) -> LiuEstimate {
         self.read_estimate()

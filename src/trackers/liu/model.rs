@@ -868,80 +868,6 @@ fn fold32(d: f32) -> f32 {
     }
 }
 
-impl PpfModel {
-    /// [`PartitionedModel::log_likelihood`] of every particle of `states` added to `out` (one
-    /// zero per particle), with the same bits, boundary by boundary: boundary k of all the
-    /// particles, then boundary k + 1 (each particle's terms added in the same order), so
-    /// that the band pixels of boundary k, which the particles' bands share, stay in the
-    /// cache (callgrind's cache model: a quarter of the first-level misses of the sums).
-    pub fn log_likelihoods(
-        &self,
-        stage: usize,
-        states: &[LaneParticle],
-        cues: &Descriptors,
-        out: &mut [f64],
-    ) {
-        let mut counts = self.counts.borrow_mut();
-        let counts = counts.for_frame(cues.frame());
-        if stage == 0 {
-            // Invalid particles: -inf, no sums (as `log_likelihood`).
-            let mut valid = Vec::with_capacity(states.len());
-            for (p, l) in states.iter().zip(out.iter_mut()) {
-                let v = self.is_valid(p);
-                valid.push(v);
-                if !v {
-                    *l = f64::NEG_INFINITY;
-                }
-            }
-            for k in 0..self.n {
-                for ((p, l), _) in states
-                    .iter()
-                    .zip(out.iter_mut())
-                    .zip(&valid)
-                    .filter(|v| *v.1)
-                {
-                    let (sum, count) = self.linear_sum_count(&self.boundary(p, k), cues);
-                    *l += math::ln(sum);
-                    let [rho, theta, _] = p.boundaries[k];
-                    counts.insert(rho.to_bits(), theta.to_bits(), count);
-                }
-            }
-        } else {
-            for k in 0..self.n {
-                for (p, l) in states.iter().zip(out.iter_mut()) {
-                    *l += self.parabolic_term(p, k, counts, cues);
-                }
-            }
-        }
-        for l in out.iter_mut() {
-            if l.is_nan() {
-                *l = f64::NEG_INFINITY;
-            }
-        }
-    }
-
-    /// Boundary k's term of stage 1's log-likelihood: ln S_k^p - ln n_k^l (eq. 25 with A =
-    /// prod_k 1 / n_k^l). A particle can reach this stage with n_k^l = 0 only when the
-    /// linear stage gave every particle weight 0 (its weights then fell back to equal); A is
-    /// undefined there and taken as 1, not as an infinite weight. The count is stage 0's for
-    /// the same line (resampling copied it), or counted here.
-    fn parabolic_term(
-        &self,
-        p: &LaneParticle,
-        k: usize,
-        counts: &CountMemo,
-        cues: &Descriptors,
-    ) -> f64 {
-        let b = self.boundary(p, k);
-        let [rho, theta, _] = p.boundaries[k];
-        let n_l = counts
-            .get(rho.to_bits(), theta.to_bits())
-            .unwrap_or_else(|| self.linear_count(&b, cues))
-            .max(1);
-        math::ln(self.parabolic_sum(&b, cues)) - math::ln(n_l as f64)
-    }
-}
-
 impl PartitionedModel<LaneParticle> for PpfModel {
     type Cues = Descriptors;
 
@@ -981,8 +907,18 @@ impl PartitionedModel<LaneParticle> for PpfModel {
             let mut counts = self.counts.borrow_mut();
             let counts = counts.for_frame(cues.frame());
             for k in 0..self.n {
-                // Eq. 25 with A = prod_k 1 / n_k^l.
-                l += self.parabolic_term(p, k, counts, cues);
+                let b = self.boundary(p, k);
+                // Eq. 25 with A = prod_k 1 / n_k^l. A particle can reach this stage with
+                // n_k^l = 0 only when the linear stage gave every particle weight 0 (its
+                // weights then fell back to equal); A is undefined there and taken as 1,
+                // not as an infinite weight. The count is stage 0's for the same line
+                // (resampling copied it), or counted here.
+                let [rho, theta, _] = p.boundaries[k];
+                let n_l = counts
+                    .get(rho.to_bits(), theta.to_bits())
+                    .unwrap_or_else(|| self.linear_count(&b, cues))
+                    .max(1);
+                l += math::ln(self.parabolic_sum(&b, cues)) - math::ln(n_l as f64);
             }
         }
         if l.is_nan() {
