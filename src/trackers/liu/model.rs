@@ -267,6 +267,49 @@ impl PpfModel {
         }
     }
 
+    /// The band spans of the `n <= ROW_CHUNK` rows from `first` around the curve x(y) (as
+    /// [`PpfModel::band_span`] row by row) into `spans`, with x(y) in f32. A pass of its own
+    /// before the rows' pixels are batched: the loop keeps its few values in registers.
+    #[inline]
+    fn spans(
+        &self,
+        cues: &Descriptors,
+        first: usize,
+        n: usize,
+        x_at: impl Fn(f64) -> f64,
+        spans: &mut Spans,
+    ) {
+        let (band, last) = (self.band as i32, self.width as i32 - 1);
+        let (below, above) = (self.band_below, self.band_above);
+        let mut y = first as f64;
+        let rows = cues.rows_before(first..first + n);
+        for (((before, start), len), x32) in rows
+            .zip(&mut spans.start)
+            .zip(&mut spans.len)
+            .zip(&mut spans.x)
+        {
+            let x = x_at(y);
+            y += 1.0;
+            // As `band`: the centre column is x + 1/2 sign(x) truncated.
+            let r = x + 0.5f64.copysign(x);
+            let (s, e) = if r > below && r < above {
+                // SAFETY: -band_px - 1 < r < width + band_px, so r is a number and its
+                // integer part fits an i32 (band_px <= 50, the view's width far below 2^31).
+                let centre = unsafe { r.to_int_unchecked::<i32>() };
+                // 0 <= lo <= width - 1 and 1 <= hi + 1 <= width (the bounds above): within
+                // the row's width + 1 counts.
+                let lo = (centre - band).max(0) as usize;
+                let hi = (centre + band).min(last) as usize;
+                (before[lo], before[hi + 1])
+            } else {
+                (0, 0)
+            };
+            *start = s;
+            *len = e - s;
+            *x32 = x as f32;
+        }
+    }
+
     /// Sec. IV-A: spacings at the bottom row and at y_m.
     pub fn is_valid(&self, p: &LaneParticle) -> bool {
         // Each boundary's coefficients once for both rows (`x_at` computes them per call).
@@ -327,8 +370,8 @@ impl PpfModel {
         };
         let mut sum = 0.0;
         let near = self.near_rows();
-        let mut y = near.start as f64;
         if !self.kernel {
+            let mut y = near.start as f64;
             for before in cues.rows_before(near) {
                 let span = self.band_span(before, a + slope * y);
                 y += 1.0;
@@ -338,14 +381,12 @@ impl PpfModel {
             return (sum, count);
         }
         let mut batch = Batch::<1>::new(&cues.pixels);
-        for before in cues.rows_before(near) {
-            let xc = a + slope * y;
-            y += 1.0;
-            let span = self.band_span(before, xc);
-            count += span.len();
-            batch.push_row(span, [xc as f32], |b| {
-                sum += line.batch(b);
-            });
+        let mut spans = Spans::default();
+        for first in near.clone().step_by(ROW_CHUNK) {
+            let n = (near.end - first).min(ROW_CHUNK);
+            self.spans(cues, first, n, |y| a + slope * y, &mut spans);
+            count += spans.len[..n].iter().map(|&l| l as usize).sum::<usize>();
+            batch.push_rows(&spans, [&spans.x], n, |b| sum += line.batch(b));
         }
         if batch.used > 0 {
             sum += line.batch(&batch);
@@ -440,28 +481,17 @@ impl PpfModel {
             minus_2eh,
         };
         let mut records = [[0.0f32; ROW_CHUNK]; 3];
+        let mut spans = Spans::default();
         let far = self.far_rows();
-        let mut rows = cues.rows_before(far.clone());
         let mut sum = 0.0;
-        let mut yf = far.start as f64;
         for first in far.clone().step_by(ROW_CHUNK) {
             let n = (far.end - first).min(ROW_CHUNK);
             curve.orientations(first as f32, n, &mut records);
+            self.spans(cues, first, n, |y| c + d * y + e * y * y, &mut spans);
             let [theta, slope_h, dtheta_h] = &records;
-            for (((&theta, &slope_h), &dtheta_h), before) in theta[..n]
-                .iter()
-                .zip(&slope_h[..n])
-                .zip(&dtheta_h[..n])
-                .zip(rows.by_ref())
-            {
-                let xc = c + d * yf + e * yf * yf;
-                yf += 1.0;
-                let span = self.band_span(before, xc);
-                let row = [xc as f32, theta, slope_h, dtheta_h];
-                batch.push_row(span, row, |b| {
-                    sum += self.parabolic_batch(b, e_h2);
-                });
-            }
+            batch.push_rows(&spans, [&spans.x, theta, slope_h, dtheta_h], n, |b| {
+                sum += self.parabolic_batch(b, e_h2);
+            });
         }
         if batch.used > 0 {
             sum += self.parabolic_batch(&batch, e_h2);
@@ -472,8 +502,26 @@ impl PpfModel {
     }
 }
 
-/// Rows per [`RowCurve::orientations`] call (a multiple of 4).
+/// Rows per [`RowCurve::orientations`] and [`PpfModel::spans`] call (a multiple of 4).
 const ROW_CHUNK: usize = 64;
+
+/// The band spans of up to ROW_CHUNK rows ([`PpfModel::spans`]): the first mask pixel of
+/// each row's band, their number, and the curve's column there in f32.
+struct Spans {
+    start: [u32; ROW_CHUNK],
+    len: [u32; ROW_CHUNK],
+    x: [f32; ROW_CHUNK],
+}
+
+impl Default for Spans {
+    fn default() -> Self {
+        Self {
+            start: [0; ROW_CHUNK],
+            len: [0; ROW_CHUNK],
+            x: [0.0; ROW_CHUNK],
+        }
+    }
+}
 
 /// A far part's curve x = c + d y + e y^2 (eq. 6) for the 3-node rule's row records, in f32:
 /// -d, 2 e, -h and -2 e h (h the outer nodes' offset).
@@ -686,29 +734,67 @@ impl<'a, const R: usize> Batch<'a, R> {
         }
     }
 
-    /// Adds the pixels `all[span]` of one row with the row's record `row`, calling `full` with
-    /// the batch (then emptied) each time it fills up.
+    /// Adds the pixels of the first `n` rows of `spans`, row r with the record `records[.][r]`,
+    /// calling `full` with the batch (then emptied) each time it fills up (a batch can end
+    /// up to ROW_COPY - 1 pixels past BATCH: a row's first ROW_COPY pixels go in at once).
     #[inline]
-    fn push_row(
+    fn push_rows(
         &mut self,
-        span: std::ops::Range<usize>,
-        row: [f32; R],
+        spans: &Spans,
+        records: [&[f32; ROW_CHUNK]; R],
+        n: usize,
         mut full: impl FnMut(&Self),
     ) {
-        // The first ROW_COPY pixels (a whole band of the default 7 columns) here, the rest of
-        // a wider band out of line.
-        let n = span.len().min(ROW_COPY);
-        self.push_copy(span.start, n, row);
-        if self.used >= BATCH {
-            full(self);
-            self.used = 0;
+        let mut used = self.used;
+        for r in 0..n.min(ROW_CHUNK) {
+            let (start, len) = (spans.start[r] as usize, spans.len[r] as usize);
+            let k = len.min(ROW_COPY);
+            self.write(used, start, k, records.map(|v| v[r]));
+            used += k;
+            if used >= BATCH {
+                self.used = used;
+                full(self);
+                used = 0;
+            }
+            if k < len {
+                self.used = used;
+                self.push_rest(start + k..start + len, records.map(|v| v[r]), &mut full);
+                used = self.used;
+            }
         }
-        if n < span.len() {
-            self.push_rest(span.start + n..span.end, row, full);
+        self.used = used;
+    }
+
+    /// Writes the indices and records of `n <= ROW_COPY` pixels from `all[start]` at entry
+    /// `j < BATCH` (eight entries, as [`Batch::push_copy`], which also counts them).
+    #[inline]
+    fn write(&mut self, j: usize, start: usize, n: usize, row: [f32; R]) {
+        // Checked once here for the slices below.
+        assert!(j < BATCH && n <= ROW_COPY);
+        let index = &mut self.index[j..j + ROW_COPY];
+        if start + ROW_COPY <= self.all.len() {
+            for (k, to) in index.iter_mut().enumerate() {
+                *to = (start + k) as u32;
+            }
+        } else {
+            for (k, to) in index[..n].iter_mut().enumerate() {
+                *to = (start + k) as u32;
+            }
+        }
+        // The row's record in all eight entries, four per store (a plain `fill` became 32
+        // scalar stores in WebAssembly).
+        for (to, &v) in self.rows.iter_mut().zip(&row) {
+            let (v, to) = (F32x4::splat(v), &mut to[j..j + ROW_COPY]);
+            let (low, high) = to.split_at_mut(4);
+            // Always both (four and four of the eight).
+            if let (Ok(low), Ok(high)) = (low.try_into(), high.try_into()) {
+                v.store(low);
+                v.store(high);
+            }
         }
     }
 
-    /// [`Batch::push_row`] of the pixels past a row's first ROW_COPY.
+    /// [`Batch::push_rows`] of the pixels past a row's first ROW_COPY.
     #[cold]
     #[inline(never)]
     fn push_rest(
@@ -733,31 +819,8 @@ impl<'a, const R: usize> Batch<'a, R> {
     /// `used < BATCH` before, so that they fit).
     #[inline]
     fn push_copy(&mut self, start: usize, n: usize, row: [f32; R]) {
-        let j = self.used;
-        // Checked once here for the slices below.
-        assert!(j < BATCH && n <= ROW_COPY);
-        let index = &mut self.index[j..j + ROW_COPY];
-        if start + ROW_COPY <= self.all.len() {
-            for (k, to) in index.iter_mut().enumerate() {
-                *to = (start + k) as u32;
-            }
-        } else {
-            for (k, to) in index[..n].iter_mut().enumerate() {
-                *to = (start + k) as u32;
-            }
-        }
-        // The row's record in all eight entries, four per store (a plain `fill` became 32
-        // scalar stores in WebAssembly).
-        for (to, &v) in self.rows.iter_mut().zip(&row) {
-            let (v, to) = (F32x4::splat(v), &mut to[j..j + ROW_COPY]);
-            let (low, high) = to.split_at_mut(4);
-            // Always both (four and four of the eight).
-            if let (Ok(low), Ok(high)) = (low.try_into(), high.try_into()) {
-                v.store(low);
-                v.store(high);
-            }
-        }
-        self.used = j + n;
+        self.write(self.used, start, n, row);
+        self.used += n;
     }
 
     /// The number of quads (four pixels) to read: `used` rounded up to four (the lanes past
@@ -776,7 +839,7 @@ impl<'a, const R: usize> Batch<'a, R> {
         F32x4::transpose([0, 1, 2, 3].map(|k| {
             let i = index[k] as usize;
             debug_assert!(i < self.all.len());
-            // SAFETY: every entry of `index` is below `all.len()`: `push_row` writes only
+            // SAFETY: every entry of `index` is below `all.len()`: `write` writes only
             // indices of pixels of `all`, and the initial zeros are read only once a row has
             // been pushed, so when `all` is not empty.
             F32x4::load_array(unsafe { self.all.get_unchecked(i) }.as_array())
