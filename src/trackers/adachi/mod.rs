@@ -462,12 +462,9 @@ impl AdachiTracker {
             .filter(|_| e.valid && self.config.adjacent_lanes)
         {
             // Only the sides model r leaves out: the paper's own neighbours stay.
-            let adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
-            let missing: Vec<Boundary> = adjacent
-                .into_iter()
-                .filter(|a| boundaries.iter().all(|b| b.role != a.role))
-                .collect();
-            boundaries.extend(missing);
+            let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            adjacent.retain(|a| boundaries.iter().all(|b| b.role != a.role));
+            boundaries.extend(adjacent);
         }
         let state = [
             ("adachi.q", e.q),
