@@ -14,6 +14,8 @@
 //! - TuSimple, still mode (reset, 5 iterations a frame) with the camera auto-calibrated from the
 //!   same stills: official accuracy / FP / FN;
 //! - ms a frame (native, the Caltech run).
+//!
+//! With `OPTION_COMPARE_SCENES` set, each synthetic scene's figures go to stderr as well.
 
 use lanepf::calib::{Calibrator, CalibratorConfig};
 use lanepf::camera::{Camera, CameraFile};
@@ -147,6 +149,13 @@ impl Synthetic {
             det += 100.0 * r.params.detection_rate.unwrap_or(0.0);
             if a < worst.0 {
                 worst = (a, name.clone());
+            }
+            if std::env::var_os("OPTION_COMPARE_SCENES").is_some() {
+                eprintln!(
+                    "    {name} (fx {:.0}): boundaries {a:.1} %, detected {:.1} %",
+                    camera.fx,
+                    100.0 * r.params.detection_rate.unwrap_or(0.0)
+                );
             }
         }
         let n = self.scenes.len().max(1) as f64;
