@@ -1,6 +1,7 @@
 //! Renders one drawn family member with some of its settings changed and runs a tracker on
 //! it, to tell which property of a member a tracker's error comes from (RESULTS, liu-ppf on
-//! curves, at night). Prints the offset RMSE and width MAE over the valid frames.
+//! curves, at night; the variants' figures: CHANGELOG, 2026-11-28). Prints the offset RMSE and
+//! width MAE over the valid frames.
 //! `cargo run --release --example member_variants -- FAMILY SEED FRAMES CHANGES [TRACKER_SEED]
 //! [OPTIONS] [TRACKER]` at 320x240 with the member's own camera; CHANGES joins with `+` any of
 //! `as-is`, `day`, `night`, `noise:<grey levels>`, `width:<lane m>`, `hfov:<deg>`,

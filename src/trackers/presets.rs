@@ -54,13 +54,13 @@ const DANESCU_START_ITERATIONS: usize = 10;
 /// (Caltech) and widens the tolerance near the car on 1280x720 video.
 const DANESCU_VALID_DISTANCE_M: f64 = 0.03;
 
-/// danescu-mono's `valid_support_frames` (RESULTS.md, *`valid_support_frames`*: over
+/// danescu-mono's `valid_support_frames` (RESULTS.md, *Options beyond the papers*: over
 /// `option_compare`'s synthetic seeds 201-213 boundaries 85.8 -> 87.1 %, Caltech tracker seeds
 /// 1-5 ego lanes 83.7 -> 89.2 % at 1.5 -> 2.5 % false positives, challenge_video valid 80 ->
 /// 90 %; not measured on the stereo tracker, which keeps one frame).
 const DANESCU_VALID_SUPPORT_FRAMES: usize = 5;
 
-/// lee-cpf's `valid_support_frames` (RESULTS.md, *`valid_support_frames`*: over
+/// lee-cpf's `valid_support_frames` (RESULTS.md, *Options beyond the papers*: over
 /// `option_compare`'s synthetic seeds 201-213 boundaries 88.8 -> 89.3 %, detected 92.7 ->
 /// 94.2; Caltech tracker seeds 1-5 ego lanes 89.3 -> 94.0 % at 2.7 -> 3.7 % false positives;
 /// challenge_video valid 276 -> 282 of 300, every frame gained on the markings by eye).
@@ -70,7 +70,7 @@ const LEE_VALID_SUPPORT_FRAMES: usize = 5;
 
 /// lee-cpf's Kalman smoother in `real-roads`: its process standard deviations (our design: the
 /// paper gives none) three times the defaults', so that the smoother lags the particle filter
-/// less (RESULTS.md, *`kalman_process_sd`*: option_compare's synthetic seeds 201-213
+/// less (RESULTS.md, *Options beyond the papers*: option_compare's synthetic seeds 201-213
 /// boundaries 89.3 -> 89.8 % and 214-239 94.4 -> 94.6; Caltech tracker seeds 1-5 ego lanes
 /// 94.0 -> 95.2 % at 3.7 -> 2.4 % false positives; TuSimple 88.6 -> 88.5; the estimate's
 /// frame-to-frame change on the Udacity videos 1.4 times the default's, the smoother off 1.6

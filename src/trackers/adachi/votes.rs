@@ -9,7 +9,8 @@
 //! has the polarity's sign (0 elsewhere): a line at lateral distance Y crosses the image at an
 //! angle of tangent h / |Y| (camera height h), and g_x alone falls with that angle, so that a
 //! neighbour lane's outer line (|Y| = 1.5 w) from a camera 1.1-1.6 m high hardly passes the
-//! threshold that its gradient magnitude passes in 95-100 % of the rows (issue 20, RESULTS). The
+//! threshold that its gradient magnitude passes in 95-100 % of the rows (issue 20; CHANGELOG,
+//! 2026-11-28, the known failures' lane-configuration row). The
 //! pixel-to-bin table is built once; a frame converts and scans only the region's rows.
 //!
 //! With `lane_shape: "curved"` (not the paper's) each region pixel also keeps its road point

@@ -28,7 +28,7 @@
 //! needs it on every frame). What it cannot fix: where a solid line lies a lane beyond two
 //! dashed ones, eq. 33 itself can prefer a lane at the width limit with one boundary on the
 //! solid line to the true lane on the dashes (`shadows` seed 6, frame 0: q 0.79 against
-//! 0.54, ln-likelihood -11.8 against -17.1; RESULTS.md).
+//! 0.54, ln-likelihood -11.8 against -17.1; CHANGELOG.md, 2026-11-28).
 //! With a positive `relock_share` (ours, off by default) a share of stage 1's particles is drawn each
 //! frame around the ego pair a bottom-up line detector finds ([`super::relock`]). With a
 //! positive `curvature_prior_sd` (ours, off by default) stage 2 weighs each (c, delta) by a
