@@ -38,7 +38,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 21] = [
+const TRACKERS: [fn() -> TrackerOptions; 22] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -120,6 +120,7 @@ const TRACKERS: [fn() -> TrackerOptions; 21] = [
             ..LiuConfig::default()
         })
     },
+    || real_roads("liu-ppf"),
     || TrackerOptions::LiuPpfNokernel(LiuConfig::default()),
     || {
         TrackerOptions::LiuPpfNokernel(LiuConfig {

@@ -32,6 +32,7 @@ export const TRACKERS = {
       { path: 'sigma_d', label: 'σ_d: random walk of d', min: 0.001, max: 0.05, step: 0.001 },
       { path: 'gradient_threshold', label: 'gradient threshold of the mask', min: 1, max: 60, step: 1 },
       RELOCK,
+      { path: 'top_view_resolved', label: 'top view only as far as the camera resolves it (ours, beyond the paper)', kind: /** @type {const} */ ('bool') },
     ],
   },
   'lee-cpf': {

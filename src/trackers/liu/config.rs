@@ -73,7 +73,27 @@ pub struct LiuConfig {
     /// data-driven proposal beside the paper's N' default-model particles (ours, beyond the
     /// paper; 0: off; see [`crate::trackers::relock`]).
     pub relock_share: f64,
+    /// Ends the top view where the camera still resolves it (ours, beyond the paper, which
+    /// names no range): its far end at most [`LiuConfig::resolved_distance_m`], where one
+    /// top-view pixel spans [`MIN_COLUMNS_PER_TOP_VIEW_PIXEL`] image columns, but at least
+    /// [`MIN_TOP_VIEW_LENGTH_M`] beyond its start; and a valid frame's support is counted over
+    /// the view's nearest [`VALID_WINDOW_M`] (the default view's near part) rather than its
+    /// near part, which a shorter view halves. Off: `top_view` and the near part as given.
+    pub top_view_resolved: bool,
 }
+
+/// Fewest image columns one top-view pixel must span across the road (`top_view_resolved`):
+/// the image resolves f_x / x columns a metre at distance x, so a 10 cm pixel spans 1.5
+/// columns out to x = f_x 0.1 / 1.5 (20.6 m for Caltech's f_x 309, 36 m from f_x 540).
+pub const MIN_COLUMNS_PER_TOP_VIEW_PIXEL: f64 = 1.5;
+
+/// Shortest top view `top_view_resolved` leaves, metres.
+pub const MIN_TOP_VIEW_LENGTH_M: f64 = 10.0;
+
+/// Length of the near window over which `top_view_resolved` counts a valid frame's support,
+/// metres: the near part of the default 6-36 m view (split at half), more than one 12 m
+/// cycle of a dashed line.
+pub const VALID_WINDOW_M: f64 = 15.0;
 
 impl Default for LiuConfig {
     fn default() -> Self {
@@ -104,6 +124,7 @@ impl Default for LiuConfig {
             default_heading_rad: 0.05,
             default_jitter_m: 0.1,
             relock_share: 0.0,
+            top_view_resolved: false,
         }
     }
 }
@@ -216,6 +237,44 @@ impl LiuConfig {
             ));
         }
         Ok(())
+    }
+
+    /// How far one top-view pixel spans [`MIN_COLUMNS_PER_TOP_VIEW_PIXEL`] image columns for a
+    /// camera of horizontal focal length `fx` pixels: f_x m_per_px / x >= c gives x <= f_x
+    /// m_per_px / c, metres.
+    pub fn resolved_distance_m(&self, fx: f64) -> f64 {
+        fx * self.top_view.m_per_px / MIN_COLUMNS_PER_TOP_VIEW_PIXEL
+    }
+
+    /// `top_view` for a camera of horizontal focal length `fx`: with `top_view_resolved` its far
+    /// end brought in to [`LiuConfig::resolved_distance_m`], no nearer than
+    /// [`MIN_TOP_VIEW_LENGTH_M`] beyond its start; as given otherwise.
+    pub fn fitted_top_view(&self, fx: f64) -> TopViewConfig {
+        let mut view = self.top_view;
+        if self.top_view_resolved {
+            let shortest = view.x_min_m + MIN_TOP_VIEW_LENGTH_M;
+            view.x_max_m = view.x_max_m.min(self.resolved_distance_m(fx).max(shortest));
+        }
+        view
+    }
+
+    /// The first (farthest) top-view row of the support window of a view `height` rows high
+    /// with split row `split_row` (rows run from the far end down to the near one): the rows
+    /// below the split, or with `top_view_resolved` the rows of the nearest [`VALID_WINDOW_M`]
+    /// (all rows of a shorter view). Both give row y_m + 1 on the default view.
+    pub fn support_first_row(&self, height: usize, split_row: f64) -> usize {
+        let first = if self.top_view_resolved {
+            let v = &self.top_view;
+            let beyond = (v.x_max_m - v.x_min_m - VALID_WINDOW_M) / v.m_per_px;
+            if beyond > 0.0 {
+                beyond.round() as usize + 1
+            } else {
+                0
+            }
+        } else {
+            split_row.floor() as usize + 1
+        };
+        first.min(height)
     }
 
     /// The split row y_m of a top view `height` rows high.

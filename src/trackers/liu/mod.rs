@@ -141,7 +141,8 @@ impl LiuTracker {
     pub fn new(config: &TrackerConfig, kernel: bool) -> Result<Self> {
         let id = if kernel { ID } else { ID_NOKERNEL };
         let camera = config.validate()?;
-        let liu = LiuConfig::from_options(id, &config.options)?;
+        let mut liu = LiuConfig::from_options(id, &config.options)?;
+        liu.top_view = liu.fitted_top_view(camera.focal()[0]);
         let descriptors = Descriptors::new(
             &camera,
             liu.top_view,
@@ -316,14 +317,15 @@ impl LiuTracker {
         }
     }
 
-    /// Fraction of near rows with a strong edge pixel on the boundary's line: within one
+    /// Fraction of near rows ([`LiuConfig::support_first_row`]) with a strong edge pixel on the
+    /// boundary's line: within one
     /// pixel, its orientation within [`SUPPORT_ORIENTATION_RAD`] of the line's and its
     /// gradient at least [`SUPPORT_GRADIENT_FACTOR`] times the mask threshold. (Any mask pixel
     /// would not do: the paper's threshold passes asphalt texture, and half the top view.)
     fn support(&self, b: &LinearParabolic) -> f64 {
         let d = &self.descriptors;
         let (w, h) = (d.width(), d.height());
-        let first = (self.model.split_row().floor() as usize + 1).min(h);
+        let first = self.config.support_first_row(h, self.model.split_row());
         let (a, slope) = (b.a(), b.b());
         let strong = (SUPPORT_GRADIENT_FACTOR * self.config.gradient_threshold) as f32;
         let mut hits = 0;
@@ -619,5 +621,7 @@ impl Scheduled for LiuTracker {
     }
 }
 
+#[cfg(test)]
+mod resolved_view_tests;
 #[cfg(test)]
 mod tests;

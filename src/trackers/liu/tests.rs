@@ -66,7 +66,7 @@ fn run_member_from(
 
 /// RMS errors of (lateral offset m, heading rad, width m) over the frames from `skip` on, and
 /// the fraction of those frames that are valid.
-fn rmse(out: &[(LaneEstimate, LaneEstimate)], skip: usize) -> [f64; 4] {
+pub(super) fn rmse(out: &[(LaneEstimate, LaneEstimate)], skip: usize) -> [f64; 4] {
     let rest = &out[skip..];
     let n = rest.len() as f64;
     let mut e = [0.0; 4];

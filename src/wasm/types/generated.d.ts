@@ -1508,6 +1508,17 @@ export interface LiuOptions {
    * @defaultValue `0`
    */
   relock_share?: number;
+  /**
+   * Ends the top view where the camera still resolves it (ours, beyond the paper, which
+   * names no range): its far end at most `resolved_distance_m`, where one
+   * top-view pixel spans `MIN_COLUMNS_PER_TOP_VIEW_PIXEL` image columns, but at least
+   * `MIN_TOP_VIEW_LENGTH_M` beyond its start; and a valid frame's support is counted over
+   * the view's nearest `VALID_WINDOW_M` (the default view's near part) rather than its
+   * near part, which a shorter view halves. Off: `top_view` and the near part as given.
+   *
+   * @defaultValue `false`
+   */
+  top_view_resolved?: boolean;
 }
 
 /**
