@@ -533,23 +533,26 @@ struct RowCurve {
 }
 
 impl RowCurve {
-    /// For the ROW_CHUNK rows from `y0` (the first `rows` of them at least), four per operation: the curve's gradient orientation
-    /// theta = atan(-slope) (eq. 7, slope = d + 2 e y; by the polynomial [`atan32_x4`], within
-    /// 2e-7 rad), slope h and h dtheta/dy = -2 e h / (1 + slope^2), into `records[0..3]`.
+    /// For the ROW_CHUNK rows from `y0` (the first `rows` of them at least), four per
+    /// operation: the curve's gradient orientation theta = atan(-slope) (eq. 7, slope = d + 2 e
+    /// y; by the polynomial [`atan32_x4`], within 2e-7 rad), slope h and h dtheta/dy = -2 e h /
+    /// (1 + slope^2), into `records[0..3]`. The atan runs in a pass of its own over the stored
+    /// -slope: its twelve constant lanes and the rows' values in one loop are more than x86's
+    /// 16 vector registers, and V8 spilled them (a tenth of the frame in Chromium).
     // Out of line (one call per 64 rows): each loop keeps its own registers.
     #[inline(never)]
     fn orientations(&self, y0: f32, rows: usize, records: &mut [[f32; ROW_CHUNK]; 3]) {
         let (minus_d, two_e) = (F32x4::splat(self.minus_d), F32x4::splat(self.two_e));
         let (minus_h, minus_2eh) = (F32x4::splat(self.minus_h), F32x4::splat(self.minus_2eh));
-        let atan = Atan32Lanes::opaque();
         let one = F32x4::splat(1.0);
         let quad = F32x4::from_array([0.0, 1.0, 2.0, 3.0]);
-        for q in (0..rows.min(ROW_CHUNK)).step_by(4) {
+        let rows = rows.min(ROW_CHUNK).next_multiple_of(4);
+        for q in (0..rows).step_by(4) {
             let y = F32x4::splat(y0 + q as f32).add(quad);
-            // -slope = -d - 2 e y.
+            // -slope = -d - 2 e y (theta's argument, made theta in the pass below).
             let minus_slope = minus_d.sub(two_e.mul(y));
             let [theta, slope_h, dtheta_h] = [
-                atan.eval(minus_slope),
+                minus_slope,
                 minus_slope.mul(minus_h),
                 minus_2eh.div(one.add(minus_slope.mul(minus_slope))),
             ];
@@ -558,6 +561,11 @@ impl RowCurve {
                 v.store(&mut four);
                 to[q..q + 4].copy_from_slice(&four);
             }
+        }
+        // theta = atan(-slope) in place.
+        let atan = Atan32Lanes::opaque();
+        for four in records[0][..rows].as_chunks_mut::<4>().0 {
+            atan.eval(F32x4::load_array(four)).store(four);
         }
     }
 }
