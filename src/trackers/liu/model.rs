@@ -482,6 +482,7 @@ impl PpfModel {
         };
         let mut records = [[0.0f32; ROW_CHUNK]; 3];
         let mut spans = Spans::default();
+        let mut exponents = [[F32x4::splat(0.0); 4]; BATCH_QUADS];
         let far = self.far_rows();
         let mut sum = 0.0;
         for first in far.clone().step_by(ROW_CHUNK) {
@@ -490,11 +491,11 @@ impl PpfModel {
             self.spans(cues, first, n, |y| c + d * y + e * y * y, &mut spans);
             let [theta, slope_h, dtheta_h] = &records;
             batch.push_rows(&spans, [&spans.x, theta, slope_h, dtheta_h], n, |b| {
-                sum += self.parabolic_batch(b, e_h2);
+                sum += self.parabolic_batch(b, e_h2, &mut exponents);
             });
         }
         if batch.used > 0 {
-            sum += self.parabolic_batch(&batch, e_h2);
+            sum += self.parabolic_batch(&batch, e_h2, &mut exponents);
         }
         // The middle node's weight w_0 / sqrt(pi), which `parabolic_batch` leaves out.
         sum *= f64::from(self.node_weights[1]);
@@ -643,34 +644,52 @@ impl PpfModel {
     /// The parabolic kernels of the `used` pixels of `batch` with the 3-node rule (nodes y - h,
     /// y, y + h; `e_h2` = e h^2), four pixels at a time in the four lanes of each operation
     /// ([`F32x4`]), each lane with its own row's curve, summed: per lane in f32, the four lanes
-    /// then in f64 in lane order.
+    /// then in f64 in lane order. Two passes through `exponents`: the nodes' exponents, then
+    /// their exp (one loop of both needs more constant lanes than x86 has vector registers,
+    /// and V8 spilled them).
     // Out of line (one call per 64 pixels): each loop keeps its own registers.
     #[inline(never)]
-    fn parabolic_batch(&self, batch: &Batch<4>, e_h2: f32) -> f64 {
-        let position = F32x4::splat(self.position_log2);
-        let orientation = F32x4::splat(HALF_LOG2_E);
-        let e_h2 = F32x4::splat(e_h2);
+    fn parabolic_batch(
+        &self,
+        batch: &Batch<4>,
+        e_h2: f32,
+        exponents: &mut [[F32x4; 4]; BATCH_QUADS],
+    ) -> f64 {
+        let quads = batch.quads();
+        {
+            let position = F32x4::splat(self.position_log2);
+            let orientation = F32x4::splat(HALF_LOG2_E);
+            let e_h2 = F32x4::splat(e_h2);
+            let k = NegExp2Lanes::opaque();
+            for (q, to) in exponents[..quads].iter_mut().enumerate() {
+                let [x, weight, theta_i, precision] = batch.pixels(q);
+                // Row record: the curve's column and orientation at the row, slope h, h
+                // dtheta/dy.
+                let [xc, theta, slope_h, dtheta_h] = batch.rows(q);
+                // The orientation difference at the row, folded once (see `parabolic_pixels`).
+                let dtheta = fold_x4(theta.sub(theta_i), &k);
+                let dx = xc.sub(x);
+                // K'_x K'_theta at a node (eqs. 13-14) = exp(-(dx^2 / (2 sigma_x^2) + dt^2
+                // |grad I| / 2)) = 2^(-y), y the same exponent times log2(e).
+                let precision = precision.mul(orientation);
+                let exponent =
+                    |dx: F32x4, dt: F32x4| dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision));
+                *to = [
+                    exponent(dx, dtheta),
+                    exponent(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h)),
+                    exponent(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h)),
+                    weight,
+                ];
+            }
+        }
         // The outer nodes' weight relative to the middle one's (w_-+ / w_0 = 1/4 for 3
         // nodes); the caller multiplies the sum by w_0 / sqrt(pi).
         let outer_weight = F32x4::splat(self.node_weights[0] / self.node_weights[1]);
         let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
-        for q in 0..batch.quads() {
-            let [x, weight, theta_i, precision] = batch.pixels(q);
-            // Row record: the curve's column and orientation at the row, slope h, h dtheta/dy.
-            let [xc, theta, slope_h, dtheta_h] = batch.rows(q);
-            // The orientation difference at the row, folded once (see `parabolic_pixels`).
-            let dtheta = fold_x4(theta.sub(theta_i), &k);
-            let dx = xc.sub(x);
-            // K'_x K'_theta at a node (eqs. 13-14) = exp(-(dx^2 / (2 sigma_x^2) + dt^2
-            // |grad I| / 2)) = 2^(-y), y the same exponent times log2(e).
-            let precision = precision.mul(orientation);
-            let node = |dx: F32x4, dt: F32x4| {
-                k.eval(dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision)))
-            };
-            let outer = node(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h))
-                .add(node(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h)));
-            let g = node(dx, dtheta).add(outer_weight.mul(outer));
+        for (q, &[middle, minus, plus, weight]) in exponents[..quads].iter().enumerate() {
+            let outer = k.eval(minus).add(k.eval(plus));
+            let g = k.eval(middle).add(outer_weight.mul(outer));
             acc = acc.add(only_used(weight.mul(g), batch.used - 4 * q));
         }
         lane_sum(acc)
@@ -713,6 +732,8 @@ fn fold_x4(d: F32x4, k: &NegExp2Lanes) -> F32x4 {
 const BATCH: usize = 64;
 /// Pixels a [`Batch`] copies from a row at once: a whole band of the default 7 columns.
 const ROW_COPY: usize = 8;
+/// The most quads (four pixels) a [`Batch`] holds.
+const BATCH_QUADS: usize = (BATCH + ROW_COPY) / 4;
 
 /// Band pixels of a linear or parabolic sum gathered across rows, each with its row's record
 /// of `R` numbers (the curve there): a row has few (about 3 in a 7-column band), too few to
