@@ -565,8 +565,10 @@ impl RowCurve {
         }
         // theta = atan(-slope) in place.
         let atan = Atan32Lanes::opaque();
-        for four in records[0][..rows].as_chunks_mut::<4>().0 {
-            atan.eval(F32x4::load_array(four)).store(four);
+        for four in records[0][..rows].chunks_exact_mut(4) {
+            if let Ok(four) = <&mut [f32; 4]>::try_from(four) {
+                atan.eval(F32x4::load_array(four)).store(four);
+            }
         }
     }
 }
