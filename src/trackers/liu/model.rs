@@ -382,14 +382,17 @@ impl PpfModel {
         }
         let mut batch = Batch::<1>::new(&cues.pixels);
         let mut spans = Spans::default();
+        let mut exponents = [[F32x4::splat(0.0); 2]; BATCH_QUADS];
         for first in near.clone().step_by(ROW_CHUNK) {
             let n = (near.end - first).min(ROW_CHUNK);
             self.spans(cues, first, n, |y| a + slope * y, &mut spans);
             count += spans.len[..n].iter().map(|&l| l as usize).sum::<usize>();
-            batch.push_rows(&spans, [&spans.x], n, |b| sum += line.batch(b));
+            batch.push_rows(&spans, [&spans.x], n, |b| {
+                sum += line.batch(b, &mut exponents);
+            });
         }
         if batch.used > 0 {
-            sum += line.batch(&batch);
+            sum += line.batch(&batch, &mut exponents);
         }
         sum /= (2.0 * PI * var).sqrt();
         (sum, count)
@@ -584,26 +587,34 @@ struct Line {
 impl Line {
     /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
     /// line column first in its row record), four at a time, summed: per lane in f32, the four
-    /// lanes then in f64 in lane order.
+    /// lanes then in f64 in lane order. Two passes through `exponents`, as
+    /// [`PpfModel::parabolic_batch`].
     // Out of line (one call per 64 pixels): each loop keeps its own registers.
     #[inline(never)]
-    fn batch(&self, batch: &Batch<1>) -> f64 {
-        let theta = F32x4::splat(self.theta);
-        let position = F32x4::splat(self.position_log2);
-        let orientation = F32x4::splat(HALF_LOG2_E);
+    fn batch(&self, batch: &Batch<1>, exponents: &mut [[F32x4; 2]; BATCH_QUADS]) -> f64 {
+        let quads = batch.quads();
+        {
+            let theta = F32x4::splat(self.theta);
+            let position = F32x4::splat(self.position_log2);
+            let orientation = F32x4::splat(HALF_LOG2_E);
+            let k = NegExp2Lanes::opaque();
+            for (q, to) in exponents[..quads].iter_mut().enumerate() {
+                let [x, weight, theta_i, precision] = batch.pixels(q);
+                let [xc] = batch.rows(q);
+                // K_theta G_li = exp(-(dtheta^2 |grad I| / 2 + dist^2 / (2 var))) = 2^(-y), y
+                // the same exponent times log2(e).
+                let dtheta = fold_x4(theta.sub(theta_i), &k);
+                let dx = xc.sub(x);
+                let y = dx
+                    .mul(dx)
+                    .mul(position)
+                    .add(dtheta.mul(dtheta).mul(precision.mul(orientation)));
+                *to = [y, weight];
+            }
+        }
         let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
-        for q in 0..batch.quads() {
-            let [x, weight, theta_i, precision] = batch.pixels(q);
-            let [xc] = batch.rows(q);
-            // K_theta G_li = exp(-(dtheta^2 |grad I| / 2 + dist^2 / (2 var))) = 2^(-y), y the
-            // same exponent times log2(e).
-            let dtheta = fold_x4(theta.sub(theta_i), &k);
-            let dx = xc.sub(x);
-            let y = dx
-                .mul(dx)
-                .mul(position)
-                .add(dtheta.mul(dtheta).mul(precision.mul(orientation)));
+        for (q, &[y, weight]) in exponents[..quads].iter().enumerate() {
             let term = weight.mul(k.eval(y));
             acc = acc.add(only_used(term, batch.used - 4 * q));
         }
