@@ -382,14 +382,17 @@ impl PpfModel {
         }
         let mut batch = Batch::<1>::new(&cues.pixels);
         let mut spans = Spans::default();
+        let mut exponents = [[F32x4::splat(0.0); 2]; BATCH_QUADS];
         for first in near.clone().step_by(ROW_CHUNK) {
             let n = (near.end - first).min(ROW_CHUNK);
             self.spans(cues, first, n, |y| a + slope * y, &mut spans);
             count += spans.len[..n].iter().map(|&l| l as usize).sum::<usize>();
-            batch.push_rows(&spans, [&spans.x], n, |b| sum += line.batch(b));
+            batch.push_rows(&spans, [&spans.x], n, |b| {
+                sum += line.batch(b, &mut exponents);
+            });
         }
         if batch.used > 0 {
-            sum += line.batch(&batch);
+            sum += line.batch(&batch, &mut exponents);
         }
         sum /= (2.0 * PI * var).sqrt();
         (sum, count)
@@ -482,6 +485,7 @@ impl PpfModel {
         };
         let mut records = [[0.0f32; ROW_CHUNK]; 3];
         let mut spans = Spans::default();
+        let mut exponents = [[F32x4::splat(0.0); 4]; BATCH_QUADS];
         let far = self.far_rows();
         let mut sum = 0.0;
         for first in far.clone().step_by(ROW_CHUNK) {
@@ -490,11 +494,11 @@ impl PpfModel {
             self.spans(cues, first, n, |y| c + d * y + e * y * y, &mut spans);
             let [theta, slope_h, dtheta_h] = &records;
             batch.push_rows(&spans, [&spans.x, theta, slope_h, dtheta_h], n, |b| {
-                sum += self.parabolic_batch(b, e_h2);
+                sum += self.parabolic_batch(b, e_h2, &mut exponents);
             });
         }
         if batch.used > 0 {
-            sum += self.parabolic_batch(&batch, e_h2);
+            sum += self.parabolic_batch(&batch, e_h2, &mut exponents);
         }
         // The middle node's weight w_0 / sqrt(pi), which `parabolic_batch` leaves out.
         sum *= f64::from(self.node_weights[1]);
@@ -533,23 +537,26 @@ struct RowCurve {
 }
 
 impl RowCurve {
-    /// For the ROW_CHUNK rows from `y0` (the first `rows` of them at least), four per operation: the curve's gradient orientation
-    /// theta = atan(-slope) (eq. 7, slope = d + 2 e y; by the polynomial [`atan32_x4`], within
-    /// 2e-7 rad), slope h and h dtheta/dy = -2 e h / (1 + slope^2), into `records[0..3]`.
+    /// For the ROW_CHUNK rows from `y0` (the first `rows` of them at least), four per
+    /// operation: the curve's gradient orientation theta = atan(-slope) (eq. 7, slope = d + 2 e
+    /// y; by the polynomial [`atan32_x4`], within 2e-7 rad), slope h and h dtheta/dy = -2 e h /
+    /// (1 + slope^2), into `records[0..3]`. The atan runs in a pass of its own over the stored
+    /// -slope: its twelve constant lanes and the rows' values in one loop are more than x86's
+    /// 16 vector registers, and V8 spilled them (a tenth of the frame in Chromium).
     // Out of line (one call per 64 rows): each loop keeps its own registers.
     #[inline(never)]
     fn orientations(&self, y0: f32, rows: usize, records: &mut [[f32; ROW_CHUNK]; 3]) {
         let (minus_d, two_e) = (F32x4::splat(self.minus_d), F32x4::splat(self.two_e));
         let (minus_h, minus_2eh) = (F32x4::splat(self.minus_h), F32x4::splat(self.minus_2eh));
-        let atan = Atan32Lanes::opaque();
         let one = F32x4::splat(1.0);
         let quad = F32x4::from_array([0.0, 1.0, 2.0, 3.0]);
-        for q in (0..rows.min(ROW_CHUNK)).step_by(4) {
+        let rows = rows.min(ROW_CHUNK).next_multiple_of(4);
+        for q in (0..rows).step_by(4) {
             let y = F32x4::splat(y0 + q as f32).add(quad);
-            // -slope = -d - 2 e y.
+            // -slope = -d - 2 e y (theta's argument, made theta in the pass below).
             let minus_slope = minus_d.sub(two_e.mul(y));
             let [theta, slope_h, dtheta_h] = [
-                atan.eval(minus_slope),
+                minus_slope,
                 minus_slope.mul(minus_h),
                 minus_2eh.div(one.add(minus_slope.mul(minus_slope))),
             ];
@@ -557,6 +564,13 @@ impl RowCurve {
                 let mut four = [0.0; 4];
                 v.store(&mut four);
                 to[q..q + 4].copy_from_slice(&four);
+            }
+        }
+        // theta = atan(-slope) in place.
+        let atan = Atan32Lanes::opaque();
+        for four in records[0][..rows].chunks_exact_mut(4) {
+            if let Ok(four) = <&mut [f32; 4]>::try_from(four) {
+                atan.eval(F32x4::load_array(four)).store(four);
             }
         }
     }
@@ -573,26 +587,34 @@ struct Line {
 impl Line {
     /// The orientation and line kernels of the `used` pixels of `batch` (each with its row's
     /// line column first in its row record), four at a time, summed: per lane in f32, the four
-    /// lanes then in f64 in lane order.
+    /// lanes then in f64 in lane order. Two passes through `exponents`, as
+    /// [`PpfModel::parabolic_batch`].
     // Out of line (one call per 64 pixels): each loop keeps its own registers.
     #[inline(never)]
-    fn batch(&self, batch: &Batch<1>) -> f64 {
-        let theta = F32x4::splat(self.theta);
-        let position = F32x4::splat(self.position_log2);
-        let orientation = F32x4::splat(HALF_LOG2_E);
+    fn batch(&self, batch: &Batch<1>, exponents: &mut [[F32x4; 2]; BATCH_QUADS]) -> f64 {
+        let quads = batch.quads();
+        {
+            let theta = F32x4::splat(self.theta);
+            let position = F32x4::splat(self.position_log2);
+            let orientation = F32x4::splat(HALF_LOG2_E);
+            let k = NegExp2Lanes::opaque();
+            for (q, to) in exponents[..quads].iter_mut().enumerate() {
+                let [x, weight, theta_i, precision] = batch.pixels(q);
+                let [xc] = batch.rows(q);
+                // K_theta G_li = exp(-(dtheta^2 |grad I| / 2 + dist^2 / (2 var))) = 2^(-y), y
+                // the same exponent times log2(e).
+                let dtheta = fold_x4(theta.sub(theta_i), &k);
+                let dx = xc.sub(x);
+                let y = dx
+                    .mul(dx)
+                    .mul(position)
+                    .add(dtheta.mul(dtheta).mul(precision.mul(orientation)));
+                *to = [y, weight];
+            }
+        }
         let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
-        for q in 0..batch.quads() {
-            let [x, weight, theta_i, precision] = batch.pixels(q);
-            let [xc] = batch.rows(q);
-            // K_theta G_li = exp(-(dtheta^2 |grad I| / 2 + dist^2 / (2 var))) = 2^(-y), y the
-            // same exponent times log2(e).
-            let dtheta = fold_x4(theta.sub(theta_i), &k);
-            let dx = xc.sub(x);
-            let y = dx
-                .mul(dx)
-                .mul(position)
-                .add(dtheta.mul(dtheta).mul(precision.mul(orientation)));
+        for (q, &[y, weight]) in exponents[..quads].iter().enumerate() {
             let term = weight.mul(k.eval(y));
             acc = acc.add(only_used(term, batch.used - 4 * q));
         }
@@ -635,34 +657,52 @@ impl PpfModel {
     /// The parabolic kernels of the `used` pixels of `batch` with the 3-node rule (nodes y - h,
     /// y, y + h; `e_h2` = e h^2), four pixels at a time in the four lanes of each operation
     /// ([`F32x4`]), each lane with its own row's curve, summed: per lane in f32, the four lanes
-    /// then in f64 in lane order.
+    /// then in f64 in lane order. Two passes through `exponents`: the nodes' exponents, then
+    /// their exp (one loop of both needs more constant lanes than x86 has vector registers,
+    /// and V8 spilled them).
     // Out of line (one call per 64 pixels): each loop keeps its own registers.
     #[inline(never)]
-    fn parabolic_batch(&self, batch: &Batch<4>, e_h2: f32) -> f64 {
-        let position = F32x4::splat(self.position_log2);
-        let orientation = F32x4::splat(HALF_LOG2_E);
-        let e_h2 = F32x4::splat(e_h2);
+    fn parabolic_batch(
+        &self,
+        batch: &Batch<4>,
+        e_h2: f32,
+        exponents: &mut [[F32x4; 4]; BATCH_QUADS],
+    ) -> f64 {
+        let quads = batch.quads();
+        {
+            let position = F32x4::splat(self.position_log2);
+            let orientation = F32x4::splat(HALF_LOG2_E);
+            let e_h2 = F32x4::splat(e_h2);
+            let k = NegExp2Lanes::opaque();
+            for (q, to) in exponents[..quads].iter_mut().enumerate() {
+                let [x, weight, theta_i, precision] = batch.pixels(q);
+                // Row record: the curve's column and orientation at the row, slope h, h
+                // dtheta/dy.
+                let [xc, theta, slope_h, dtheta_h] = batch.rows(q);
+                // The orientation difference at the row, folded once (see `parabolic_pixels`).
+                let dtheta = fold_x4(theta.sub(theta_i), &k);
+                let dx = xc.sub(x);
+                // K'_x K'_theta at a node (eqs. 13-14) = exp(-(dx^2 / (2 sigma_x^2) + dt^2
+                // |grad I| / 2)) = 2^(-y), y the same exponent times log2(e).
+                let precision = precision.mul(orientation);
+                let exponent =
+                    |dx: F32x4, dt: F32x4| dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision));
+                *to = [
+                    exponent(dx, dtheta),
+                    exponent(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h)),
+                    exponent(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h)),
+                    weight,
+                ];
+            }
+        }
         // The outer nodes' weight relative to the middle one's (w_-+ / w_0 = 1/4 for 3
         // nodes); the caller multiplies the sum by w_0 / sqrt(pi).
         let outer_weight = F32x4::splat(self.node_weights[0] / self.node_weights[1]);
         let k = NegExp2Lanes::opaque();
         let mut acc = F32x4::splat(0.0);
-        for q in 0..batch.quads() {
-            let [x, weight, theta_i, precision] = batch.pixels(q);
-            // Row record: the curve's column and orientation at the row, slope h, h dtheta/dy.
-            let [xc, theta, slope_h, dtheta_h] = batch.rows(q);
-            // The orientation difference at the row, folded once (see `parabolic_pixels`).
-            let dtheta = fold_x4(theta.sub(theta_i), &k);
-            let dx = xc.sub(x);
-            // K'_x K'_theta at a node (eqs. 13-14) = exp(-(dx^2 / (2 sigma_x^2) + dt^2
-            // |grad I| / 2)) = 2^(-y), y the same exponent times log2(e).
-            let precision = precision.mul(orientation);
-            let node = |dx: F32x4, dt: F32x4| {
-                k.eval(dx.mul(dx).mul(position).add(dt.mul(dt).mul(precision)))
-            };
-            let outer = node(dx.sub(slope_h).add(e_h2), dtheta.sub(dtheta_h))
-                .add(node(dx.add(slope_h).add(e_h2), dtheta.add(dtheta_h)));
-            let g = node(dx, dtheta).add(outer_weight.mul(outer));
+        for (q, &[middle, minus, plus, weight]) in exponents[..quads].iter().enumerate() {
+            let outer = k.eval(minus).add(k.eval(plus));
+            let g = k.eval(middle).add(outer_weight.mul(outer));
             acc = acc.add(only_used(weight.mul(g), batch.used - 4 * q));
         }
         lane_sum(acc)
@@ -705,6 +745,8 @@ fn fold_x4(d: F32x4, k: &NegExp2Lanes) -> F32x4 {
 const BATCH: usize = 64;
 /// Pixels a [`Batch`] copies from a row at once: a whole band of the default 7 columns.
 const ROW_COPY: usize = 8;
+/// The most quads (four pixels) a [`Batch`] holds.
+const BATCH_QUADS: usize = (BATCH + ROW_COPY) / 4;
 
 /// Band pixels of a linear or parabolic sum gathered across rows, each with its row's record
 /// of `R` numbers (the curve there): a row has few (about 3 in a 7-column band), too few to
