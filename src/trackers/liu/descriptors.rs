@@ -18,8 +18,6 @@
 //! kernel's normaliser 1 / sqrt(2 pi sigma_theta_i^2). PPF-NoKernel (eqs. 26-27) uses K_ci alone.
 //! Pixels outside the mask have weight 0.
 
-use super::atan32::Atan32Lanes;
-use super::lanes::F32x4;
 use crate::camera::Camera;
 use crate::error::Result;
 use crate::image::{rgba_to_gray_rows, Image};
@@ -59,8 +57,6 @@ pub struct Descriptors {
     before: Vec<u32>,
     /// Running sum of the weights over `pixels` (index j: the first j pixels).
     weight_sum: Vec<f64>,
-    /// One row's orientations ([`orientations_mod_pi`]).
-    theta_row: Vec<f32>,
     /// The id of the last frame computed (unique across all descriptors; 0 before the first).
     frame: u64,
 }
@@ -123,7 +119,6 @@ impl Descriptors {
             pixels: Vec::with_capacity(w * h),
             before: vec![0; (w + 1) * h],
             weight_sum: Vec::with_capacity(w * h + 1),
-            theta_row: vec![0.0; w],
             frame: 0,
             ipm,
         })
@@ -172,8 +167,6 @@ impl Descriptors {
         self.weight_sum.push(0.0);
         let mut total = 0.0;
         for y in 0..h {
-            let row = y * w..(y + 1) * w;
-            orientations_mod_pi(&gy[row.clone()], &gx[row], &mut self.theta_row);
             for x in 0..w {
                 let i = y * w + x;
                 self.before[y * (w + 1) + x] = self.pixels.len() as u32;
@@ -188,7 +181,7 @@ impl Descriptors {
                 } else {
                     k as f32
                 };
-                let theta = self.theta_row[x];
+                let theta = orientation_mod_pi(gy[i], gx[i]);
                 self.weight[i] = weight;
                 self.pixels.push(MaskPixel {
                     x: x as f32,
@@ -257,42 +250,6 @@ pub fn orientation_mod_pi(gy: f32, gx: f32) -> f32 {
     wrap_half_turn(t) as f32
 }
 
-/// [`orientation_mod_pi`] of each pixel of a row (`gy` and `gx` as long as `out`), four per
-/// operation by the same operations, so the same bits: without the scalar atan's branch on
-/// |gy / gx| <= 1, which a row's texture mispredicts half the time.
-fn orientations_mod_pi(gy: &[f32], gx: &[f32], out: &mut [f32]) {
-    // The fold of `wrap_half_turn` (in f64) moves only t = -+pi/2 in f32, the only atan32
-    // values beyond -+pi/2 in f64: to these.
-    const UP: f32 = (std::f32::consts::FRAC_PI_2 as f64 - PI) as f32;
-    const DOWN: f32 = (-std::f32::consts::FRAC_PI_2 as f64 + PI) as f32;
-    let atan = Atan32Lanes::opaque();
-    let zero = F32x4::splat(0.0);
-    let (half_pi, minus_half_pi) = (
-        F32x4::splat(std::f32::consts::FRAC_PI_2),
-        F32x4::splat(-std::f32::consts::FRAC_PI_2),
-    );
-    let (up, down) = (F32x4::splat(UP), F32x4::splat(DOWN));
-    let n = out.len().min(gy.len()).min(gx.len());
-    let quads = n - n % 4;
-    let rows = out[..quads]
-        .chunks_exact_mut(4)
-        .zip(gy.chunks_exact(4).zip(gx.chunks_exact(4)));
-    for (o, (gy, gx)) in rows {
-        let (gy, gx) = (F32x4::load(gy, 0), F32x4::load(gx, 0));
-        let t = atan.eval(gy / gx);
-        let t = t.eq(half_pi).select(up, t);
-        let t = t.eq(minus_half_pi).select(down, t);
-        // 0 for a zero gradient.
-        let t = (gx.eq(zero) & gy.eq(zero)).select(zero, t);
-        if let Ok(o) = <&mut [f32; 4]>::try_from(o) {
-            t.store(o);
-        }
-    }
-    for k in quads..n {
-        out[k] = orientation_mod_pi(gy[k], gx[k]);
-    }
-}
-
 /// An angle folded into (-pi/2, pi/2] (orientations modulo pi), in constant time for any
 /// angle (NaN and infinities give NaN). The remainder `t % pi` is exact, so an angle within a
 /// few turns gives the same bits as subtracting pi step by step.
@@ -329,27 +286,6 @@ mod tests {
             assert!(d.abs() < 4e-7, "{a}: {d}");
         }
         assert_eq!(orientation_mod_pi(0.0, 0.0), 0.0);
-        // A row's orientations, four at a time: the scalar bits, axes and zeros included
-        // (and a remainder of three).
-        let mut gy = vec![0.0, -0.0, 0.0, 3.0, -3.0, 0.0, 0.0, 1e-30, 2.0, -2.0, 5.0];
-        let mut gx = vec![0.0, 0.0, -0.0, 0.0, 0.0, 4.0, -4.0, 0.0, 2.0, 2.0, -5.0];
-        for k in 0..40_000 {
-            let a = f64::from(k) * 0.000_157;
-            let r = 1.0 + f64::from(k % 97);
-            gy.push((r * math::sin(a)) as f32);
-            gx.push((r * math::cos(a)) as f32);
-        }
-        gy.extend([7.0, 0.0, -1.0]);
-        gx.extend([0.0, 0.0, 1.0]);
-        let mut out = vec![0.0; gy.len()];
-        orientations_mod_pi(&gy, &gx, &mut out);
-        for ((&gy, &gx), &o) in gy.iter().zip(&gx).zip(&out) {
-            assert_eq!(
-                o.to_bits(),
-                orientation_mod_pi(gy, gx).to_bits(),
-                "{gy} {gx}"
-            );
-        }
         // Huge angles return at once (a loop of pi steps never ended at 1e17).
         for t in [1e9, -1e17, 1e300, f64::MAX, -f64::MAX] {
             let w = wrap_half_turn(t);

@@ -47,11 +47,6 @@ impl F32x4 {
     pub fn store(self, four: &mut [f32; 4]) {
         imp::store(self.0, four);
     }
-    /// Mask of `self == b` (false where either is NaN).
-    #[inline]
-    pub fn eq(self, b: Self) -> Self {
-        Self(imp::eq(self.0, b.0))
-    }
     /// Mask of `self > b` (false where either is NaN).
     #[inline]
     pub fn gt(self, b: Self) -> Self {
@@ -229,10 +224,6 @@ mod imp {
         unsafe { _mm_or_ps(a, b) }
     }
     #[inline]
-    pub fn eq(a: Raw, b: Raw) -> Raw {
-        unsafe { _mm_cmpeq_ps(a, b) }
-    }
-    #[inline]
     pub fn gt(a: Raw, b: Raw) -> Raw {
         unsafe { _mm_cmpgt_ps(a, b) }
     }
@@ -343,10 +334,6 @@ mod imp {
     #[inline]
     pub fn or(a: Raw, b: Raw) -> Raw {
         v128_or(a, b)
-    }
-    #[inline]
-    pub fn eq(a: Raw, b: Raw) -> Raw {
-        f32x4_eq(a, b)
     }
     #[inline]
     pub fn gt(a: Raw, b: Raw) -> Raw {
@@ -463,10 +450,6 @@ mod imp {
         lanes(a, b, |x, y| f32::from_bits(x.to_bits() | y.to_bits()))
     }
     #[inline]
-    pub fn eq(a: Raw, b: Raw) -> Raw {
-        mask(a, b, |x, y| x == y)
-    }
-    #[inline]
     pub fn gt(a: Raw, b: Raw) -> Raw {
         mask(a, b, |x, y| x > y)
     }
@@ -528,7 +511,6 @@ mod tests {
             assert_eq!(va.bitand(vb).to_array()[k].to_bits(), x & y);
             assert_eq!(va.bitor(vb).to_array()[k].to_bits(), x | y);
             assert_eq!(va.gt(vb).mask_to_array()[k], a[k] > b[k]);
-            assert_eq!(va.eq(vb).mask_to_array()[k], a[k] == b[k]);
             assert_eq!(va.le(vb).mask_to_array()[k], a[k] <= b[k]);
             assert_eq!(va.ge(vb).mask_to_array()[k], a[k] >= b[k]);
             assert_eq!(va.lt(vb).mask_to_array()[k], a[k] < b[k]);
