@@ -318,10 +318,10 @@ impl LiuTracker {
     }
 
     /// Fraction of near rows ([`LiuConfig::support_first_row`]) with a strong edge pixel on the
-    /// boundary's line: within one
-    /// pixel, its orientation within [`SUPPORT_ORIENTATION_RAD`] of the line's and its
-    /// gradient at least [`SUPPORT_GRADIENT_FACTOR`] times the mask threshold. (Any mask pixel
-    /// would not do: the paper's threshold passes asphalt texture, and half the top view.)
+    /// boundary's line: within one pixel, its orientation within [`SUPPORT_ORIENTATION_RAD`] of
+    /// the line's and its gradient at least [`SUPPORT_GRADIENT_FACTOR`] times the mask
+    /// threshold. (Any mask pixel would not do: the paper's threshold passes asphalt texture,
+    /// and half the top view.)
     fn support(&self, b: &LinearParabolic) -> f64 {
         let d = &self.descriptors;
         let (w, h) = (d.width(), d.height());
