@@ -193,7 +193,7 @@ fn member(name: &str, seed: u64, max_frames: u32, options: &str, verbose: bool) 
     }
     for f in 0..frames {
         scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-        let truth = scene.truth(f);
+        let truth = lanepf::trackers::scene_truth(&scene, f);
         let e = tracker.track(&rgba, w, h).unwrap();
         votes.vote(&rgba);
         lik.prepare(&votes);
@@ -296,7 +296,7 @@ fn gradients(name: &str, seed: u64, frames: u32) {
     let mut n = [[0usize; 5]; 4];
     for f in 0..frames {
         scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-        let truth = scene.truth(f);
+        let truth = lanepf::trackers::scene_truth(&scene, f);
         let g = |u: usize, v: usize| {
             let p = &rgba[(v * w + u) * 4..];
             lanepf::image::luma(p[0], p[1], p[2]) as f64

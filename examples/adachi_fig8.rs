@@ -44,7 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut prev: Option<(f64, [f64; 3])> = None; // (truth, estimates)
             for f in 0..frames {
                 scene.render(f, Eye::Left, &mut rgba, None)?;
-                let truth = scene.truth(f).state["adachi.q"];
+                let truth = lanepf::trackers::scene_truth(&scene, f).state["adachi.q"];
                 let e = tracker.track(&rgba, 640, 480)?;
                 let (_, q_bin, w_bin, _) = tracker.grid_estimate();
                 let (_, q_fine, w_fine, _) = tracker.grid_estimate_with(fine, 0.02);

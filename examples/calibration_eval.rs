@@ -83,7 +83,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut rgba = vec![0u8; w * h * 4];
             scene.render(i, Eye::Left, &mut rgba, None)?;
             frames.push(rgba);
-            gt.push(scene.truth(i));
+            gt.push(lanepf::trackers::scene_truth(&scene, i));
         }
         let mut known = Calibrator::new(w, h, Some(&truth_cam), CalibratorConfig::default())?;
         let mut unknown = Calibrator::new(w, h, None, CalibratorConfig::default())?;

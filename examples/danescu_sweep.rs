@@ -119,7 +119,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     if f < 30 {
                         continue;
                     }
-                    let t = scene.truth(f);
+                    let t = lanepf::trackers::scene_truth(&scene, f);
                     let sq = |k: &str| (t.state[k] - e.state[k]).powi(2);
                     s.n += 1.0;
                     s.offset += sq("danescu.xcw");

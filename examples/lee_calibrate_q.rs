@@ -19,7 +19,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut prev: Option<[f64; 4]> = None;
         let (mut sum, mut max) = ([0.0f64; 4], [0.0f64; 4]);
         for f in 0..n {
-            let t = scene.truth(f);
+            let t = lanepf::trackers::scene_truth(&scene, f);
             let s = ["lee.psi", "lee.y0", "lee.w", "lee.w1"].map(|k| t.state[k]);
             if let Some(p) = prev {
                 for i in 0..4 {

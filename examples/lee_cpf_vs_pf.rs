@@ -74,7 +74,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     if f < 10 {
                         continue;
                     }
-                    let truth = scene.truth(f);
+                    let truth = lanepf::trackers::scene_truth(&scene, f);
                     let st = e.state;
                     // Offsets compared modulo the lane width (a lane change re-centres).
                     let d = -st.y0 - truth.lateral_offset_m;

@@ -54,7 +54,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     if f < 10 {
                         continue;
                     }
-                    let t = scene.truth(f);
+                    let t = lanepf::trackers::scene_truth(&scene, f);
                     s.n += 1.0;
                     s.ms += ms;
                     s.valid += f64::from(u8::from(e.valid));

@@ -58,7 +58,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for f in 0..frames {
         scene.render(f, Eye::Left, &mut rgba, None)?;
         let e = t.step(&rgba, 320, 240)?;
-        let truth = scene.truth(f);
+        let truth = lanepf::trackers::scene_truth(&scene, f);
         if e.valid {
             valid += 1;
             offset2 += (e.lateral_offset_m - truth.lateral_offset_m).powi(2);

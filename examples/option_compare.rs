@@ -130,7 +130,7 @@ impl Synthetic {
                 let mut rgba = vec![0u8; w * h * 4];
                 scene.render(i, Eye::Left, &mut rgba, None)?;
                 frames.push(rgba);
-                gt.push(scene.truth(i));
+                gt.push(lanepf::trackers::scene_truth(&scene, i));
             }
             scenes.push((format!("{name}/{seed}"), frames, gt, file));
         }

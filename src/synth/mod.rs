@@ -33,4 +33,4 @@ pub use simulator::{
     default_camera, drawn_camera, frame_fingerprint, Eye, Scene, DEFAULT_BASELINE_M,
 };
 pub use test_road::{TestRoad, TestRoadConfig};
-pub use truth::TRUTH_RANGE_M;
+pub use truth::{keys as truth_keys, SCENE_KEYS, TRUTH_RANGE_M};

@@ -1,34 +1,35 @@
-//! Exact ground truth of a simulator frame.
+//! Exact ground truth of a simulator frame, in tracker-neutral terms.
 //!
 //! Boundaries are sampled on the road model itself (not on the rendered pixels): for a
 //! distance x ahead in the vehicle frame, the point of boundary k with that x is found by
 //! Newton steps on the arc length, lifted onto the road surface z = C_V x^2 / 2 and projected
 //! through the frame's camera (calibrated pose plus the body oscillation), exactly as the
-//! renderer casts rays. The scalar parameters are evaluated at the car:
+//! renderer casts rays. The ego lane's two boundaries are always listed; a neighbour lane's
+//! outer boundary (`left-adjacent`, `right-adjacent`) is listed whenever that lane exists at
+//! the car, even with no point in view. The scalar parameters are evaluated at the car:
 //!
 //! - `lateral_offset_m` o: camera left of the ego-lane centre; `heading_rad`: the lane's
 //!   direction relative to the car (positive left); `curvature_per_m`: of the ego-lane centre,
 //!   kappa / (1 - kappa d_c); `lane_width_m`: W between marking centres.
-//! - Lee et al. (eq. 18-19): `lee.psi` = heading, `lee.y0` = -o (lane centre, y left),
-//!   `lee.w` = W, `lee.w1` = dW/ds, `lee.c` = distance ahead to the next change of curvature
-//!   (0 inside a curve or transition), `lee.delta` = the curvature the road reaches there.
-//! - Danescu & Nedevschi (Sec. II, X right): `danescu.w0` = W - (W_L + W_R)/2 (between inner
-//!   edges), `danescu.ch` = -kappa (curving right positive), `danescu.wl` = dW/ds, `danescu.cv` = C_V, `danescu.y0` = the
-//!   camera's height change, `danescu.xcw` = o (lane centre to the right of the camera),
-//!   `danescu.alpha` = pitch, `danescu.gamma` = roll, `danescu.psi` = -heading,
-//!   `danescu.wl_mark` / `danescu.wr_mark` = W_L / W_R.
-//! - Adachi et al. (eq. 3, 5): on their rho axis (across the road, positive to the right, so
-//!   that rho_3 = q - 3w/2 is the left neighbour's boundary), `adachi.q` = o (the ego-lane
-//!   centre relative to the car), `adachi.w` = W, `adachi.r` = the paper's model number: 1 ego
-//!   lane only, 2 with a left neighbour, 3 with a right neighbour, 4 with both.
-//! - Motion (Danescu's drift input): `t`, `speed_mps`, `yaw_rate`, `ego_lane`, and
+//! - Motion (the trackers' ego-motion input): `t`, `speed_mps`, `yaw_rate`, `ego_lane`, and
 //!   `lane_change` = 1 while the camera's lane differs from the previous frame's, `blackout` = 1
 //!   on frames of a total blackout (the disturbances `lanepf eval` measures recovery from).
+//! - The scene ([`keys`], [`SCENE_KEYS`]): what a paper's parameters need that the fields and
+//!   boundaries above do not say. `lane_width_rate_m_per_m` dW/ds; `marking_width_left_m` /
+//!   `marking_width_right_m` W_L / W_R, the painted widths of the ego lane's boundaries (0 for
+//!   none or a kerb); `vertical_curvature_per_m` C_V; `camera_height_change_m` the camera's
+//!   height above its calibrated height; `pitch_rad` the camera's pitch (calibrated plus the
+//!   body oscillation, positive looking down); `roll_rad` its roll (positive when its right
+//!   side dips, as camera.json's `roll_deg`); `curvature_change_ahead_m` the distance ahead to
+//!   the next change of curvature within [`TRUTH_RANGE_M`] (0 inside a curve or transition,
+//!   [`TRUTH_RANGE_M`] when none) and `curvature_ahead_per_m` the curvature the road reaches
+//!   there.
 //!
-//! - Liu et al. (eqs. 15-16): `liu.<role>.rho`, `liu.<role>.theta`, `liu.<role>.d` of each
-//!   boundary on the default top view of `liu-ppf` (pixels, y_m at half its height), by least
-//!   squares on the boundary's points inside the top view, as the paper computes its ground
-//!   truth from marked lane points.
+//! The simulator knows no paper: each tracker maps this truth to its own parameters
+//! (`truth_parameters` in the tracker's folder, `src/trackers/<paper>/truth.rs`), and the
+//! trackers' `papers_truth` gives the truth the command line writes (`gt.jsonl`), the
+//! evaluators and the wasm `Scene.truth` use: these fields and boundaries, the motion keys and
+//! every paper's parameters.
 
 use super::ego::Pose;
 use super::markings::Pattern;
@@ -42,6 +43,44 @@ use crate::math;
 const X_MIN_M: f64 = 1.0;
 /// Farthest distance reported, metres.
 pub const TRUTH_RANGE_M: f64 = 120.0;
+
+/// The names of the scene's keys in a truth's `state` (see the module docs).
+pub mod keys {
+    /// dW/ds, the change of the lane width per metre along the road.
+    pub const LANE_WIDTH_RATE: &str = "lane_width_rate_m_per_m";
+    /// W_L, the painted width of the ego lane's left boundary, metres (0: none or a kerb).
+    pub const MARKING_WIDTH_LEFT: &str = "marking_width_left_m";
+    /// W_R, the painted width of the ego lane's right boundary, metres (0: none or a kerb).
+    pub const MARKING_WIDTH_RIGHT: &str = "marking_width_right_m";
+    /// C_V, the vertical curvature of the road (surface z = C_V x^2 / 2), 1/m.
+    pub const VERTICAL_CURVATURE: &str = "vertical_curvature_per_m";
+    /// The camera's height above its calibrated height, metres.
+    pub const CAMERA_HEIGHT_CHANGE: &str = "camera_height_change_m";
+    /// The camera's pitch, calibrated plus the body oscillation, radians (positive looking
+    /// down).
+    pub const PITCH: &str = "pitch_rad";
+    /// The camera's roll, radians (positive when its right side dips).
+    pub const ROLL: &str = "roll_rad";
+    /// Distance ahead to the next change of curvature, metres (0 inside a curve or
+    /// transition; the truth range when there is none).
+    pub const CURVATURE_CHANGE_AHEAD: &str = "curvature_change_ahead_m";
+    /// The curvature the road reaches at the end of that change, 1/m.
+    pub const CURVATURE_AHEAD: &str = "curvature_ahead_per_m";
+}
+
+/// Every scene key of a truth's `state` ([`keys`]): the quantities only the papers' mappings
+/// read (the trackers' `papers_truth` leaves them out of the truth it gives).
+pub const SCENE_KEYS: [&str; 9] = [
+    keys::LANE_WIDTH_RATE,
+    keys::MARKING_WIDTH_LEFT,
+    keys::MARKING_WIDTH_RIGHT,
+    keys::VERTICAL_CURVATURE,
+    keys::CAMERA_HEIGHT_CHANGE,
+    keys::PITCH,
+    keys::ROLL,
+    keys::CURVATURE_CHANGE_AHEAD,
+    keys::CURVATURE_AHEAD,
+];
 
 impl Scene {
     /// The camera of `pose` (calibrated pitch and height plus the body oscillation).
@@ -129,13 +168,12 @@ impl Scene {
                 .map_or(0.0, |st| st.width_m)
         };
         let (wl_mark, wr_mark) = (marking_width(lane), marking_width(lane + 1));
-        let (lee_c, lee_delta) = self.next_curvature_change(s);
         let previous_lane = if frame > 0 {
             self.pose(frame - 1).lane
         } else {
             lane
         };
-        let liu = liu_truth(&boundaries);
+        let (ahead_m, ahead_per_m) = self.next_curvature_change(s);
         let pairs = [
             ("t", pose.t),
             ("speed_mps", pose.speed),
@@ -143,33 +181,18 @@ impl Scene {
             ("ego_lane", lane as f64),
             ("lane_change", f64::from(u8::from(previous_lane != lane))),
             ("blackout", f64::from(u8::from(self.blacked_out(frame)))),
-            ("lee.psi", heading),
-            ("lee.y0", -o),
-            ("lee.w", width),
-            ("lee.w1", road.lane_width_rate(s)),
-            ("lee.c", lee_c),
-            ("lee.delta", lee_delta),
-            ("danescu.w0", width - (wl_mark + wr_mark) / 2.0),
-            ("danescu.ch", -kappa),
-            ("danescu.wl", road.lane_width_rate(s)),
-            ("danescu.cv", c_v),
-            ("danescu.y0", pose.height_offset),
-            ("danescu.xcw", o),
-            ("danescu.alpha", cam.pitch()),
-            ("danescu.gamma", math::deg_to_rad(cam.to_file().roll_deg)),
-            ("danescu.psi", -heading),
-            ("danescu.wl_mark", wl_mark),
-            ("danescu.wr_mark", wr_mark),
-            ("adachi.q", o),
-            ("adachi.w", width),
-            (
-                "adachi.r",
-                f64::from(1 + u8::from(left_neighbour) + 2 * u8::from(right_neighbour)),
-            ),
+            (keys::LANE_WIDTH_RATE, road.lane_width_rate(s)),
+            (keys::MARKING_WIDTH_LEFT, wl_mark),
+            (keys::MARKING_WIDTH_RIGHT, wr_mark),
+            (keys::VERTICAL_CURVATURE, c_v),
+            (keys::CAMERA_HEIGHT_CHANGE, pose.height_offset),
+            (keys::PITCH, cam.pitch()),
+            (keys::ROLL, math::deg_to_rad(cam.to_file().roll_deg)),
+            (keys::CURVATURE_CHANGE_AHEAD, ahead_m),
+            (keys::CURVATURE_AHEAD, ahead_per_m),
         ]
         .into_iter()
-        .map(|(k, v)| (k.to_string(), v))
-        .chain(liu);
+        .map(|(k, v)| (k.to_string(), v));
         // Inserted, not collected: `collect` into a map sorts its pairs first, one more
         // instance of the stable sort in the wasm (issue 21 part 5); the last of a repeated key
         // wins either way.
@@ -191,9 +214,9 @@ impl Scene {
         }
     }
 
-    /// Lee's (c, delta): distance ahead of `s` to the next change of curvature within the
-    /// truth range and the curvature reached at the end of that change; (0, kappa) when the
-    /// curvature is changing or non-zero here.
+    /// Distance ahead of `s` to the next change of curvature within the truth range and the
+    /// curvature reached at the end of that change; (0, kappa) when the curvature is changing
+    /// or non-zero here.
     fn next_curvature_change(&self, s: f64) -> (f64, f64) {
         let road = self.road();
         let here = road.at(s);
@@ -219,38 +242,6 @@ impl Scene {
         }
         (TRUTH_RANGE_M, 0.0)
     }
-}
-
-/// Liu's (rho, theta, d) of each boundary on `liu-ppf`'s default top view (see the module
-/// docs); boundaries with too few points in the view are left out.
-fn liu_truth(boundaries: &[Boundary]) -> Vec<(String, f64)> {
-    let config = crate::trackers::liu::config::LiuConfig::default();
-    let v = config.top_view;
-    let Ok((_, height)) = v.size() else {
-        return Vec::new();
-    };
-    let y_m = config.split_row(height);
-    let mut out = Vec::new();
-    for b in boundaries {
-        let points: Vec<[f64; 2]> = b
-            .road_points
-            .iter()
-            .map(|&[x, y]| {
-                [
-                    (v.y_left_m - y) / v.m_per_px - 0.5,
-                    (v.x_max_m - x) / v.m_per_px - 0.5,
-                ]
-            })
-            .filter(|&[_, r]| r >= 0.0 && r < height as f64)
-            .collect();
-        if let Some(m) = crate::lane::LinearParabolic::fit(&points, y_m) {
-            let role = b.role.as_str();
-            out.push((format!("liu.{role}.rho"), m.rho));
-            out.push((format!("liu.{role}.theta"), m.theta));
-            out.push((format!("liu.{role}.d"), m.d));
-        }
-    }
-    out
 }
 
 #[cfg(test)]
@@ -481,7 +472,7 @@ mod tests {
     #[test]
     fn truth_parameters_follow_the_scene() {
         let cam = camera(320, 240);
-        // Width change: W and W_l from the road; Lee and Danescu agree.
+        // Width change: W and dW/ds from the road, the markings' widths.
         let scene = Scene::new(scenario("width-change").unwrap(), cam.clone(), 1).unwrap();
         let t = scene.truth(120); // s = 20 + 25 * 4 = 120 m: inside the 60..160 m change
         assert!(
@@ -489,18 +480,18 @@ mod tests {
             "{}",
             t.lane_width_m
         );
-        assert!((t.state["lee.w1"] - 0.009).abs() < 1e-12);
-        assert_eq!(t.state["danescu.wl"], t.state["lee.w1"]);
-        assert!((t.state["danescu.w0"] - (t.lane_width_m - 0.15)).abs() < 1e-12);
-        // Curve: curvature of the lane centre, and Lee's transition point ahead.
+        assert!((t.state[keys::LANE_WIDTH_RATE] - 0.009).abs() < 1e-12);
+        let marks = t.state[keys::MARKING_WIDTH_LEFT] + t.state[keys::MARKING_WIDTH_RIGHT];
+        assert!((marks / 2.0 - 0.15).abs() < 1e-12, "{marks}");
+        // Curve: curvature of the lane centre, and the transition ahead.
         let scene = Scene::new(scenario("highway-curve").unwrap(), cam.clone(), 1).unwrap();
         let t0 = scene.truth(0); // s = 20: the clothoid starts at 60 m
         assert!(
-            (t0.state["lee.c"] - 40.0).abs() <= 0.5,
+            (t0.state[keys::CURVATURE_CHANGE_AHEAD] - 40.0).abs() <= 0.5,
             "{}",
-            t0.state["lee.c"]
+            t0.state[keys::CURVATURE_CHANGE_AHEAD]
         );
-        assert!((t0.state["lee.delta"] - 0.002).abs() < 1e-9);
+        assert!((t0.state[keys::CURVATURE_AHEAD] - 0.002).abs() < 1e-9);
         let t = scene.truth(240); // s = 220: on the 500 m arc
         assert!(
             (t.curvature_per_m - 0.002).abs() < 5e-5,
@@ -514,12 +505,12 @@ mod tests {
             .collect();
         assert_eq!(events.len(), 2, "{events:?}");
         let t = scene.truth(0);
-        assert_eq!(
-            t.state["adachi.r"], 4.0,
-            "lanes on both sides: Adachi's model 4"
-        );
-        assert_eq!(t.state["adachi.q"], t.lateral_offset_m);
+        // Lanes on both sides: both adjacent boundaries are listed.
         assert_eq!(t.boundaries.len(), 4);
+        assert!(t.boundaries.iter().any(|b| b.role == Role::LeftAdjacent));
+        assert!(t.boundaries.iter().any(|b| b.role == Role::RightAdjacent));
+        // Only the motion and scene keys: the papers' parameters are the trackers' business.
+        assert_eq!(t.state.len(), 6 + SCENE_KEYS.len());
         for b in &t.boundaries {
             b.check_polyline().unwrap();
         }

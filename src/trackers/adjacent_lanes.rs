@@ -273,7 +273,7 @@ mod tests {
         for f in 0..FRAMES {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
             out.push(tracker.step(&rgba, 320, 240).unwrap());
-            gt.push(scene.truth(f));
+            gt.push(crate::trackers::scene_truth(&scene, f));
         }
         let preds: Vec<Option<&LaneEstimate>> = out.iter().map(Some).collect();
         let report = evaluate(&gt, &preds).unwrap().boundaries;

@@ -115,7 +115,7 @@ pub(crate) fn after_blackout(id: &str, options: &str, scene_seed: u64, seed: u64
         scene.render(f, Eye::Left, &mut rgba, None).unwrap();
         let e = tracker.step(&rgba, 320, 240).unwrap();
         if f >= end + 10 {
-            gt.push(scene.truth(f));
+            gt.push(crate::trackers::scene_truth(&scene, f));
             out.push(e);
         }
     }

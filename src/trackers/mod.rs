@@ -2,15 +2,16 @@
 //! builds them by id from a configuration.
 //!
 //! Layout: `tracker.rs` the trait, `registry.rs` the one table of ids (built by [`create`]),
-//! `config.rs` the [`TrackerConfig`], `options.rs` the typed [`TrackerOptions`],
-//! `defaults.rs` / `ranges.rs` every option's default and range, `presets.rs` the named
-//! option sets (`paper`, `real-roads`), `ego_motion.rs`, `layer.rs`
-//! the types the trait speaks (and the filter core's [`StageTimes`]), `lane_change.rs` the
-//! lane-change rule trackers share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the
-//! neighbouring lanes found beside an ego lane, and one folder per paper. Each paper's tracker
-//! is its image cues, its models and its frame schedule: a [`crate::filter::Schedule`] whose
-//! operations it implements ([`crate::filter::Scheduled`]) and the filter core's stepper runs,
-//! whole (`step`) or one step at a time (`begin_frame`, `advance`).
+//! `config.rs` the [`TrackerConfig`], `options.rs` the typed [`TrackerOptions`], `defaults.rs`
+//! / `ranges.rs` every option's default and range, `presets.rs` the named option sets (`paper`,
+//! `real-roads`), `ego_motion.rs`, `layer.rs` the types the trait speaks (and the filter core's
+//! [`StageTimes`]), `truth.rs` the papers' ground truth (each paper's `truth_parameters` of the
+//! simulator's neutral truth: [`papers_truth`]), `lane_change.rs` the lane-change rule trackers
+//! share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the neighbouring lanes found
+//! beside an ego lane, and one folder per paper. Each paper's tracker is its image cues, its
+//! models and its frame schedule: a [`crate::filter::Schedule`] whose operations it implements
+//! ([`crate::filter::Scheduled`]) and the filter core's stepper runs, whole (`step`) or one
+//! step at a time (`begin_frame`, `advance`).
 //!
 //! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
 //! `danescu-stereo`, `danescu-mono`. An id is listed in [`TRACKER_IDS`] only once its tracker
@@ -46,6 +47,7 @@ mod support_memory_tests;
 #[cfg(test)]
 mod tests;
 mod tracker;
+mod truth;
 
 pub(crate) use crate::filter::now;
 pub use crate::filter::StageTimes;
@@ -61,5 +63,6 @@ pub use ranges::{option_ranges, OptionRange};
 pub use registry::{build, create, TRACKER_IDS};
 pub use tracker::Tracker;
 pub(crate) use tracker::{advance_scheduled, check_frame};
+pub use truth::{papers_truth, scene_truth, truth_parameters};
 
 use crate::error::{Error, Result};

@@ -113,7 +113,7 @@ mod tests {
                     let Some(d) = detector.detection() else {
                         continue;
                     };
-                    let t = scene.truth(f);
+                    let t = crate::trackers::scene_truth(&scene, f);
                     let err = [
                         (d.centre() + t.lateral_offset_m).abs(),
                         (d.width() - t.lane_width_m).abs(),

@@ -121,7 +121,7 @@ fn every_tracker_reports_its_ess_and_adachi_its_model_probabilities() {
                 }
                 None => assert_ne!(*id, "adachi-mmpf"),
             }
-            let truth = scene.truth(f);
+            let truth = crate::trackers::scene_truth(&scene, f);
             assert_eq!((truth.ess(), truth.model_probabilities()), (None, None));
         }
     }
@@ -207,7 +207,7 @@ fn main_cue_on_the_true_boundaries(seed: u64) {
     let mut right = vec![0; 320 * 240 * 4];
     scene.render(0, Eye::Left, &mut rgba, None).unwrap();
     scene.render(0, Eye::Right, &mut right, None).unwrap();
-    let truth = scene.truth(0);
+    let truth = crate::trackers::scene_truth(&scene, 0);
     // Lateral positions y of the true boundaries (`ego`: only the ego lane's) x metres
     // ahead.
     let true_y = |x: f64, ego: bool| -> Vec<f64> {

@@ -159,13 +159,17 @@ impl JsScene {
     }
 
     /// Exact ground truth of frame `index`: `{ frame, valid, boundaries: [{ role, points,
-    /// road_points }], lateral_offset_m, heading_rad, curvature_per_m, lane_width_m, state }`.
+    /// road_points }], lateral_offset_m, heading_rad, curvature_per_m, lane_width_m, state }`,
+    /// `state` the motion keys and every paper's parameters (`trackers::papers_truth`).
     #[wasm_bindgen(unchecked_return_type = "Truth")]
     pub fn truth(
         &self,
         #[wasm_bindgen(unchecked_param_type = "number")] index: JsValue,
     ) -> Result<JsValue, Thrown> {
         let index = args::index(&index, "index")?;
-        estimate::to_js(&self.scene.truth(index), Keep::Frame)
+        estimate::to_js(
+            &crate::trackers::scene_truth(&self.scene, index),
+            Keep::Frame,
+        )
     }
 }

@@ -122,7 +122,7 @@ pub fn run(args: Args) -> Result<()> {
             }
             write_disparity_png(&out.join("disparity").join(&name), &disparity, w, h)?;
         }
-        let truth = scene.truth(frame);
+        let truth = lanepf::trackers::scene_truth(&scene, frame);
         let line = serde_json::to_string(&truth).map_err(|e| Error::Config(e.to_string()))?;
         writeln!(gt, "{line}").map_err(io_error(&gt_path))?;
     }

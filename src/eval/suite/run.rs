@@ -58,7 +58,7 @@ pub fn run_member(
         if stereo {
             scene.render(frame, Eye::Right, &mut right, None)?;
         }
-        let t = scene.truth(frame);
+        let t = crate::trackers::scene_truth(&scene, frame);
         let motion = EgoMotion {
             t_s: t.state.get("t").copied().unwrap_or(0.0),
             speed_mps: t.state.get("speed_mps").copied().unwrap_or(0.0),

@@ -18,7 +18,10 @@ fn run_member(name: &str, seed: u64, frames: u32) -> Vec<(LaneEstimate, AdachiEs
     (0..member.config.frames)
         .map(|f| {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            (scene.truth(f), tracker.track(&rgba, 320, 240).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.track(&rgba, 320, 240).unwrap(),
+            )
         })
         .collect()
 }

@@ -36,7 +36,10 @@ fn run(member: &FamilyMember, frames: u32, lane_shape: &str) -> Vec<(LaneEstimat
     (0..frames.min(member.config.frames))
         .map(|f| {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            (scene.truth(f), tracker.step(&rgba, 320, 240).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.step(&rgba, 320, 240).unwrap(),
+            )
         })
         .collect()
 }

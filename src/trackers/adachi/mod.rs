@@ -52,6 +52,7 @@ mod lockin_tests;
 pub mod motion;
 pub mod pairs;
 pub mod road_shape;
+pub mod truth;
 pub mod votes;
 
 use super::adjacent_lanes::adjacent_boundaries;
@@ -685,7 +686,10 @@ mod tests {
         (0..frames)
             .map(|f| {
                 scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-                (scene.truth(f), tracker.track(&rgba, 320, 240).unwrap())
+                (
+                    crate::trackers::scene_truth(&scene, f),
+                    tracker.track(&rgba, 320, 240).unwrap(),
+                )
             })
             .collect()
     }

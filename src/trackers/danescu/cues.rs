@@ -313,7 +313,7 @@ mod tests {
         );
         // Distance images: the true ego boundaries (dashed or solid) run along marking and
         // road edges for at least a fifth of their length.
-        let truth = scene.truth(0);
+        let truth = crate::trackers::scene_truth(&scene, 0);
         for b in &truth.boundaries[..2] {
             // Within half a near marking's width (the truth is the marking's centre line).
             let near = |d: Option<f32>| d.is_some_and(|d| d <= 5.0);

@@ -55,6 +55,7 @@ pub mod cues;
 pub mod elevation;
 pub mod model;
 pub mod stereo;
+pub mod truth;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};

@@ -13,7 +13,10 @@ fn first_frame(seed: u64, extra: &str) -> (DanescuEstimate, f64) {
     let mut rgba = vec![0; 320 * 240 * 4];
     scene.render(0, Eye::Left, &mut rgba, None).unwrap();
     let estimate = tracker.track(&rgba, 320, 240).unwrap();
-    (estimate, scene.truth(0).lateral_offset_m)
+    (
+        estimate,
+        crate::trackers::scene_truth(&scene, 0).lateral_offset_m,
+    )
 }
 
 /// The paper's first frame is weighed once from the initial distribution: its most populous

@@ -31,7 +31,10 @@ fn run_member(
                     yaw_rate: pose.yaw_rate,
                 })
                 .unwrap();
-            (scene.truth(f), tracker.track(&rgba, w, h).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.track(&rgba, w, h).unwrap(),
+            )
         })
         .collect()
 }
@@ -54,7 +57,7 @@ fn run_stereo_member(
         .map(|f| {
             let e = track_stereo_frame(&mut scene, &mut tracker, f, &mut left, &mut right);
             let pitch = tracker.stereo.as_ref().unwrap().pitch_change();
-            (scene.truth(f), e, pitch)
+            (crate::trackers::scene_truth(&scene, f), e, pitch)
         })
         .collect()
 }
@@ -72,7 +75,7 @@ fn drift_with_the_true_ego_motion_carries_the_truth_to_the_next_frame() {
         1,
     )
     .unwrap();
-    let lane_of = |f: u32| true_lane(&scene.truth(f));
+    let lane_of = |f: u32| true_lane(&crate::trackers::scene_truth(&scene, f));
     let (mut moved, mut still) = (0.0f64, 0.0f64);
     for f in (0..150).step_by(10) {
         let (p0, p1) = (scene.pose(f), scene.pose(f + 1));
@@ -336,7 +339,7 @@ fn run_stereo(
         .map(|f| {
             let e = track_stereo_frame(&mut scene, &mut tracker, f, &mut left, &mut right);
             let pitch = tracker.stereo.as_ref().unwrap().pitch_change();
-            (scene.truth(f), e, pitch)
+            (crate::trackers::scene_truth(&scene, f), e, pitch)
         })
         .collect()
 }
@@ -356,7 +359,7 @@ fn the_density_cue_is_least_at_the_true_vertical_profile() {
         scene.render(f, Eye::Right, &mut right, None).unwrap();
         tracker.set_right(&right, w, h).unwrap();
         tracker.begin(&left, w, h).unwrap();
-        let truth = scene.truth(f);
+        let truth = crate::trackers::scene_truth(&scene, f);
         let lane = true_lane(&truth);
         let stereo = tracker.stereo.as_ref().unwrap();
         assert!(stereo.road_points() > 10_000, "{}", stereo.road_points());
@@ -706,7 +709,7 @@ fn curbs_from_the_elevation_map_put_dt_s_on_the_true_kerbs() {
             t.set_right(&right, w, h).unwrap();
             t.begin(&left, w, h).unwrap();
         }
-        let truth = scene.truth(f);
+        let truth = crate::trackers::scene_truth(&scene, f);
         let kerb = |x: f64, right: bool| {
             let lines = truth
                 .boundaries
@@ -819,7 +822,7 @@ fn the_output_has_each_markings_inner_and_outer_edge_a_marking_width_apart() {
     .unwrap();
     let truth = (0..300)
         .step_by(10)
-        .map(|f| scene.truth(f))
+        .map(|f| crate::trackers::scene_truth(&scene, f))
         .find(|t| t.state["danescu.ch"].abs() > 5e-4)
         .unwrap();
     let lane = true_lane(&truth);
@@ -919,7 +922,7 @@ fn each_mode_reports_the_papers_width_and_only_the_marking_widths_it_estimates()
         1,
     )
     .unwrap();
-    let lane = true_lane(&scene.truth(0));
+    let lane = true_lane(&crate::trackers::scene_truth(&scene, 0));
     assert!(lane.wl_mark > 0.1 && lane.wr_mark > 0.1, "{lane:?}");
     let estimate = DanescuEstimate {
         lane,
@@ -973,7 +976,7 @@ fn stereo_recovery(member: &crate::synth::FamilyMember, extra: &str) -> Option<u
     let mut dark = false;
     for f in 0..member.config.frames {
         let e = track_stereo_frame(&mut scene, &mut tracker, f, &mut left, &mut right);
-        let truth = scene.truth(f);
+        let truth = crate::trackers::scene_truth(&scene, f);
         let blackout = truth.state["blackout"] > 0.5;
         // The 3-D data of a blacked-out frame (matches of sensor noise) does not count.
         if blackout && extra.is_empty() {

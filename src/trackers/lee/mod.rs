@@ -60,6 +60,7 @@ pub mod kalman;
 pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
+pub mod truth;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};

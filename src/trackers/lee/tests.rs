@@ -27,7 +27,10 @@ pub(super) fn run(name: &str, frames: u32, extra: &str) -> Vec<(LaneEstimate, Le
     (0..frames)
         .map(|f| {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            (scene.truth(f), tracker.track(&rgba, 320, 240).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.track(&rgba, 320, 240).unwrap(),
+            )
         })
         .collect()
 }
@@ -49,7 +52,10 @@ pub(super) fn run_member(
     (0..member.config.frames)
         .map(|f| {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            (scene.truth(f), tracker.track(&rgba, 320, 240).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.track(&rgba, 320, 240).unwrap(),
+            )
         })
         .collect()
 }
@@ -77,7 +83,7 @@ fn the_measurement_model_peaks_at_the_true_state() {
     let mut scene = Scene::new(c, default_camera(320, 240).unwrap(), 1).unwrap();
     let mut rgba = vec![0; 320 * 240 * 4];
     scene.render(0, Eye::Left, &mut rgba, None).unwrap();
-    let truth = scene.truth(0);
+    let truth = crate::trackers::scene_truth(&scene, 0);
     let mut tracker = LeeTracker::new(&config("")).unwrap();
     tracker.track(&rgba, 320, 240).unwrap();
     let t = LaneState {
@@ -472,7 +478,7 @@ fn a_cold_start_finds_the_lane_from_almost_any_frame() {
                     scene.render(f, Eye::Left, &mut rgba, None).unwrap();
                     raw = Some(tracker.track(&rgba, 640, 480).unwrap());
                 }
-                let truth = scene.truth(first + 4);
+                let truth = crate::trackers::scene_truth(&scene, first + 4);
                 let e = tracker.to_lane_estimate(&raw.unwrap());
                 let err = (e.lateral_offset_m - truth.lateral_offset_m).abs();
                 starts += 1;

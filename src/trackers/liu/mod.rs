@@ -35,6 +35,7 @@ pub mod kernels;
 pub mod lanes;
 pub mod model;
 pub mod neg_exp;
+pub mod truth;
 
 use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};

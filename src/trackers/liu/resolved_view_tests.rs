@@ -60,7 +60,10 @@ fn run_curve(w: usize, h: usize, frames: u32, extra: &str) -> Vec<(LaneEstimate,
     (0..frames)
         .map(|f| {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            (scene.truth(f), tracker.step(&rgba, w, h).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.step(&rgba, w, h).unwrap(),
+            )
         })
         .collect()
 }

@@ -25,7 +25,10 @@ pub(super) fn run(name: &str, frames: u32, kernel: bool) -> Vec<(LaneEstimate, L
     (0..frames)
         .map(|f| {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            (scene.truth(f), tracker.step(&rgba, 320, 240).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.step(&rgba, 320, 240).unwrap(),
+            )
         })
         .collect()
 }
@@ -59,7 +62,10 @@ fn run_member_from(
     (first..member.config.frames)
         .map(|f| {
             scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-            (scene.truth(f), tracker.step(&rgba, 320, 240).unwrap())
+            (
+                crate::trackers::scene_truth(&scene, f),
+                tracker.step(&rgba, 320, 240).unwrap(),
+            )
         })
         .collect()
 }
@@ -283,7 +289,7 @@ fn the_truth_top_view_parameters_describe_the_true_boundaries() {
     let v = config.top_view;
     let (_, h) = v.size().unwrap();
     for f in [0, 90] {
-        let truth = scene.truth(f);
+        let truth = crate::trackers::scene_truth(&scene, f);
         for b in &truth.boundaries {
             let role = b.role.as_str();
             let m = LinearParabolic {
@@ -515,7 +521,7 @@ fn at_night_the_papers_intensity_kernel_leaves_most_weight_off_the_markings() {
         let (_, mut scene) = member_scene("night", seed, 320, 240, 1);
         let mut rgba = vec![0; 320 * 240 * 4];
         scene.render(0, Eye::Left, &mut rgba, None).unwrap();
-        let truth = scene.truth(0);
+        let truth = crate::trackers::scene_truth(&scene, 0);
         let share = |extra: &str| {
             let mut t = LiuTracker::new(&config_for(&scene, extra), true).unwrap();
             t.step(&rgba, 320, 240).unwrap();
