@@ -540,6 +540,12 @@ fn main() -> Res<()> {
             Ok(only.as_ref().is_none_or(|o| name.contains(o.as_str())))
         })
         .collect::<Res<_>>()?;
+    if let Some(o) = only.as_ref().filter(|_| !selected.contains(&true)) {
+        return Err(format!("REAL_DATA_ROWS={o} names no row (a row's name: the tracker id and its options as JSON, as in report.md)").into());
+    }
+    if runs.is_empty() {
+        return Err("REAL_DATA_RUNS names no dataset (a column's label, as in report.md)".into());
+    }
     for run in &runs {
         let frames: Vec<RgbaFrame> = run
             .frames

@@ -53,6 +53,7 @@ export const TRACKERS = {
       { path: 'start_pair_share', label: 'start: share drawn around a line detector’s ego pair (ours; 0: uniform)', min: 0, max: 1, step: 0.05 },
       RELOCK,
       { path: 'curvature_prior_sd', label: 'curvature prior σ of δ (1/m; 0: off): far-stage bends need evidence (ours, beyond the paper)', min: 0, max: 0.02, step: 0.0005 },
+      { path: 'side_search_share', label: 'side search: share drawn at new widths beside the one supported boundary (ours, beyond the paper)', min: 0, max: 0.5, step: 0.05 },
       SUPPORT_FRAMES,
       ADJACENT,
     ],

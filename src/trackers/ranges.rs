@@ -80,6 +80,7 @@ pub(super) const LEE: &[&[OptionRange]] = &[
         r("lost_restart", 0.0, 100_000.0),
         r("relock_share", 0.0, 0.5),
         r("start_pair_share", 0.0, 1.0),
+        r("side_search_share", 0.0, 0.5),
         r("curvature_prior_sd", 0.0, 1.0),
         r("kalman_process_sd[0]", 1e-9, 1.0),
         r("kalman_process_sd[1]", 1e-9, 10.0),

@@ -113,6 +113,13 @@ pub struct LeeConfig {
     /// runs on first frames only, unless `relock_share` or `adjacent_lanes` needs it on every
     /// frame.
     pub start_pair_share: f64,
+    /// Share of the stage-1 particles replaced, each frame after one on which one boundary of
+    /// the estimate had near support (at least `valid_fraction`) and the other had none (under
+    /// 0.05), by draws that keep the supported boundary where it is and take the width anew,
+    /// uniform over `width_range_m`: a search for the lost side where the lane widens or
+    /// narrows faster than the process noise lets the width follow (a turn pocket, a merge;
+    /// ours, beyond the paper; 0: off, the paper's filter).
+    pub side_search_share: f64,
     /// Standard deviation, 1/m, of a zero-mean Gaussian prior on the curvature delta,
     /// multiplied into stage 2's weights: p(c, delta | z) ~ N(f; 1, sigma_far^2) N(delta; 0,
     /// sd^2) (ours, beyond the paper, whose curvature is uniform within `max_curvature`; 0: off,
@@ -195,6 +202,7 @@ impl Default for LeeConfig {
             lost_restart: 2,
             relock_share: 0.0,
             start_pair_share: 0.5,
+            side_search_share: 0.0,
             curvature_prior_sd: 0.0,
             adjacent_lanes: false,
             kalman: true,

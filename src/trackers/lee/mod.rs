@@ -31,6 +31,10 @@
 //! 0.54, ln-likelihood -11.8 against -17.1; CHANGELOG.md, 2026-11-28).
 //! With a positive `relock_share` (ours, off by default) a share of stage 1's particles is drawn each
 //! frame around the ego pair a bottom-up line detector finds ([`super::relock`]). With a
+//! positive `side_search_share` (ours, off by default), after a frame whose estimate had one
+//! boundary on markings and the other bare, a share keeps the supported boundary's line and
+//! draws w and w' anew: a lane that widens faster than the process noise moves w (a turn
+//! pocket) keeps one side and loses the other otherwise. With a
 //! positive `curvature_prior_sd` (ours, off by default) stage 2 weighs each (c, delta) by a
 //! zero-mean Gaussian prior on delta too, so that a bend needs far-band evidence to win: the
 //! paper's uniform curvature let the far stage follow a barrier's top or shadow edges where
@@ -254,6 +258,9 @@ pub struct LeeTracker {
     support_memory: SupportMemory,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
+    /// The last frame's near support of the raw estimate (left, right), for
+    /// `side_search_share`; zero after a restart.
+    last_support: [f64; 2],
 }
 
 /// Image rows whose road point (at the left, centre or right column) lies in [from, to).
@@ -386,6 +393,7 @@ impl LeeTracker {
             stages: StageResults::default(),
             lost: 0,
             detector,
+            last_support: [0.0; 2],
             camera,
             support_memory: SupportMemory::new(lee.valid_support_frames),
             config: lee,
@@ -435,6 +443,7 @@ impl LeeTracker {
         self.stepper.restart();
         self.lost = 0;
         self.support_memory.clear();
+        self.last_support = [0.0; 2];
     }
 
     /// Replaces every k-th stage-1 particle (k = 1 / `start_fresh`) with a draw from the
@@ -473,6 +482,41 @@ impl LeeTracker {
             y0: rng.gaussian(y0, sd[1]),
             w: rng.gaussian(w, sd[2]).clamp(l.width[0], l.width[1]),
             ..*old
+        });
+    }
+
+    /// `side_search_share`: when the last frame's estimate had one boundary supported and the
+    /// other not, replaces `share` of the stage-1 particles by lanes that keep the supported
+    /// boundary's line (its offset y0 +- w / 2 and slope psi +- w' / 2, positive left) and
+    /// draw the width and its rate uniformly over their limits, so that the cloud can find the
+    /// lost side at a width the process noise would take many frames to reach.
+    fn search_lost_side(&mut self, share: f64) {
+        if share <= 0.0 {
+            return;
+        }
+        let [left, right] = self.last_support;
+        let held = self.config.valid_fraction;
+        let side = if left >= held && right < LOST_SUPPORT {
+            1.0
+        } else if right >= held && left < LOST_SUPPORT {
+            -1.0
+        } else {
+            return;
+        };
+        let [lo, hi] = self.limits.width;
+        let rate = self.limits.width_rate;
+        self.stage1.replace_share(share, |old, rng| {
+            let offset = old.y0 + side * old.w / 2.0;
+            let slope = old.psi + side * old.w1 / 2.0;
+            let w = lo + (hi - lo) * rng.uniform();
+            let w1 = rate * (2.0 * rng.uniform() - 1.0);
+            LaneState {
+                y0: offset - side * w / 2.0,
+                psi: slope - side * w1 / 2.0,
+                w,
+                w1,
+                ..*old
+            }
         });
     }
 
@@ -810,6 +854,7 @@ impl Scheduled for LeeTracker {
             Pass::Frame => {
                 self.stage1.predict(&motion);
                 self.draw_around_detection(self.config.relock_share);
+                self.search_lost_side(self.config.side_search_share);
             }
             Pass::StartRound { round, rounds } => {
                 let left = 1.0 - round as f64 / rounds as f64;
@@ -931,6 +976,7 @@ impl Scheduled for LeeTracker {
         };
         let support = self.measurement.near_support(&raw, None, &self.map);
         let remembered = self.support_memory.push(support);
+        self.last_support = support;
         let lost = support[0].max(support[1]) < LOST_SUPPORT;
         self.lost = if lost { self.lost + 1 } else { 0 };
         if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {
@@ -950,6 +996,8 @@ impl Scheduled for LeeTracker {
 
 #[cfg(test)]
 mod curvature_prior_tests;
+#[cfg(test)]
+mod side_search_tests;
 #[cfg(test)]
 mod start_pair_tests;
 #[cfg(test)]

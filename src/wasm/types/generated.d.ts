@@ -1282,6 +1282,18 @@ export interface LeeOptions {
    */
   start_pair_share?: number;
   /**
+   * Share of the stage-1 particles replaced, each frame after one on which one boundary of
+   * the estimate had near support (at least `valid_fraction`) and the other had none (under
+   * 0.05), by draws that keep the supported boundary where it is and take the width anew,
+   * uniform over `width_range_m`: a search for the lost side where the lane widens or
+   * narrows faster than the process noise lets the width follow (a turn pocket, a merge;
+   * ours, beyond the paper; 0: off, the paper's filter).
+   *
+   * Range: 0 to 0.5.
+   * @defaultValue `0`
+   */
+  side_search_share?: number;
+  /**
    * Standard deviation, 1/m, of a zero-mean Gaussian prior on the curvature delta,
    * multiplied into stage 2's weights: p(c, delta | z) ~ N(f; 1, sigma_far^2) N(delta; 0,
    * sd^2) (ours, beyond the paper, whose curvature is uniform within `max_curvature`; 0: off,
