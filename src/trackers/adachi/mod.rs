@@ -693,7 +693,7 @@ mod tests {
     use super::*;
     use crate::synth::{default_camera, scenario, Eye, Scene};
 
-    fn config(extra: &str) -> TrackerConfig {
+    pub(super) fn config(extra: &str) -> TrackerConfig {
         let cam = serde_json::to_string(&default_camera(320, 240).unwrap().to_file()).unwrap();
         TrackerConfig::from_json_str(&format!(
             r#"{{"camera": {cam}, "particles": 400, "seed": 2 {extra}}}"#
