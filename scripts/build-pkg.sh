@@ -24,8 +24,10 @@ build() {
   # The producers and target_features custom sections are for tools, not for the browser.
   # Functions in the order of their names (after -O3; it moves code, changes none): a module's
   # functions side by side compress better, -2.6 kB gzip -9 of the main module. --converge
-  # repeats -O3's passes until the module stops shrinking: -0.6 kB gzip -9 more (2026-11-28).
-  node_modules/.bin/wasm-opt -O3 --converge --reorder-functions-by-name --strip-producers --strip-target-features "${features[@]}" \
+  # repeats -O3's passes until the module stops shrinking: -0.6 kB gzip -9 more; and
+  # --merge-similar-functions makes one function of those that differ only in constants:
+  # -0.9 kB (2026-11-28; the same speed in Chromium, RESULTS.md, *Package*).
+  node_modules/.bin/wasm-opt -O3 --merge-similar-functions --converge --reorder-functions-by-name --strip-producers --strip-target-features "${features[@]}" \
     "$out/${name}_bg.wasm" -o "$out/${name}_bg.wasm"
   rm -f "$out/.gitignore"
   ls -l "$out/${name}_bg.wasm" | awk '{printf "[build-pkg] %s: %d bytes\n", $9, $5}'

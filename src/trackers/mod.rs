@@ -41,6 +41,7 @@ mod presets;
 mod ranges;
 mod registry;
 pub mod relock;
+pub mod side_search;
 pub mod support_memory;
 #[cfg(test)]
 mod support_memory_tests;

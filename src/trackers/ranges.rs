@@ -148,6 +148,7 @@ pub(super) const ADACHI: &[&[OptionRange]] = &[&[
     r("relock_share", 0.0, 0.5),
     r("start_pair_share", 0.0, 1.0),
     r("vote_pair_share", 0.0, 0.5),
+    r("side_search_share", 0.0, 0.5),
 ]];
 
 pub(super) const DANESCU: &[&[OptionRange]] = &[

@@ -115,6 +115,12 @@ pub struct AdachiConfig {
     /// 0: off, the paper's filter). It also finds a false lane where that is the likelihood's
     /// maximum (a guard rail's foot beside a line: RESULTS, *Accuracy on real data*).
     pub vote_pair_share: f64,
+    /// Share of the particles replaced, each frame after one whose estimate had one ego
+    /// boundary with vote support (at least `valid_support`) and the other none (under 0.05),
+    /// by lanes that keep the supported boundary where it is and take the width w anew,
+    /// uniform over `width_range_m`, their model r kept (ours, beyond the paper; 0: off, the
+    /// paper's filter; see [`crate::trackers::side_search`]).
+    pub side_search_share: f64,
     /// Only marking edges vote: an edge point votes when the opposite edge of a bright stripe
     /// lies beside it, at most [`PAIRED_EDGE_MAX_M`] away on the road, on the marking's side
     /// (ours, beyond the paper; false: every edge point votes, the paper's Sec. 3.2). A seam
@@ -173,6 +179,7 @@ impl Default for AdachiConfig {
             relock_share: 0.0,
             start_pair_share: 0.5,
             vote_pair_share: 0.0,
+            side_search_share: 0.0,
             paired_edges: false,
             width_scaled_threshold: false,
             adjacent_lanes: false,

@@ -38,7 +38,10 @@
 //! the random walk of eqs. 7-8 cannot leave (Udacity `project_video`: the guard rail and the
 //! yellow line as a 2.5-2.7 m lane of model 2). With a positive `vote_pair_share` (ours,
 //! beyond the paper, off by default) that share is redrawn from the pairs every frame, so
-//! that a cloud locked on a false mode or lost after a blackout finds the lane again.
+//! that a cloud locked on a false mode or lost after a blackout finds the lane again. With a
+//! positive `side_search_share` (ours, off by default), after a frame whose estimate had one
+//! ego boundary with vote support and the other none, a share keeps the supported boundary and
+//! draws w anew ([`super::side_search`]).
 
 pub mod config;
 #[cfg(test)]
@@ -52,12 +55,15 @@ mod lockin_tests;
 pub mod motion;
 pub mod pairs;
 pub mod road_shape;
+#[cfg(test)]
+mod side_search_tests;
 pub mod truth;
 pub mod votes;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::EgoLane;
 use super::relock::RelockDetector;
+use super::side_search::{self, Kept};
 use super::support_memory::{self, SupportMemory};
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
@@ -114,6 +120,9 @@ pub struct AdachiTracker {
     pair_offset: f64,
     /// The last `valid_support_frames` frames' support, for the validity.
     support_memory: SupportMemory,
+    /// The last frame's support of the estimate (left, right), for `side_search_share`;
+    /// zero after a reset.
+    last_support: [f64; 2],
 }
 
 /// The steps of one frame after [`AdachiTracker::begin`] (per-step mode).
@@ -226,6 +235,7 @@ impl AdachiTracker {
                 config::Polarity::Both => 0.0,
             },
             support_memory: SupportMemory::new(adachi.valid_support_frames),
+            last_support: [0.0; 2],
             config: adachi,
         })
     }
@@ -285,6 +295,36 @@ impl AdachiTracker {
             Regime {
                 model: rng.below(4),
                 state: Lane { q, w, change: 0 },
+            }
+        });
+    }
+
+    /// `side_search_share`: after a frame whose estimate had one boundary supported and the
+    /// other bare, replaces that share of the particles by lanes that keep the supported
+    /// boundary at q +- w / 2 (q positive right: the left boundary at q - w / 2) and draw w
+    /// uniformly over the width limits.
+    fn search_lost_side(&mut self) {
+        let share = self.config.side_search_share;
+        if share <= 0.0 {
+            return;
+        }
+        let held = self.config.valid_support;
+        let side = match side_search::kept_side(self.last_support, held) {
+            Some(Kept::Left) => OFFSETS[0],
+            Some(Kept::Right) => OFFSETS[1],
+            None => return,
+        };
+        let [lo, hi] = self.config.width_range_m;
+        self.filter.replace_share(share, |old, rng| {
+            let kept = old.state.q + side * old.state.w / 2.0;
+            let w = lo + (hi - lo) * rng.uniform();
+            Regime {
+                model: old.model,
+                state: Lane {
+                    q: kept - side * w / 2.0,
+                    w,
+                    change: 0,
+                },
             }
         });
     }
@@ -408,6 +448,7 @@ impl AdachiTracker {
                 .support(&self.votes, q + OFFSETS[1] * w / 2.0),
         ];
         let remembered = self.support_memory.push(support);
+        self.last_support = support;
         AdachiEstimate {
             q,
             w,
@@ -520,6 +561,7 @@ impl Tracker for AdachiTracker {
         self.q_track = None;
         self.lane_index = 0;
         self.support_memory.clear();
+        self.last_support = [0.0; 2];
     }
 
     fn stage_times(&self) -> StageTimes {
@@ -635,6 +677,7 @@ impl Scheduled for AdachiTracker {
         if pass == Pass::Frame {
             self.relock();
             self.draw_from_pairs(self.config.vote_pair_share);
+            self.search_lost_side();
         }
     }
     fn weigh(&mut self, _stage: usize) {
@@ -650,7 +693,7 @@ mod tests {
     use super::*;
     use crate::synth::{default_camera, scenario, Eye, Scene};
 
-    fn config(extra: &str) -> TrackerConfig {
+    pub(super) fn config(extra: &str) -> TrackerConfig {
         let cam = serde_json::to_string(&default_camera(320, 240).unwrap().to_file()).unwrap();
         TrackerConfig::from_json_str(&format!(
             r#"{{"camera": {cam}, "particles": 400, "seed": 2 {extra}}}"#

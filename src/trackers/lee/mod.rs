@@ -69,6 +69,7 @@ pub mod truth;
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
 use super::relock::RelockDetector;
+use super::side_search::{self, Kept};
 use super::support_memory::{self, SupportMemory};
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
@@ -494,14 +495,11 @@ impl LeeTracker {
         if share <= 0.0 {
             return;
         }
-        let [left, right] = self.last_support;
-        let held = self.config.valid_fraction;
-        let side = if left >= held && right < LOST_SUPPORT {
-            1.0
-        } else if right >= held && left < LOST_SUPPORT {
-            -1.0
-        } else {
-            return;
+        // y0 and psi are positive left.
+        let side = match side_search::kept_side(self.last_support, self.config.valid_fraction) {
+            Some(Kept::Left) => 1.0,
+            Some(Kept::Right) => -1.0,
+            None => return,
         };
         let [lo, hi] = self.limits.width;
         let rate = self.limits.width_rate;

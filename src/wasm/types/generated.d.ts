@@ -617,6 +617,17 @@ export interface AdachiOptions {
    */
   vote_pair_share?: number;
   /**
+   * Share of the particles replaced, each frame after one whose estimate had one ego
+   * boundary with vote support (at least `valid_support`) and the other none (under 0.05),
+   * by lanes that keep the supported boundary where it is and take the width w anew,
+   * uniform over `width_range_m`, their model r kept (ours, beyond the paper; 0: off, the
+   * paper's filter; see `side_search`).
+   *
+   * Range: 0 to 0.5.
+   * @defaultValue `0`
+   */
+  side_search_share?: number;
+  /**
    * Only marking edges vote: an edge point votes when the opposite edge of a bright stripe
    * lies beside it, at most `PAIRED_EDGE_MAX_M` away on the road, on the marking's side
    * (ours, beyond the paper; false: every edge point votes, the paper's Sec. 3.2). A seam
