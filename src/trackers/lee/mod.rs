@@ -33,8 +33,8 @@
 //! frame around the ego pair a bottom-up line detector finds ([`super::relock`]). With a
 //! positive `side_search_share` (ours, off by default), after a frame whose estimate had one
 //! boundary on markings and the other bare, a share keeps the supported boundary's line and
-//! draws w and w' anew: a lane that widens faster than the process noise moves w (a turn
-//! pocket) keeps one side and loses the other otherwise. With a
+//! draws w and w' anew ([`super::side_search`]): without it a lane that widens faster than the
+//! process noise moves w (a turn pocket) keeps one boundary and loses the other. With a
 //! positive `curvature_prior_sd` (ours, off by default) stage 2 weighs each (c, delta) by a
 //! zero-mean Gaussian prior on delta too, so that a bend needs far-band evidence to win: the
 //! paper's uniform curvature let the far stage follow a barrier's top or shadow edges where
