@@ -44,6 +44,15 @@ impl SupportMemory {
         [sum[0] / self.len as f64, sum[1] / self.len as f64]
     }
 
+    /// The support pushed last; zero when none was since the start or the last `clear`.
+    pub fn last(&self) -> [f64; 2] {
+        if self.len == 0 {
+            return [0.0; 2];
+        }
+        let k = self.history.len();
+        self.history[(self.next + k - 1) % k]
+    }
+
     /// Forgets every frame (after a reset or a still).
     pub fn clear(&mut self) {
         self.next = 0;

@@ -67,3 +67,17 @@ fn remembered_support_changes_only_validity_and_never_loses_a_frame() {
         assert!(gained > 0, "{id}: no frame gained");
     }
 }
+
+/// `last` is the support pushed last, through the ring's wrap, and zero when empty.
+#[test]
+fn last_is_the_latest_push_and_zero_after_a_clear() {
+    use super::support_memory::SupportMemory;
+    let mut m = SupportMemory::new(2);
+    assert_eq!(m.last(), [0.0; 2]);
+    for s in [[0.1, 0.2], [0.3, 0.4], [0.5, 0.6]] {
+        m.push(s);
+        assert_eq!(m.last(), s);
+    }
+    m.clear();
+    assert_eq!(m.last(), [0.0; 2]);
+}

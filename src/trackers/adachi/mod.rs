@@ -120,9 +120,6 @@ pub struct AdachiTracker {
     pair_offset: f64,
     /// The last `valid_support_frames` frames' support, for the validity.
     support_memory: SupportMemory,
-    /// The last frame's support of the estimate (left, right), for `side_search_share`;
-    /// zero after a reset.
-    last_support: [f64; 2],
 }
 
 /// The steps of one frame after [`AdachiTracker::begin`] (per-step mode).
@@ -235,7 +232,6 @@ impl AdachiTracker {
                 config::Polarity::Both => 0.0,
             },
             support_memory: SupportMemory::new(adachi.valid_support_frames),
-            last_support: [0.0; 2],
             config: adachi,
         })
     }
@@ -309,7 +305,7 @@ impl AdachiTracker {
             return;
         }
         let held = self.config.valid_support;
-        let side = match side_search::kept_side(self.last_support, held) {
+        let side = match side_search::kept_side(self.support_memory.last(), held) {
             Some(Kept::Left) => OFFSETS[0],
             Some(Kept::Right) => OFFSETS[1],
             None => return,
@@ -448,7 +444,6 @@ impl AdachiTracker {
                 .support(&self.votes, q + OFFSETS[1] * w / 2.0),
         ];
         let remembered = self.support_memory.push(support);
-        self.last_support = support;
         AdachiEstimate {
             q,
             w,
@@ -561,7 +556,6 @@ impl Tracker for AdachiTracker {
         self.q_track = None;
         self.lane_index = 0;
         self.support_memory.clear();
-        self.last_support = [0.0; 2];
     }
 
     fn stage_times(&self) -> StageTimes {

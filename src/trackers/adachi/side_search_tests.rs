@@ -25,14 +25,16 @@ fn the_search_keeps_the_supported_boundary_and_spreads_the_width() {
     };
     tracker.filter.states_mut().fill(lane);
     for support in [[0.5, 0.5], [0.0, 0.0], [0.1, 0.5]] {
-        tracker.last_support = support;
+        tracker.support_memory.clear();
+        tracker.support_memory.push(support);
         tracker.search_lost_side();
         assert!(
             tracker.filter.states().iter().all(|s| *s == lane),
             "drawn after support {support:?}"
         );
     }
-    tracker.last_support = [0.0, 0.5];
+    tracker.support_memory.clear();
+    tracker.support_memory.push([0.0, 0.5]);
     tracker.search_lost_side();
     let drawn: Vec<_> = tracker
         .filter

@@ -259,9 +259,6 @@ pub struct LeeTracker {
     support_memory: SupportMemory,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
-    /// The last frame's near support of the raw estimate (left, right), for
-    /// `side_search_share`; zero after a restart.
-    last_support: [f64; 2],
 }
 
 /// Image rows whose road point (at the left, centre or right column) lies in [from, to).
@@ -394,7 +391,6 @@ impl LeeTracker {
             stages: StageResults::default(),
             lost: 0,
             detector,
-            last_support: [0.0; 2],
             camera,
             support_memory: SupportMemory::new(lee.valid_support_frames),
             config: lee,
@@ -444,7 +440,6 @@ impl LeeTracker {
         self.stepper.restart();
         self.lost = 0;
         self.support_memory.clear();
-        self.last_support = [0.0; 2];
     }
 
     /// Replaces every k-th stage-1 particle (k = 1 / `start_fresh`) with a draw from the
@@ -500,11 +495,12 @@ impl LeeTracker {
             return;
         }
         // y0 and psi are positive left.
-        let side = match side_search::kept_side(self.last_support, self.config.valid_fraction) {
-            Some(Kept::Left) => 1.0,
-            Some(Kept::Right) => -1.0,
-            None => return,
-        };
+        let side =
+            match side_search::kept_side(self.support_memory.last(), self.config.valid_fraction) {
+                Some(Kept::Left) => 1.0,
+                Some(Kept::Right) => -1.0,
+                None => return,
+            };
         let [lo, hi] = self.limits.width;
         let rate = self.limits.width_rate;
         self.stage1.replace_share(share, |old, rng| {
@@ -978,7 +974,6 @@ impl Scheduled for LeeTracker {
         };
         let support = self.measurement.near_support(&raw, None, &self.map);
         let remembered = self.support_memory.push(support);
-        self.last_support = support;
         let lost = support[0].max(support[1]) < LOST_SUPPORT;
         self.lost = if lost { self.lost + 1 } else { 0 };
         if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {

@@ -27,14 +27,16 @@ fn the_search_keeps_the_supported_boundary_and_spreads_the_width() {
     };
     tracker.stage1.states_mut().fill(lane);
     for support in [[0.5, 0.5], [0.0, 0.0], [0.5, 0.1]] {
-        tracker.last_support = support;
+        tracker.support_memory.clear();
+        tracker.support_memory.push(support);
         tracker.search_lost_side(0.25);
         assert!(
             tracker.stage1.states().iter().all(|s| *s == lane),
             "drawn after support {support:?}"
         );
     }
-    tracker.last_support = [0.5, 0.0];
+    tracker.support_memory.clear();
+    tracker.support_memory.push([0.5, 0.0]);
     tracker.search_lost_side(0.25);
     let drawn: Vec<LaneState> = tracker
         .stage1
