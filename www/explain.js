@@ -55,6 +55,7 @@ export const TRACKERS = {
       { path: 'curvature_prior_sd', label: 'curvature prior σ of δ (1/m; 0: off): far-stage bends need evidence (ours, beyond the paper)', min: 0, max: 0.02, step: 0.0005 },
       { path: 'side_search_share', label: 'side search: share drawn at new widths beside the one supported boundary (ours, beyond the paper)', min: 0, max: 0.5, step: 0.05 },
       SUPPORT_FRAMES,
+      { path: 'reacquire_near_m', label: 'after a loss, valid again only with a marking this near (m beyond the nearest measured; 0: off; ours, beyond the paper)', min: 0, max: 15, step: 0.5 },
       ADJACENT,
     ],
   },

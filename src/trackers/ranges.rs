@@ -96,6 +96,7 @@ pub(super) const LEE: &[&[OptionRange]] = &[
         r("kalman_measurement_sd[5]", 1e-9, 0.1),
         r("valid_fraction", 0.0, 1.0),
         r("valid_support_frames", 1.0, 100.0),
+        r("reacquire_near_m", 0.0, 100.0),
     ],
 ];
 

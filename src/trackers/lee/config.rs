@@ -149,6 +149,15 @@ pub struct LeeConfig {
     /// ([`crate::trackers::support_memory`]; ours, beyond the paper; 1: this frame's alone,
     /// the default).
     pub valid_support_frames: usize,
+    /// Validity after the lane was lost (a valid frame, then one not valid; a run's first lock
+    /// is not held back): the lane counts again only when a marking
+    /// supports one of its boundaries within this many metres beyond the nearest measured
+    /// distance, or within the longest such reach of the last 30 valid frames that saw both
+    /// boundaries (a lane tracked between dashed lines accepts their gaps; see
+    /// [`super::reacquire`]; ours, beyond the paper; 0: off, the default; 4 in `real-roads`).
+    /// Markings that begin only further ahead, past an unmarked crossing, are not yet the
+    /// car's lane.
+    pub reacquire_near_m: f64,
 }
 
 impl LeeConfig {
@@ -210,6 +219,7 @@ impl Default for LeeConfig {
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],
             valid_fraction: 0.15,
             valid_support_frames: 1,
+            reacquire_near_m: 0.0,
         }
     }
 }

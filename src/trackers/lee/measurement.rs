@@ -126,16 +126,32 @@ impl Measurement {
         curve: Option<&Curve>,
         map: &LikelihoodMap,
     ) -> [f64; 2] {
+        self.near_support_reach(s, curve, map).0
+    }
+
+    /// [`Measurement::near_support`] and how far beyond the first near point the nearest
+    /// supported point of either boundary lies, metres (infinite when none is).
+    pub fn near_support_reach(
+        &self,
+        s: &LaneState,
+        curve: Option<&Curve>,
+        map: &LikelihoodMap,
+    ) -> ([f64; 2], f64) {
         let threshold = math::exp(-0.5) - 1e-9;
         let (mut left, mut right) = (0usize, 0usize);
+        let mut nearest = f64::INFINITY;
         for &x in &self.near_x {
             let c = s.centre(x, curve);
             let h = s.half_width(x);
-            left += usize::from(map.at(x, c + h) >= threshold);
-            right += usize::from(map.at(x, c - h) >= threshold);
+            let hits = [map.at(x, c + h), map.at(x, c - h)].map(|d| d >= threshold);
+            left += usize::from(hits[0]);
+            right += usize::from(hits[1]);
+            if (hits[0] || hits[1]) && nearest.is_infinite() {
+                nearest = x - self.near_x[0];
+            }
         }
         let m = self.near_x.len() as f64;
-        [left as f64 / m, right as f64 / m]
+        ([left as f64 / m, right as f64 / m], nearest)
     }
 
     /// Fraction of the far boundary points (both sides) that are visible and hit an edge, and

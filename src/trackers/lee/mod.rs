@@ -35,6 +35,9 @@
 //! boundary on markings and the other bare, a share keeps the supported boundary's line and
 //! draws w and w' anew ([`super::side_search`]): without it a lane that widens faster than the
 //! process noise moves w (a turn pocket) keeps one boundary and loses the other. With a
+//! positive `reacquire_near_m` (ours, off by default) a lane once lost is valid again only
+//! when a marking supports it near the car ([`reacquire`]): markings that begin past an
+//! unmarked crossing are not yet the car's lane. With a
 //! positive `curvature_prior_sd` (ours, off by default) stage 2 weighs each (c, delta) by a
 //! zero-mean Gaussian prior on delta too, so that a bend needs far-band evidence to win: the
 //! paper's uniform curvature let the far stage follow a barrier's top or shadow edges where
@@ -64,6 +67,7 @@ pub mod kalman;
 pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
+pub mod reacquire;
 pub mod truth;
 
 use super::adjacent_lanes::adjacent_boundaries;
@@ -89,6 +93,7 @@ use kalman::Smoother;
 use likelihood_map::LikelihoodMap;
 use measurement::{Measurement, MeasurementSettings};
 use motion::{Initial, Limits, Motion, Part};
+use reacquire::Reacquire;
 
 /// The tracker id.
 pub const ID: &str = "lee-cpf";
@@ -255,6 +260,8 @@ pub struct LeeTracker {
     stages: StageResults,
     /// Consecutive frames whose estimate no marking supports (see `lost_restart`).
     lost: usize,
+    /// The validity rule after a loss (`reacquire_near_m`).
+    reacquire: Reacquire,
     /// The last `valid_support_frames` frames' support, for the validity.
     support_memory: SupportMemory,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
@@ -390,6 +397,7 @@ impl LeeTracker {
             stepper: Stepper::new(),
             stages: StageResults::default(),
             lost: 0,
+            reacquire: Reacquire::new(lee.reacquire_near_m),
             detector,
             camera,
             support_memory: SupportMemory::new(lee.valid_support_frames),
@@ -699,6 +707,7 @@ impl Tracker for LeeTracker {
 
     fn reset(&mut self) {
         self.restart();
+        self.reacquire.reset();
         if let Some(d) = self.detector.as_mut() {
             d.reset();
         }
@@ -972,8 +981,11 @@ impl Scheduled for LeeTracker {
         } else {
             raw
         };
-        let support = self.measurement.near_support(&raw, None, &self.map);
+        let (support, reach) = self.measurement.near_support_reach(&raw, None, &self.map);
         let remembered = self.support_memory.push(support);
+        let held = support_memory::supported(support, remembered, self.config.valid_fraction);
+        let both = support.iter().all(|&s| s >= self.config.valid_fraction);
+        let valid = self.reacquire.valid(held, both, reach);
         let lost = support[0].max(support[1]) < LOST_SUPPORT;
         self.lost = if lost { self.lost + 1 } else { 0 };
         if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {
@@ -982,7 +994,7 @@ impl Scheduled for LeeTracker {
         LeeEstimate {
             state,
             raw,
-            valid: support_memory::supported(support, remembered, self.config.valid_fraction),
+            valid,
             support,
             change: self.stages.change,
             candidates: self.candidates.count,
@@ -993,6 +1005,8 @@ impl Scheduled for LeeTracker {
 
 #[cfg(test)]
 mod curvature_prior_tests;
+#[cfg(test)]
+mod reacquire_tests;
 #[cfg(test)]
 mod side_search_tests;
 #[cfg(test)]

@@ -1366,6 +1366,20 @@ export interface LeeOptions {
    * @defaultValue `1`
    */
   valid_support_frames?: number;
+  /**
+   * Validity after the lane was lost (a valid frame, then one not valid; a run's first lock
+   * is not held back): the lane counts again only when a marking
+   * supports one of its boundaries within this many metres beyond the nearest measured
+   * distance, or within the longest such reach of the last 30 valid frames that saw both
+   * boundaries (a lane tracked between dashed lines accepts their gaps; see
+   * `reacquire`; ours, beyond the paper; 0: off, the default; 4 in `real-roads`).
+   * Markings that begin only further ahead, past an unmarked crossing, are not yet the
+   * car's lane.
+   *
+   * Range: 0 to 100.
+   * @defaultValue `0`
+   */
+  reacquire_near_m?: number;
 }
 
 /**

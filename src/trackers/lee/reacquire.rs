@@ -1,0 +1,146 @@
+//! `reacquire_near_m` (ours, beyond the paper): after the lane was lost, a frame is valid again
+//! only when a marking supports one of its boundaries near the car.
+//!
+//! The reach of a frame is how far beyond the nearest measured distance the nearest supported
+//! point of either boundary lies. Markings that begin only ahead, past an unmarked crossing,
+//! have a long reach; so has a road of dashed lines whose dashes on both sides leave a gap at
+//! the near end. The limit after a loss is therefore the larger of `reacquire_near_m` and the
+//! longest reach of the last [`REACH_FRAMES`] valid frames that saw both boundaries (a frame
+//! valid on one boundary and the other's remembered support says little of the road's gaps):
+//! a lane kept along a solid line (reach 0) must find a marking near again, one kept between
+//! dashed lines accepts the gaps it was tracked through. A run's first lock (since the start
+//! or a reset) is not held back.
+
+/// Valid frames whose reach sets the limit after a loss.
+pub const REACH_FRAMES: usize = 30;
+
+/// Where a run's validity stands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Lock {
+    /// No valid frame since the start or the last reset (a restart after `lost_restart`
+    /// frames without support keeps the lane lost).
+    Starting,
+    /// The last frame was valid.
+    Valid,
+    /// The last frame was not valid, an earlier one was: the limit applies.
+    Lost,
+}
+
+/// The rule's state: the lock and the reach of recent valid frames.
+#[derive(Debug, Clone)]
+pub struct Reacquire {
+    near_m: f64,
+    lock: Lock,
+    reach: [f64; REACH_FRAMES],
+    len: usize,
+    next: usize,
+}
+
+impl Reacquire {
+    /// The rule with limit `near_m` metres (0: off).
+    pub fn new(near_m: f64) -> Self {
+        Self {
+            near_m,
+            lock: Lock::Starting,
+            reach: [0.0; REACH_FRAMES],
+            len: 0,
+            next: 0,
+        }
+    }
+
+    /// Forgets the run: the next lock is a first lock.
+    pub fn reset(&mut self) {
+        self.lock = Lock::Starting;
+        self.len = 0;
+        self.next = 0;
+    }
+
+    /// The reach a frame may have after a loss, metres.
+    pub fn limit(&self) -> f64 {
+        self.reach[..self.len]
+            .iter()
+            .fold(self.near_m, |limit, &r| limit.max(r))
+    }
+
+    /// Whether a frame whose support holds (`held`) and whose nearest supported point lies
+    /// `reach` metres beyond the nearest measured distance is valid; a valid frame that saw
+    /// both boundaries (`both`) joins the memory.
+    pub fn valid(&mut self, held: bool, both: bool, reach: f64) -> bool {
+        let valid =
+            held && (self.near_m <= 0.0 || self.lock != Lock::Lost || reach <= self.limit());
+        if valid && both && reach.is_finite() {
+            self.reach[self.next] = reach;
+            self.next = (self.next + 1) % REACH_FRAMES;
+            self.len = (self.len + 1).min(REACH_FRAMES);
+        }
+        self.lock = match (valid, self.lock) {
+            (true, _) => Lock::Valid,
+            (false, Lock::Starting) => Lock::Starting,
+            (false, _) => Lock::Lost,
+        };
+        valid
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_lane_lost_along_a_solid_line_needs_a_near_marking_again() {
+        let mut r = Reacquire::new(4.0);
+        assert!(r.valid(true, true, 9.0), "the first lock is not held back");
+        for _ in 0..REACH_FRAMES {
+            assert!(r.valid(true, true, 0.0));
+        }
+        assert!(!r.valid(false, true, f64::INFINITY));
+        assert!(!r.valid(true, true, 6.0), "markings from 6 m on only");
+        assert!(!r.valid(true, true, 4.5));
+        assert!(r.valid(true, true, 3.0));
+        assert!(
+            r.valid(true, true, 9.0),
+            "once valid, the reach does not matter"
+        );
+    }
+
+    #[test]
+    fn a_lane_lost_between_dashes_accepts_the_gaps_it_was_tracked_through() {
+        let mut r = Reacquire::new(4.0);
+        for k in 0..12 {
+            assert!(r.valid(true, true, (k % 8) as f64));
+        }
+        assert_eq!(r.limit(), 7.0);
+        assert!(!r.valid(false, true, 10.0));
+        assert!(r.valid(true, true, 6.0));
+        r.reset();
+        assert_eq!(r.limit(), 4.0);
+    }
+
+    #[test]
+    fn a_frame_valid_on_one_boundary_does_not_widen_the_limit() {
+        let mut r = Reacquire::new(4.0);
+        assert!(r.valid(true, true, 0.0));
+        assert!(r.valid(true, false, 7.0));
+        assert_eq!(r.limit(), 4.0);
+    }
+
+    #[test]
+    fn off_it_changes_nothing() {
+        let mut r = Reacquire::new(0.0);
+        assert!(r.valid(true, true, 0.0));
+        assert!(!r.valid(false, true, 0.0));
+        assert!(r.valid(true, true, f64::INFINITY));
+    }
+
+    #[test]
+    fn the_memory_keeps_only_the_last_frames() {
+        let mut r = Reacquire::new(4.0);
+        assert!(r.valid(true, true, 8.0));
+        for _ in 0..REACH_FRAMES - 1 {
+            assert!(r.valid(true, true, 1.0));
+        }
+        assert_eq!(r.limit(), 8.0);
+        assert!(r.valid(true, true, 1.0));
+        assert_eq!(r.limit(), 4.0, "the 8 m frame has left the memory");
+    }
+}
