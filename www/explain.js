@@ -75,6 +75,7 @@ export const TRACKERS = {
       { path: 'start_pair_share', label: 'start: share drawn around the vote histogram’s lane pairs (ours; 0: uniform)', min: 0, max: 1, step: 0.05 },
       RELOCK,
       { path: 'side_search_share', label: 'side search: share drawn at new widths beside the one supported boundary (ours, beyond the paper)', min: 0, max: 0.5, step: 0.05 },
+      { path: 'reacquire_near_m', label: 'after a loss, valid again only with a vote this near (m beyond the voting region’s nearest row; 0: off; ours, beyond the paper)', min: 0, max: 15, step: 0.5 },
       { path: 'vote_pair_share', label: 'vote-pair share: particles redrawn each frame around those pairs (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 },
       { path: 'paired_edges', label: 'paired edges: only a bright stripe’s two edges vote, not a seam, kerb or shadow (ours, beyond the paper)', kind: /** @type {const} */ ('bool') },
       SUPPORT_FRAMES,

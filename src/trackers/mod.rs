@@ -39,6 +39,9 @@ mod option_fuzz;
 mod options;
 mod presets;
 mod ranges;
+pub mod reacquire;
+#[cfg(test)]
+mod reacquire_tests;
 mod registry;
 pub mod relock;
 pub mod side_search;

@@ -4,7 +4,7 @@
 //!
 //! | tracker | `real-roads` |
 //! |---|---|
-//! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold`, `adjacent_lanes`, `side_search_share` 0.2 |
+//! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold`, `adjacent_lanes`, `side_search_share` 0.2, `reacquire_near_m` 4 |
 //! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03, `valid_support_frames` 5 |
 //! | danescu-stereo | `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03 |
 //! | lee-cpf | `relock_share` 0.05, `curvature_prior_sd` 0.004, `adjacent_lanes`, `valid_support_frames` 5, `side_search_share` 0.2, `kalman_process_sd` three times its defaults (ten times on the width), `reacquire_near_m` 4 |
@@ -91,13 +91,15 @@ const LEE_KALMAN_PROCESS_SD: [f64; 6] = [0.009, 0.09, 0.1, 0.0015, 6.0, 0.0006];
 /// with the smoother's width term above, the turn pocket 212-215 found; TuSimple unchanged).
 const LEE_SIDE_SEARCH_SHARE: f64 = 0.2;
 
-/// lee-cpf's `reacquire_near_m` (RESULTS.md, *Options beyond the papers*: Caltech tracker
-/// seeds 1-5 ego lanes 97.7 / 2.6 -> 97.7 / 1.5 %, the crossing 139 not valid on four seeds;
-/// option_compare's synthetic seeds 201-213 boundaries 90.8 -> 90.6 %, 214-239 95.7 -> 95.6,
-/// the loss all on `pitch-bumps` (-0.6 to -1.7 points on three members, no other scene
-/// moved); TuSimple, the Udacity videos' validity unchanged). 4 m lies between the reach of
-/// Caltech's valid frames (at most 3 m) and the crossing's 6 m.
-const LEE_REACQUIRE_NEAR_M: f64 = 4.0;
+/// `reacquire_near_m` of lee-cpf and adachi-mmpf (RESULTS.md, *Options beyond the papers*:
+/// Caltech tracker seeds 1-5 ego lanes, lee-cpf 97.7 / 2.6 -> 97.7 / 1.5 %, the crossing 139
+/// not valid on four seeds; adachi-mmpf 91.9 / 2.5 -> 91.9 / 1.0, on all five; option_compare's
+/// synthetic seeds 201-213 boundaries lee-cpf 90.8 -> 90.6 %, 214-239 95.7 -> 95.6, the loss
+/// all on `pitch-bumps` (-0.6 to -1.7 points on three members); adachi-mmpf 88.2 -> 88.1,
+/// 89.6 -> 89.6 (-0.7 to -1.3 on three members); TuSimple, the Udacity videos' validity
+/// unchanged). 4 m lies between the reach of Caltech's valid frames (at most 3 m for lee-cpf,
+/// 0.7 m for adachi-mmpf) and the crossing's (6 and 7.3 m).
+const REACQUIRE_NEAR_M: f64 = 4.0;
 
 /// adachi-mmpf's `side_search_share` (RESULTS.md, *Options beyond the papers*: option_compare's
 /// synthetic seeds 201-213 boundaries 87.6 -> 88.2 %, detected 88.7 -> 90.1, 214-239 89.6 ->
@@ -115,6 +117,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             width_scaled_threshold: true,
             adjacent_lanes: true,
             side_search_share: ADACHI_SIDE_SEARCH_SHARE,
+            reacquire_near_m: REACQUIRE_NEAR_M,
             ..c
         }),
         TrackerOptions::DanescuMono(c) => TrackerOptions::DanescuMono(DanescuConfig {
@@ -138,7 +141,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             valid_support_frames: LEE_VALID_SUPPORT_FRAMES,
             side_search_share: LEE_SIDE_SEARCH_SHARE,
             kalman_process_sd: LEE_KALMAN_PROCESS_SD,
-            reacquire_near_m: LEE_REACQUIRE_NEAR_M,
+            reacquire_near_m: REACQUIRE_NEAR_M,
             ..c
         }),
         // liu-ppf: a top view that ends where the camera resolves it (RESULTS.md, *Options
@@ -204,7 +207,7 @@ mod tests {
             "side_search_share",
             // lee-cpf's smoother: the paper has one but gives no design; its noises are ours.
             "kalman_process_sd",
-            // lee-cpf's validity after a loss: ours.
+            // lee-cpf's and adachi-mmpf's validity after a loss: ours.
             "reacquire_near_m",
             // liu-ppf's top view: the paper names no range; ours.
             "top_view_resolved",

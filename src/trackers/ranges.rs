@@ -150,6 +150,7 @@ pub(super) const ADACHI: &[&[OptionRange]] = &[&[
     r("start_pair_share", 0.0, 1.0),
     r("vote_pair_share", 0.0, 0.5),
     r("side_search_share", 0.0, 0.5),
+    r("reacquire_near_m", 0.0, 100.0),
 ]];
 
 pub(super) const DANESCU: &[&[OptionRange]] = &[

@@ -1,6 +1,6 @@
 //! Settings of the Adachi tracker (all optional in the tracker config; defaults documented).
 
-use crate::error::{require_finite, require_positive, require_within, Error, Result};
+use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 /// Which side of a marking votes (Sec. 3.2 uses the left edge of each white line).
@@ -121,6 +121,13 @@ pub struct AdachiConfig {
     /// uniform over `width_range_m`, their model r kept (ours, beyond the paper; 0: off, the
     /// paper's filter; see [`crate::trackers::side_search`]).
     pub side_search_share: f64,
+    /// Validity after the lane was lost (a valid frame, then one not valid; a run's first lock
+    /// is not held back): the lane counts again only when an edge voted for one of its
+    /// boundaries within this many metres beyond the voting region's nearest row, or within
+    /// the longest such reach of the last 30 valid frames that saw both boundaries
+    /// ([`crate::trackers::reacquire`]; ours, beyond the paper; 0: off, the default). Markings
+    /// that begin only further ahead, past an unmarked crossing, are not yet the car's lane.
+    pub reacquire_near_m: f64,
     /// Only marking edges vote: an edge point votes when the opposite edge of a bright stripe
     /// lies beside it, at most [`PAIRED_EDGE_MAX_M`] away on the road, on the marking's side
     /// (ours, beyond the paper; false: every edge point votes, the paper's Sec. 3.2). A seam
@@ -180,6 +187,7 @@ impl Default for AdachiConfig {
             start_pair_share: 0.5,
             vote_pair_share: 0.0,
             side_search_share: 0.0,
+            reacquire_near_m: 0.0,
             paired_edges: false,
             width_scaled_threshold: false,
             adjacent_lanes: false,
@@ -207,8 +215,8 @@ impl AdachiConfig {
     /// [`Error::Parameter`] naming the first bad value.
     pub fn validate(&self) -> Result<()> {
         crate::trackers::ranges::check_ranges(super::ID, self)?;
-        require_positive("near_m", self.near_m)?;
-        require_positive("far_m", self.far_m)?;
+        // Every single value's range is checked above (`ranges::ADACHI`); what follows are the
+        // checks between values.
         if self.far_m <= self.near_m {
             return Err(Error::parameter(
                 "far_m",
@@ -216,40 +224,10 @@ impl AdachiConfig {
                 "must be beyond near_m",
             ));
         }
-        require_positive("rho_range_m", self.rho_range_m)?;
-        require_positive("bin_m", self.bin_m)?;
-        if self.rho_range_m / self.bin_m > 20_000.0 {
-            return Err(Error::parameter(
-                "bin_m",
-                self.bin_m,
-                "gives more than 40 000 bins",
-            ));
-        }
-        require_finite("edge_threshold", self.edge_threshold)?;
-        require_positive("marking_width_m", self.marking_width_m)?;
-        require_positive("edge_sigma_m", self.edge_sigma_m)?;
-        require_positive("beta", self.beta)?;
-        require_positive("sigma_q_m", self.sigma_q_m)?;
-        require_positive("sigma_w_m", self.sigma_w_m)?;
-        if self.start_iterations > 1000 {
-            return Err(Error::parameter(
-                "start_iterations",
-                self.start_iterations,
-                "must be at most 1000",
-            ));
-        }
         let [lo, hi] = self.width_range_m;
-        require_positive("width_range_m", lo)?;
-        require_finite("width_range_m", hi)?;
         if hi <= lo {
             return Err(Error::parameter("width_range_m", hi, "max must exceed min"));
         }
-        require_within(
-            "valid_support",
-            self.valid_support,
-            0.0..=1.0,
-            "must be a fraction in [0, 1]",
-        )?;
         if self.transitions.len() != 4 {
             return Err(Error::Config(
                 "transitions must be a 4x4 matrix (models 1-4)".into(),

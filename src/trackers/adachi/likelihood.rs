@@ -102,16 +102,11 @@ impl Likelihood {
     /// the edges of the polarity. 0 for an edge off the axis. Not part of the paper: it defines
     /// [`super::AdachiEstimate::valid`].
     pub fn support(&self, votes: &Votes, rho: f64) -> f64 {
-        let lo_axis = votes.rho_min();
-        let hi_axis = lo_axis + votes.bin_m() * votes.bins() as f64;
-        self.edges
-            .iter()
-            .map(|&(off, weight)| {
-                let (a, b) = (rho + off - 2.0 * self.sd, rho + off + 2.0 * self.sd);
-                if !(b > lo_axis && a < hi_axis) {
+        self.edge_windows(votes, rho)
+            .map(|(window, weight)| {
+                let Some((lo, hi)) = window else {
                     return 0.0;
-                }
-                let (lo, hi) = (votes.bin_of(a), votes.bin_of(b));
+                };
                 let rows = votes.rows_crossing(lo, hi);
                 if rows == 0 {
                     return 0.0;
@@ -120,6 +115,31 @@ impl Likelihood {
                 weight * (n / rows as f64).min(1.0)
             })
             .sum()
+    }
+
+    /// How far beyond the voting region's nearest row the nearest vote of the boundary at
+    /// `rho` lies (within the windows of [`Likelihood::support`]), metres; infinite when none.
+    pub fn reach(&self, votes: &Votes, rho: f64) -> f64 {
+        self.edge_windows(votes, rho)
+            .filter_map(|(window, _)| window)
+            .map(|(lo, hi)| votes.reach(lo, hi))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// For each edge of the boundary at `rho`: the bins within 2 sd of where the template
+    /// puts it (`None` when the window is off the axis) and its weight.
+    fn edge_windows<'a>(
+        &'a self,
+        votes: &'a Votes,
+        rho: f64,
+    ) -> impl Iterator<Item = (Option<(usize, usize)>, f64)> + 'a {
+        let lo_axis = votes.rho_min();
+        let hi_axis = lo_axis + votes.bin_m() * votes.bins() as f64;
+        self.edges.iter().map(move |&(off, weight)| {
+            let (a, b) = (rho + off - 2.0 * self.sd, rho + off + 2.0 * self.sd);
+            let window = (b > lo_axis && a < hi_axis).then(|| (votes.bin_of(a), votes.bin_of(b)));
+            (window, weight)
+        })
     }
 
     /// ln p(z | r, q, w) (eq. 6) for model index `model` (0..3 for r = 1..4).

@@ -54,6 +54,8 @@ pub mod likelihood;
 mod lockin_tests;
 pub mod motion;
 pub mod pairs;
+#[cfg(test)]
+mod reacquire_tests;
 pub mod road_shape;
 #[cfg(test)]
 mod side_search_tests;
@@ -62,6 +64,7 @@ pub mod votes;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::EgoLane;
+use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
 use super::support_memory::{self, SupportMemory};
@@ -120,6 +123,8 @@ pub struct AdachiTracker {
     pair_offset: f64,
     /// The last `valid_support_frames` frames' support, for the validity.
     support_memory: SupportMemory,
+    /// The validity rule after a loss (`reacquire_near_m`).
+    reacquire: Reacquire,
 }
 
 /// The steps of one frame after [`AdachiTracker::begin`] (per-step mode).
@@ -232,6 +237,7 @@ impl AdachiTracker {
                 config::Polarity::Both => 0.0,
             },
             support_memory: SupportMemory::new(adachi.valid_support_frames),
+            reacquire: Reacquire::new(adachi.reacquire_near_m),
             config: adachi,
         })
     }
@@ -437,13 +443,16 @@ impl AdachiTracker {
         let local = track - self.lane_index as f64 * w;
         let change = EgoLane::symmetric(-local, w).change(CHANGE_MARGIN_M);
         self.lane_index += i64::from(change);
-        let support = [
-            self.likelihood
-                .support(&self.votes, q + OFFSETS[0] * w / 2.0),
-            self.likelihood
-                .support(&self.votes, q + OFFSETS[1] * w / 2.0),
-        ];
+        let rhos = [q + OFFSETS[0] * w / 2.0, q + OFFSETS[1] * w / 2.0];
+        let support = rhos.map(|rho| self.likelihood.support(&self.votes, rho));
+        let reach = rhos
+            .iter()
+            .map(|&rho| self.likelihood.reach(&self.votes, rho))
+            .fold(f64::INFINITY, f64::min);
         let remembered = self.support_memory.push(support);
+        let held = support_memory::supported(support, remembered, self.config.valid_support);
+        let both = support.iter().all(|&s| s >= self.config.valid_support);
+        let valid = self.reacquire.valid(held, both, reach);
         AdachiEstimate {
             q,
             w,
@@ -452,7 +461,7 @@ impl AdachiTracker {
             change,
             votes,
             support,
-            valid: support_memory::supported(support, remembered, self.config.valid_support),
+            valid,
             ess: self.filter.ess(),
             shape: self.votes.shape(),
         }
@@ -556,6 +565,7 @@ impl Tracker for AdachiTracker {
         self.q_track = None;
         self.lane_index = 0;
         self.support_memory.clear();
+        self.reacquire.reset();
     }
 
     fn stage_times(&self) -> StageTimes {

@@ -40,6 +40,13 @@ pub struct Votes {
     row_spans: Vec<(u32, u32)>,
     /// H_j of the last frame.
     pub histogram: Vec<f64>,
+    /// Per bin, the road distance of the nearest row that voted into it in the last frame
+    /// (infinite when none; `reacquire_near_m`).
+    nearest_m: Vec<f64>,
+    /// The road distance of each region row (at the image's middle column) and of the
+    /// region's nearest row.
+    row_m: Vec<f64>,
+    near_m: f64,
     bin_m: f64,
     rho_min: f64,
     polarity: Polarity,
@@ -129,6 +136,15 @@ impl Votes {
         if total > 0.0 {
             noise.iter_mut().for_each(|n| *n /= total);
         }
+        let row_m: Vec<f64> = rows
+            .clone()
+            .map(|v| {
+                camera
+                    .pixel_to_road(w as f64 / 2.0, v as f64)
+                    .map_or(config.far_m, |[x, _]| x.clamp(config.near_m, config.far_m))
+            })
+            .collect();
+        let near_m = row_m.iter().copied().fold(config.far_m, f64::min);
         let pair_px = if config.paired_edges {
             rows.clone().map(|v| stripe_px(camera, v)).collect()
         } else {
@@ -143,6 +159,9 @@ impl Votes {
             noise,
             row_spans,
             histogram: vec![0.0; bins_n],
+            nearest_m: vec![f64::INFINITY; bins_n],
+            row_m,
+            near_m,
             bin_m: config.bin_m,
             rho_min,
             polarity: config.polarity,
@@ -200,6 +219,20 @@ impl Votes {
             (j as usize).min(self.bins().saturating_sub(1))
         }
     }
+    /// The road distance of the region's nearest row, metres.
+    pub fn near_m(&self) -> f64 {
+        self.near_m
+    }
+
+    /// How far beyond the region's nearest row the nearest vote into the bins `lo..=hi` of the
+    /// last frame lies, metres (infinite when none voted there).
+    pub fn reach(&self, lo: usize, hi: usize) -> f64 {
+        let nearest = self.nearest_m[lo..=hi]
+            .iter()
+            .fold(f64::INFINITY, |a, &b| a.min(b));
+        (nearest - self.near_m).max(0.0)
+    }
+
     /// Number of region rows that cover any of the bins `lo..=hi`: a solid marking edge lying
     /// in those bins can give at most that many votes (one per row).
     pub fn rows_crossing(&self, lo: usize, hi: usize) -> usize {
@@ -217,6 +250,7 @@ impl Votes {
     /// number of votes n.
     pub fn vote(&mut self, rgba: &[u8]) -> usize {
         self.histogram.fill(0.0);
+        self.nearest_m.fill(f64::INFINITY);
         let w = self.width;
         if self.rows.is_empty() || w < 3 {
             return 0;
@@ -288,6 +322,9 @@ impl Votes {
                     match &mut self.curved {
                         None => {
                             self.histogram[b as usize] += 1.0;
+                            let x = self.row_m[v - self.rows.start];
+                            let nearest = &mut self.nearest_m[b as usize];
+                            *nearest = nearest.min(x);
                             n += 1;
                         }
                         Some(c) => c.points.push(c.road[(v - self.rows.start) * w + u]),
@@ -297,7 +334,7 @@ impl Votes {
         }
         match &mut self.curved {
             None => n,
-            Some(c) => vote_straightened(c, &mut self.histogram),
+            Some(c) => vote_straightened(c, &mut self.histogram, &mut self.nearest_m),
         }
     }
 }
@@ -336,7 +373,7 @@ fn has_partner(gx: &[f32], u: usize, reach: usize, threshold: f32) -> bool {
 
 /// Finds and follows the road shape of the frame's edge points, then votes each one where the
 /// shape straightens it; returns the number of votes.
-fn vote_straightened(c: &mut Curved, histogram: &mut [f64]) -> usize {
+fn vote_straightened(c: &mut Curved, histogram: &mut [f64], nearest_m: &mut [f64]) -> usize {
     let best = c.search.best(&c.points);
     let shape = match c.shape {
         None => best,
@@ -350,6 +387,7 @@ fn vote_straightened(c: &mut Curved, histogram: &mut [f64]) -> usize {
     for &(x, rho) in &c.points {
         if let Some(j) = c.search.bin(x, rho, shape) {
             histogram[j] += 1.0;
+            nearest_m[j] = nearest_m[j].min(x as f64);
             n += 1;
         }
     }

@@ -1,6 +1,6 @@
 //! Settings of the Lee tracker (all optional in the tracker config; defaults documented).
 
-use crate::error::{require_finite, require_positive, require_within, Error, Result};
+use crate::error::{Error, Result};
 use crate::vision::{CannyConfig, DldConfig};
 use serde::{Deserialize, Serialize};
 
@@ -154,7 +154,7 @@ pub struct LeeConfig {
     /// supports one of its boundaries within this many metres beyond the nearest measured
     /// distance, or within the longest such reach of the last 30 valid frames that saw both
     /// boundaries (a lane tracked between dashed lines accepts their gaps; see
-    /// [`super::reacquire`]; ours, beyond the paper; 0: off, the default; 4 in `real-roads`).
+    /// [`crate::trackers::reacquire`]; ours, beyond the paper; 0: off, the default; 4 in `real-roads`).
     /// Markings that begin only further ahead, past an unmarked crossing, are not yet the
     /// car's lane.
     pub reacquire_near_m: f64,
@@ -245,9 +245,8 @@ impl LeeConfig {
     /// [`Error::Parameter`] naming the first bad value.
     pub fn validate(&self) -> Result<()> {
         crate::trackers::ranges::check_ranges(super::ID, self)?;
-        require_positive("near_m", self.near_m)?;
-        require_positive("split_m", self.split_m)?;
-        require_positive("far_m", self.far_m)?;
+        // Every single value's range is checked above (`ranges::LEE`); what follows are the
+        // checks between values.
         if !(self.near_m < self.split_m && self.split_m < self.far_m) {
             return Err(Error::parameter(
                 "split_m",
@@ -255,17 +254,6 @@ impl LeeConfig {
                 "must lie between near_m and far_m",
             ));
         }
-        if self.far_m > 500.0 {
-            return Err(Error::parameter(
-                "far_m",
-                self.far_m,
-                "must be at most 500 m",
-            ));
-        }
-        require_positive("near_step_m", self.near_step_m)?;
-        require_positive("far_step_m", self.far_step_m)?;
-        require_positive("lateral_range_m", self.lateral_range_m)?;
-        require_positive("cell_m", self.cell_m)?;
         let cells = (2.0 * self.lateral_range_m / self.cell_m)
             * ((self.split_m - self.near_m) / self.cell_m);
         if cells > 4.0e6 {
@@ -290,87 +278,16 @@ impl LeeConfig {
                 ));
             }
         }
-        require_positive("max_marking_width_m", self.max_marking_width_m)?;
-        require_positive("map_sigma_m", self.map_sigma_m)?;
-        require_positive("marking_width_m", self.marking_width_m)?;
-        require_positive("alpha", self.alpha)?;
-        require_finite("beta", self.beta)?;
-        require_positive("tau_m", self.tau_m)?;
-        require_positive("sigma_q", self.sigma_q)?;
-        require_positive("sigma_far", self.sigma_far)?;
-        require_positive("spiral_length_m", self.spiral_length_m)?;
-        for (name, values) in [
-            ("process_sd", &self.process_sd),
-            ("kalman_process_sd", &self.kalman_process_sd),
-            ("kalman_measurement_sd", &self.kalman_measurement_sd),
-        ] {
-            for &v in values {
-                require_positive(name, v)?;
-            }
-        }
-        require_within(
-            "ess_threshold",
-            self.ess_threshold,
-            0.0..=1.0,
-            "must be a fraction in [0, 1]",
-        )?;
-        require_positive("max_heading_rad", self.max_heading_rad)?;
-        if self.max_heading_rad >= 1.2 {
-            return Err(Error::parameter(
-                "max_heading_rad",
-                self.max_heading_rad,
-                "must be below 1.2 rad",
-            ));
-        }
         let [lo, hi] = self.width_range_m;
-        require_positive("width_range_m", lo)?;
-        require_finite("width_range_m", hi)?;
         if hi <= lo {
             return Err(Error::parameter("width_range_m", hi, "max must exceed min"));
         }
-        require_positive("max_width_rate", self.max_width_rate)?;
-        require_positive("max_transition_m", self.max_transition_m)?;
-        require_positive("max_curvature", self.max_curvature)?;
         // The Fresnel series is exact while the spiral turns by at most 1.5 rad.
         if self.max_curvature * self.spiral_length_m / 2.0 > 1.5 {
             return Err(Error::parameter(
                 "max_curvature",
                 self.max_curvature,
                 "times spiral_length_m / 2 (the spiral's turn) must be at most 1.5 rad",
-            ));
-        }
-        if !(1.0..=100.0).contains(&self.start_spread) {
-            return Err(Error::parameter(
-                "start_spread",
-                self.start_spread,
-                "must be between 1 and 100",
-            ));
-        }
-        if !(0.0..=1.0).contains(&self.start_fresh) {
-            return Err(Error::parameter(
-                "start_fresh",
-                self.start_fresh,
-                "must be between 0 and 1",
-            ));
-        }
-        if self.start_iterations > 1000 {
-            return Err(Error::parameter(
-                "start_iterations",
-                self.start_iterations,
-                "must be at most 1000",
-            ));
-        }
-        require_within(
-            "valid_fraction",
-            self.valid_fraction,
-            0.0..=1.0,
-            "must be a fraction in [0, 1]",
-        )?;
-        if self.stage2_particles > super::super::MAX_PARTICLES {
-            return Err(Error::parameter(
-                "stage2_particles",
-                self.stage2_particles,
-                &format!("must be at most {}", super::super::MAX_PARTICLES),
             ));
         }
         Ok(())

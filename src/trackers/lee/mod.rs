@@ -36,7 +36,7 @@
 //! draws w and w' anew ([`super::side_search`]): without it a lane that widens faster than the
 //! process noise moves w (a turn pocket) keeps one boundary and loses the other. With a
 //! positive `reacquire_near_m` (ours, off by default) a lane once lost is valid again only
-//! when a marking supports it near the car ([`reacquire`]): markings that begin past an
+//! when a marking supports it near the car ([`super::reacquire`]): markings that begin past an
 //! unmarked crossing are not yet the car's lane. With a
 //! positive `curvature_prior_sd` (ours, off by default) stage 2 weighs each (c, delta) by a
 //! zero-mean Gaussian prior on delta too, so that a bend needs far-band evidence to win: the
@@ -67,11 +67,11 @@ pub mod kalman;
 pub mod likelihood_map;
 pub mod measurement;
 pub mod motion;
-pub mod reacquire;
 pub mod truth;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
+use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
 use super::support_memory::{self, SupportMemory};
@@ -93,7 +93,6 @@ use kalman::Smoother;
 use likelihood_map::LikelihoodMap;
 use measurement::{Measurement, MeasurementSettings};
 use motion::{Initial, Limits, Motion, Part};
-use reacquire::Reacquire;
 
 /// The tracker id.
 pub const ID: &str = "lee-cpf";

@@ -628,6 +628,18 @@ export interface AdachiOptions {
    */
   side_search_share?: number;
   /**
+   * Validity after the lane was lost (a valid frame, then one not valid; a run's first lock
+   * is not held back): the lane counts again only when an edge voted for one of its
+   * boundaries within this many metres beyond the voting region's nearest row, or within
+   * the longest such reach of the last 30 valid frames that saw both boundaries
+   * (`reacquire`; ours, beyond the paper; 0: off, the default). Markings
+   * that begin only further ahead, past an unmarked crossing, are not yet the car's lane.
+   *
+   * Range: 0 to 100.
+   * @defaultValue `0`
+   */
+  reacquire_near_m?: number;
+  /**
    * Only marking edges vote: an edge point votes when the opposite edge of a bright stripe
    * lies beside it, at most `PAIRED_EDGE_MAX_M` away on the road, on the marking's side
    * (ours, beyond the paper; false: every edge point votes, the paper's Sec. 3.2). A seam

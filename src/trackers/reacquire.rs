@@ -1,5 +1,6 @@
-//! `reacquire_near_m` (ours, beyond the paper): after the lane was lost, a frame is valid again
-//! only when a marking supports one of its boundaries near the car.
+//! `reacquire_near_m` (ours, beyond the papers; lee-cpf and adachi-mmpf): after the lane was
+//! lost, a frame is valid again only when a marking supports one of its boundaries near the
+//! car.
 //!
 //! The reach of a frame is how far beyond the nearest measured distance the nearest supported
 //! point of either boundary lies. Markings that begin only ahead, past an unmarked crossing,
@@ -17,8 +18,8 @@ pub const REACH_FRAMES: usize = 30;
 /// Where a run's validity stands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Lock {
-    /// No valid frame since the start or the last reset (a restart after `lost_restart`
-    /// frames without support keeps the lane lost).
+    /// No valid frame since the start or the last reset (lee-cpf's restart after
+    /// `lost_restart` frames without support keeps the lane lost).
     Starting,
     /// The last frame was valid.
     Valid,
