@@ -219,6 +219,7 @@ impl Votes {
             (j as usize).min(self.bins().saturating_sub(1))
         }
     }
+
     /// The road distance of the region's nearest row, metres.
     pub fn near_m(&self) -> f64 {
         self.near_m
