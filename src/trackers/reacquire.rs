@@ -12,6 +12,8 @@
 //! dashed lines accepts the gaps it was tracked through. A run's first lock (since the start
 //! or a reset) is not held back.
 
+use super::support_memory;
+
 /// Valid frames whose reach sets the limit after a loss.
 pub const REACH_FRAMES: usize = 30;
 
@@ -63,10 +65,25 @@ impl Reacquire {
             .fold(self.near_m, |limit, &r| limit.max(r))
     }
 
-    /// Whether a frame whose support holds (`held`) and whose nearest supported point lies
-    /// `reach` metres beyond the nearest measured distance is valid; a valid frame that saw
-    /// both boundaries (`both`) joins the memory.
-    pub fn valid(&mut self, held: bool, both: bool, reach: f64) -> bool {
+    /// Whether a frame is valid: its `support` (left, right) with the `remembered` mean holds
+    /// at `threshold` ([`support_memory::supported`]) and, after a loss, its nearest supported
+    /// point lies at most [`Reacquire::limit`] metres beyond the nearest measured distance
+    /// (`reach`). A valid frame with both sides at `threshold` joins the memory.
+    pub fn valid(
+        &mut self,
+        support: [f64; 2],
+        remembered: [f64; 2],
+        threshold: f64,
+        reach: f64,
+    ) -> bool {
+        let held = support_memory::supported(support, remembered, threshold);
+        let both = support.iter().all(|&s| s >= threshold);
+        self.decide(held, both, reach)
+    }
+
+    /// [`Reacquire::valid`] once the support is read: `held` whether it holds, `both` whether
+    /// both sides reach the threshold this frame.
+    fn decide(&mut self, held: bool, both: bool, reach: f64) -> bool {
         let valid =
             held && (self.near_m <= 0.0 || self.lock != Lock::Lost || reach <= self.limit());
         if valid && both && reach.is_finite() {
@@ -90,16 +107,16 @@ mod tests {
     #[test]
     fn a_lane_lost_along_a_solid_line_needs_a_near_marking_again() {
         let mut r = Reacquire::new(4.0);
-        assert!(r.valid(true, true, 9.0), "the first lock is not held back");
+        assert!(r.decide(true, true, 9.0), "the first lock is not held back");
         for _ in 0..REACH_FRAMES {
-            assert!(r.valid(true, true, 0.0));
+            assert!(r.decide(true, true, 0.0));
         }
-        assert!(!r.valid(false, true, f64::INFINITY));
-        assert!(!r.valid(true, true, 6.0), "markings from 6 m on only");
-        assert!(!r.valid(true, true, 4.5));
-        assert!(r.valid(true, true, 3.0));
+        assert!(!r.decide(false, true, f64::INFINITY));
+        assert!(!r.decide(true, true, 6.0), "markings from 6 m on only");
+        assert!(!r.decide(true, true, 4.5));
+        assert!(r.decide(true, true, 3.0));
         assert!(
-            r.valid(true, true, 9.0),
+            r.decide(true, true, 9.0),
             "once valid, the reach does not matter"
         );
     }
@@ -108,11 +125,11 @@ mod tests {
     fn a_lane_lost_between_dashes_accepts_the_gaps_it_was_tracked_through() {
         let mut r = Reacquire::new(4.0);
         for k in 0..12 {
-            assert!(r.valid(true, true, (k % 8) as f64));
+            assert!(r.decide(true, true, (k % 8) as f64));
         }
         assert_eq!(r.limit(), 7.0);
-        assert!(!r.valid(false, true, 10.0));
-        assert!(r.valid(true, true, 6.0));
+        assert!(!r.decide(false, true, 10.0));
+        assert!(r.decide(true, true, 6.0));
         r.reset();
         assert_eq!(r.limit(), 4.0);
     }
@@ -120,28 +137,28 @@ mod tests {
     #[test]
     fn a_frame_valid_on_one_boundary_does_not_widen_the_limit() {
         let mut r = Reacquire::new(4.0);
-        assert!(r.valid(true, true, 0.0));
-        assert!(r.valid(true, false, 7.0));
+        assert!(r.decide(true, true, 0.0));
+        assert!(r.decide(true, false, 7.0));
         assert_eq!(r.limit(), 4.0);
     }
 
     #[test]
     fn off_it_changes_nothing() {
         let mut r = Reacquire::new(0.0);
-        assert!(r.valid(true, true, 0.0));
-        assert!(!r.valid(false, true, 0.0));
-        assert!(r.valid(true, true, f64::INFINITY));
+        assert!(r.decide(true, true, 0.0));
+        assert!(!r.decide(false, true, 0.0));
+        assert!(r.decide(true, true, f64::INFINITY));
     }
 
     #[test]
     fn the_memory_keeps_only_the_last_frames() {
         let mut r = Reacquire::new(4.0);
-        assert!(r.valid(true, true, 8.0));
+        assert!(r.decide(true, true, 8.0));
         for _ in 0..REACH_FRAMES - 1 {
-            assert!(r.valid(true, true, 1.0));
+            assert!(r.decide(true, true, 1.0));
         }
         assert_eq!(r.limit(), 8.0);
-        assert!(r.valid(true, true, 1.0));
+        assert!(r.decide(true, true, 1.0));
         assert_eq!(r.limit(), 4.0, "the 8 m frame has left the memory");
     }
 }

@@ -67,7 +67,7 @@ use super::lane_change::EgoLane;
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
-use super::support_memory::{self, SupportMemory};
+use super::support_memory::SupportMemory;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -450,9 +450,9 @@ impl AdachiTracker {
             .map(|&rho| self.likelihood.reach(&self.votes, rho))
             .fold(f64::INFINITY, f64::min);
         let remembered = self.support_memory.push(support);
-        let held = support_memory::supported(support, remembered, self.config.valid_support);
-        let both = support.iter().all(|&s| s >= self.config.valid_support);
-        let valid = self.reacquire.valid(held, both, reach);
+        let valid = self
+            .reacquire
+            .valid(support, remembered, self.config.valid_support, reach);
         AdachiEstimate {
             q,
             w,

@@ -119,19 +119,10 @@ impl Measurement {
     }
 
     /// Fraction of the near points of each boundary (left, right) with D >= exp(-1/2) (within
-    /// sigma_D of a candidate): the support used for the validity flag.
+    /// sigma_D of a candidate): the support used for the validity flag; and how far beyond the
+    /// first near point the nearest supported point of either boundary lies, metres (infinite
+    /// when none is; `reacquire_near_m`).
     pub fn near_support(
-        &self,
-        s: &LaneState,
-        curve: Option<&Curve>,
-        map: &LikelihoodMap,
-    ) -> [f64; 2] {
-        self.near_support_reach(s, curve, map).0
-    }
-
-    /// [`Measurement::near_support`] and how far beyond the first near point the nearest
-    /// supported point of either boundary lies, metres (infinite when none is).
-    pub fn near_support_reach(
         &self,
         s: &LaneState,
         curve: Option<&Curve>,

@@ -74,7 +74,7 @@ use super::lane_change::{self, EgoLane};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
-use super::support_memory::{self, SupportMemory};
+use super::support_memory::SupportMemory;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -980,11 +980,11 @@ impl Scheduled for LeeTracker {
         } else {
             raw
         };
-        let (support, reach) = self.measurement.near_support_reach(&raw, None, &self.map);
+        let (support, reach) = self.measurement.near_support(&raw, None, &self.map);
         let remembered = self.support_memory.push(support);
-        let held = support_memory::supported(support, remembered, self.config.valid_fraction);
-        let both = support.iter().all(|&s| s >= self.config.valid_fraction);
-        let valid = self.reacquire.valid(held, both, reach);
+        let valid = self
+            .reacquire
+            .valid(support, remembered, self.config.valid_fraction, reach);
         let lost = support[0].max(support[1]) < LOST_SUPPORT;
         self.lost = if lost { self.lost + 1 } else { 0 };
         if self.config.lost_restart > 0 && self.lost >= self.config.lost_restart {

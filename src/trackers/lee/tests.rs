@@ -123,7 +123,7 @@ fn the_measurement_model_peaks_at_the_true_state() {
         assert!(at(&s) < best, "{name}: {} vs {best}", at(&s));
     }
     // Both ego boundaries are dashed (3 m every 12 m): about a quarter of the points.
-    let support = m.near_support(&t, None, &tracker.map);
+    let (support, _) = m.near_support(&t, None, &tracker.map);
     assert!(support[0] > 0.15 && support[1] > 0.15, "{support:?}");
 }
 
