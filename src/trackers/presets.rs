@@ -8,7 +8,7 @@
 //! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03, `valid_support_frames` 5 |
 //! | danescu-stereo | `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03 |
 //! | lee-cpf | `relock_share` 0.05, `curvature_prior_sd` 0.004, `adjacent_lanes`, `valid_support_frames` 5, `side_search_share` 0.2, `kalman_process_sd` three times its defaults (ten times on the width), `reacquire_near_m` 4 |
-//! | liu-ppf | `top_view_resolved` |
+//! | liu-ppf | `top_view_resolved`, `reacquire_near_m` 4 |
 //! | liu-ppf-nokernel | none (the paper's baseline: its filter as written) |
 //!
 //! A preset is a starting point: options given beside it replace its values.
@@ -97,8 +97,9 @@ const LEE_SIDE_SEARCH_SHARE: f64 = 0.2;
 /// synthetic seeds 201-213 boundaries lee-cpf 90.8 -> 90.6 %, 214-239 95.7 -> 95.6, the loss
 /// all on `pitch-bumps` (-0.6 to -1.7 points on three members); adachi-mmpf 88.2 -> 88.1,
 /// 89.6 -> 89.6 (-0.7 to -1.3 on three members); TuSimple, the Udacity videos' validity
-/// unchanged). 4 m lies between the reach of Caltech's valid frames (at most 3 m for lee-cpf,
-/// 0.7 m for adachi-mmpf) and the crossing's (6 and 7.3 m).
+/// unchanged; liu-ppf 90.1 / 7.0 -> 90.1 / 6.2, 139 not valid on three seeds, synthetic
+/// detection -0.1). 4 m lies between the reach of Caltech's valid frames (at most 3 m for
+/// lee-cpf, 0.7 m for adachi-mmpf) and the crossing's (6 and 7.3 m; liu-ppf 5.5 from its 6 m).
 const REACQUIRE_NEAR_M: f64 = 4.0;
 
 /// adachi-mmpf's `side_search_share` (RESULTS.md, *Options beyond the papers*: option_compare's
@@ -147,9 +148,11 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
         // liu-ppf: a top view that ends where the camera resolves it (RESULTS.md, *Options
         // beyond the papers*: Caltech tracker seeds 1-5 64.7 / 20.6 -> 90.1 / 7.0 % ego correct
         // / FP, option_compare's synthetic seeds 201-213 72.3 -> 72.1 %, 214-239 74.9 -> 75.9;
-        // video from f_x 540 up unchanged).
+        // video from f_x 540 up unchanged); `reacquire_near_m` 4 as for lee-cpf and
+        // adachi-mmpf (Caltech 90.1 / 7.0 -> 90.1 / 6.2 %, synthetic -0.1 detected).
         TrackerOptions::LiuPpf(c) => TrackerOptions::LiuPpf(LiuConfig {
             top_view_resolved: true,
+            reacquire_near_m: REACQUIRE_NEAR_M,
             ..c
         }),
         // liu-ppf-nokernel, the paper's baseline without the kernels, keeps the paper's filter
@@ -207,7 +210,7 @@ mod tests {
             "side_search_share",
             // lee-cpf's smoother: the paper has one but gives no design; its noises are ours.
             "kalman_process_sd",
-            // lee-cpf's and adachi-mmpf's validity after a loss: ours.
+            // lee-cpf's, adachi-mmpf's and liu-ppf's validity after a loss: ours.
             "reacquire_near_m",
             // liu-ppf's top view: the paper names no range; ours.
             "top_view_resolved",

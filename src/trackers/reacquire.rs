@@ -81,6 +81,11 @@ impl Reacquire {
         self.decide(held, both, reach)
     }
 
+    /// A frame without the ego pair: not valid (the lane is lost if it was valid).
+    pub fn no_lane(&mut self) -> bool {
+        self.decide(false, false, f64::INFINITY)
+    }
+
     /// [`Reacquire::valid`] once the support is read: `held` whether it holds, `both` whether
     /// both sides reach the threshold this frame.
     fn decide(&mut self, held: bool, both: bool, reach: f64) -> bool {
@@ -140,6 +145,16 @@ mod tests {
         assert!(r.decide(true, true, 0.0));
         assert!(r.decide(true, false, 7.0));
         assert_eq!(r.limit(), 4.0);
+    }
+
+    #[test]
+    fn a_frame_without_the_ego_pair_loses_the_lane() {
+        let mut r = Reacquire::new(4.0);
+        assert!(!r.no_lane(), "no lock yet");
+        assert!(r.decide(true, true, 2.0));
+        assert!(!r.no_lane());
+        assert!(!r.decide(true, true, 6.0), "lost: the limit applies");
+        assert!(r.decide(true, true, 1.0));
     }
 
     #[test]

@@ -26,7 +26,9 @@
 //!
 //! With a positive `relock_share` (ours, off by default) a share of the particles is replaced
 //! each frame by default-model lanes on the ego pair a bottom-up line detector finds
-//! ([`super::relock`]).
+//! ([`super::relock`]). With a positive `reacquire_near_m` (ours, off by default) a lane once
+//! lost is valid again only when a strong edge supports one of its ego boundaries near the
+//! top view's near end ([`super::reacquire`]).
 
 pub mod atan32;
 pub mod config;
@@ -37,6 +39,7 @@ pub mod model;
 pub mod neg_exp;
 pub mod truth;
 
+use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
@@ -63,6 +66,11 @@ pub const DEFAULT_PARTICLES: usize = 200;
 pub const SUPPORT_ORIENTATION_RAD: f64 = 0.1;
 /// A supporting edge pixel's gradient, in multiples of the mask threshold.
 pub const SUPPORT_GRADIENT_FACTOR: f64 = 2.0;
+/// Length of a marking piece for the reach of `reacquire_near_m` (see `LiuTracker::support`),
+/// metres.
+pub const REACH_PIECE_M: f64 = 1.0;
+/// Share of a marking piece's rows with a supporting edge pixel.
+pub const REACH_PIECE_SHARE: f64 = 0.8;
 
 /// The steps of one frame after [`LiuTracker::begin`] (per-step mode).
 pub const STEP_NAMES: [&str; 7] = [
@@ -111,8 +119,10 @@ pub static SCHEDULE_NOKERNEL: Schedule =
 pub struct LiuEstimate {
     /// The boundaries, left to right, on the top view.
     pub boundaries: Vec<LinearParabolic>,
-    /// Fraction of near rows with a mask pixel within 1 pixel of each boundary.
+    /// Fraction of near rows with a strong edge pixel on each boundary (`LiuTracker::support`).
     pub support: Vec<f64>,
+    /// Whether the ego boundaries are supported (`valid_fraction`, `reacquire_near_m`).
+    pub valid: bool,
     /// Effective sample size after the second partition's weighing.
     pub ess: f64,
 }
@@ -129,6 +139,8 @@ pub struct LiuTracker {
     filter: ParticleFilter<LaneParticle>,
     /// The bottom-up detector of `relock_share` (`None` when it is off).
     detector: Option<RelockDetector>,
+    /// The validity rule after a loss (`reacquire_near_m`).
+    reacquire: Reacquire,
     /// The frame's schedule in progress and the last frame's times.
     stepper: Stepper,
 }
@@ -193,6 +205,7 @@ impl LiuTracker {
         Ok(Self {
             id,
             camera,
+            reacquire: Reacquire::new(liu.reacquire_near_m),
             config: liu,
             descriptors,
             model,
@@ -273,7 +286,7 @@ impl LiuTracker {
     /// at the bottom row and at y_m. (A plain mean would average modes that explain different
     /// sets of n_l boundaries of a wider road, e.g. the three left and the three right
     /// boundaries of a three-lane road, into lines between the markings.)
-    fn read_estimate(&self) -> LiuEstimate {
+    fn read_estimate(&mut self) -> LiuEstimate {
         let n = self.model.boundaries();
         let states = self.filter.states();
         let best = &states[crate::filter::map_index(self.filter.weights())];
@@ -310,10 +323,22 @@ impl LiuTracker {
         };
         let boundaries: Vec<LinearParabolic> =
             (0..n).map(|k| self.model.boundary(&particle, k)).collect();
-        let support = boundaries.iter().map(|b| self.support(b)).collect();
+        let (support, reach): (Vec<f64>, Vec<f64>) =
+            boundaries.iter().map(|b| self.support(b)).unzip();
+        let roles = self.roles(&boundaries);
+        let ego = |role: Role| roles.iter().find(|r| r.1 == role).map(|r| r.0);
+        let valid = if let (Some(l), Some(r)) = (ego(Role::EgoLeft), ego(Role::EgoRight)) {
+            let pair = [support[l], support[r]];
+            let near = reach[l].min(reach[r]);
+            self.reacquire
+                .valid(pair, pair, self.config.valid_fraction, near)
+        } else {
+            self.reacquire.no_lane()
+        };
         LiuEstimate {
             boundaries,
             support,
+            valid,
             ess: self.filter.ess(),
         }
     }
@@ -322,30 +347,44 @@ impl LiuTracker {
     /// boundary's line: within one pixel, its orientation within [`SUPPORT_ORIENTATION_RAD`] of
     /// the line's and its gradient at least [`SUPPORT_GRADIENT_FACTOR`] times the mask
     /// threshold. (Any mask pixel would not do: the paper's threshold passes asphalt texture,
-    /// and half the top view.)
-    fn support(&self, b: &LinearParabolic) -> f64 {
+    /// and half the top view.) And the reach (`reacquire_near_m`): how far beyond the view's
+    /// nearest row the nearest marking piece begins, metres (infinite without one). A piece is
+    /// [`REACH_PIECE_M`] of rows (at most 64) of which [`REACH_PIECE_SHARE`] have such a pixel:
+    /// one textured patch of asphalt lines up with a boundary in a row or two, a marking in
+    /// nearly every row.
+    fn support(&self, b: &LinearParabolic) -> (f64, f64) {
         let d = &self.descriptors;
         let (w, h) = (d.width(), d.height());
         let first = self.config.support_first_row(h, self.model.split_row());
         let (a, slope) = (b.a(), b.b());
         let strong = (SUPPORT_GRADIENT_FACTOR * self.config.gradient_threshold) as f32;
+        let s = self.config.top_view.m_per_px;
+        let piece = ((REACH_PIECE_M / s).round() as u32).clamp(1, 64);
+        let needed = (REACH_PIECE_SHARE * f64::from(piece)).ceil() as u32;
+        let mask = u64::MAX >> (64 - piece);
+        // The last `piece` rows, the nearest in bit 0: 1 where the row has a supporting pixel.
+        let mut recent = 0u64;
         let mut hits = 0;
-        for y in first..h {
+        let mut nearest = None;
+        for (k, y) in (first..h).enumerate() {
             let x = (a + slope * y as f64).round();
-            if !(x >= 0.0 && x < w as f64) {
-                continue;
-            }
-            let x = x as usize;
-            let span = d.span(y, x.saturating_sub(1), (x + 1).min(w - 1));
-            if d.pixels[span].iter().any(|px| {
-                px.precision >= strong
-                    && descriptors::wrap_half_turn(b.theta - f64::from(px.theta)).abs()
-                        < SUPPORT_ORIENTATION_RAD
-            }) {
-                hits += 1;
+            let hit = x >= 0.0 && x < w as f64 && {
+                let x = x as usize;
+                let span = d.span(y, x.saturating_sub(1), (x + 1).min(w - 1));
+                d.pixels[span].iter().any(|px| {
+                    px.precision >= strong
+                        && descriptors::wrap_half_turn(b.theta - f64::from(px.theta)).abs()
+                            < SUPPORT_ORIENTATION_RAD
+                })
+            };
+            hits += usize::from(hit);
+            recent = (recent << 1 | u64::from(hit)) & mask;
+            if k + 1 >= piece as usize && recent.count_ones() >= needed {
+                nearest = Some(y);
             }
         }
-        hits as f64 / (h - first).max(1) as f64
+        let reach = nearest.map_or(f64::INFINITY, |y| (h - 1 - y) as f64 * s);
+        (hits as f64 / (h - first).max(1) as f64, reach)
     }
 
     /// Lateral position y (m, left positive) of top-view boundary `b` at `x` metres ahead (the
@@ -416,16 +455,13 @@ impl LiuTracker {
         }
         let ego = |role: Role| roles.iter().find(|r| r.1 == role).map(|r| r.0);
         let s = v.m_per_px;
-        let (mut offset, mut heading, mut curvature, mut width, mut valid) =
-            (0.0, 0.0, 0.0, 0.0, false);
+        let (mut offset, mut heading, mut curvature, mut width) = (0.0, 0.0, 0.0, 0.0);
         if let (Some(l), Some(r)) = (ego(Role::EgoLeft), ego(Role::EgoRight)) {
             let (bl, br) = (&e.boundaries[l], &e.boundaries[r]);
             heading = (math::atan(bl.b()) + math::atan(br.b())) / 2.0;
             offset = -(at_car[l] + at_car[r]) / 2.0;
             width = (at_car[l] - at_car[r]) * math::cos(heading);
             curvature = -(bl.e() + br.e()) / s;
-            let f = self.config.valid_fraction;
-            valid = e.support[l] >= f && e.support[r] >= f;
         }
         state.insert(
             "liu.mask_pixels".to_string(),
@@ -434,7 +470,7 @@ impl LiuTracker {
         state.insert("liu.ess".to_string(), e.ess);
         LaneEstimate {
             frame: String::new(),
-            valid,
+            valid: e.valid,
             ms: 0.0,
             boundaries,
             lateral_offset_m: offset,
@@ -459,6 +495,7 @@ impl Tracker for LiuTracker {
 
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
+        self.reacquire.reset();
         if let Some(d) = self.detector.as_mut() {
             d.reset();
         }
@@ -622,6 +659,8 @@ impl Scheduled for LiuTracker {
     }
 }
 
+#[cfg(test)]
+mod reacquire_tests;
 #[cfg(test)]
 mod resolved_view_tests;
 #[cfg(test)]

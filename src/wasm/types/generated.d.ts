@@ -1568,6 +1568,19 @@ export interface LiuOptions {
    * @defaultValue `false`
    */
   top_view_resolved?: boolean;
+  /**
+   * Validity after the lane was lost (a valid frame, then one not valid; a run's first lock
+   * is not held back): the lane counts again only when a strong edge supports one of its
+   * ego boundaries within this many metres beyond the top view's near end, or within the
+   * longest such reach of the last 30 valid frames that saw both boundaries (see
+   * `reacquire`; ours, beyond the paper; 0: off, the default; 4 in
+   * `real-roads`). Markings that begin only further ahead, past an unmarked crossing, are
+   * not yet the car's lane.
+   *
+   * Range: 0 to 100.
+   * @defaultValue `0`
+   */
+  reacquire_near_m?: number;
 }
 
 /**
