@@ -126,6 +126,7 @@ pub(super) const LIU: &[&[OptionRange]] = &[&[
     r("default_jitter_m", 0.0, 2.0),
     r("relock_share", 0.0, 0.5),
     r("reacquire_near_m", 0.0, 100.0),
+    r("mode_candidates", 1.0, 1000.0),
 ]];
 
 pub(super) const ADACHI: &[&[OptionRange]] = &[&[

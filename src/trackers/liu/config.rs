@@ -88,6 +88,13 @@ pub struct LiuConfig {
     /// `real-roads`). Markings that begin only further ahead, past an unmarked crossing, are
     /// not yet the car's lane.
     pub reacquire_near_m: f64,
+    /// How the estimate picks its mode (the paper does not say how it reads its estimate off
+    /// the particles): among the particles within half the minimum lane spacing of each of the
+    /// `mode_candidates` heaviest particles, the set of the largest total weight, whose weighted
+    /// mean is the estimate. 1 (the default): the heaviest particle's mode. More (ours, 32 in
+    /// `real-roads`): a mode that many particles share wins over one heavy particle's, which on
+    /// real footage is often a lane tilted about a far point.
+    pub mode_candidates: usize,
 }
 
 /// Fewest image columns one top-view pixel must span across the road (`top_view_resolved`):
@@ -134,6 +141,7 @@ impl Default for LiuConfig {
             relock_share: 0.0,
             top_view_resolved: false,
             reacquire_near_m: 0.0,
+            mode_candidates: 1,
         }
     }
 }

@@ -141,6 +141,12 @@ pub struct LiuTracker {
     detector: Option<RelockDetector>,
     /// The validity rule after a loss (`reacquire_near_m`).
     reacquire: Reacquire,
+    /// The particle indices the estimate's mode candidates are chosen from (all of them,
+    /// allocated once).
+    by_weight: Vec<usize>,
+    /// Each particle's boundaries at the bottom row and at y_m, for the estimate's modes
+    /// (allocated once).
+    positions: Vec<[f64; 2 * MAX_BOUNDARIES]>,
     /// The frame's schedule in progress and the last frame's times.
     stepper: Stepper,
 }
@@ -206,6 +212,8 @@ impl LiuTracker {
             id,
             camera,
             reacquire: Reacquire::new(liu.reacquire_near_m),
+            by_weight: Vec::with_capacity(filter.len()),
+            positions: Vec::with_capacity(filter.len()),
             config: liu,
             descriptors,
             model,
@@ -281,29 +289,55 @@ impl LiuTracker {
             });
     }
 
-    /// The weighted mean of (rho, theta, d) over the mode of the best particle: the particles
-    /// whose every boundary lies within half the minimum lane spacing of the best particle's,
-    /// at the bottom row and at y_m. (A plain mean would average modes that explain different
-    /// sets of n_l boundaries of a wider road, e.g. the three left and the three right
-    /// boundaries of a three-lane road, into lines between the markings.)
+    /// The weighted mean of (rho, theta, d) over a mode: the particles whose every boundary
+    /// lies within half the minimum lane spacing of a centre particle's, at the bottom row and
+    /// at y_m. The centre is the heaviest particle, or with `mode_candidates` K > 1 the one of
+    /// the K heaviest whose mode weighs most. (A plain mean would average modes that explain
+    /// different sets of n_l boundaries of a wider road, e.g. the three left and the three
+    /// right boundaries of a three-lane road, into lines between the markings.)
     fn read_estimate(&mut self) -> LiuEstimate {
         let n = self.model.boundaries();
         let states = self.filter.states();
-        let best = &states[crate::filter::map_index(self.filter.weights())];
+        let weights = self.filter.weights();
         let rows = [
             self.descriptors.height() as f64 - 1.0,
             self.model.split_row(),
         ];
         let radius = self.config.min_spacing_m / 2.0 / self.config.top_view.m_per_px;
-        let same_mode = |p: &LaneParticle| {
-            (0..n).all(|k| {
-                let (a, b) = (self.model.boundary(p, k), self.model.boundary(best, k));
-                rows.iter().all(|&y| (a.x_at(y) - b.x_at(y)).abs() < radius)
-            })
+        // Each particle's boundaries at the two rows, boundary by boundary.
+        self.positions.clear();
+        self.positions.extend(states.iter().map(|p| {
+            let mut at = [0.0; 2 * MAX_BOUNDARIES];
+            for k in 0..n {
+                let b = self.model.boundary(p, k);
+                at[2 * k] = b.x_at(rows[0]);
+                at[2 * k + 1] = b.x_at(rows[1]);
+            }
+            at
+        }));
+        let positions = &self.positions;
+        let near = |i: usize, centre: usize| {
+            let (a, b) = (&positions[i][..2 * n], &positions[centre][..2 * n]);
+            a.iter().zip(b).all(|(x, y)| (x - y).abs() < radius)
         };
+        let centre = mode_centre(
+            weights,
+            self.config.mode_candidates,
+            &mut self.by_weight,
+            |c| {
+                (0..states.len())
+                    .filter(|&i| near(i, c))
+                    .map(|i| weights[i])
+                    .sum()
+            },
+        );
+        let best = &states[centre];
         let mut mean = [[0.0; 3]; MAX_BOUNDARIES];
         let mut total = 0.0;
-        for (p, w) in self.particle_states().filter(|(p, _)| same_mode(p)) {
+        for (i, (p, w)) in self.particle_states().enumerate() {
+            if !near(i, centre) {
+                continue;
+            }
             total += w;
             for (m, b) in mean.iter_mut().zip(&p.boundaries).take(n) {
                 for (mv, bv) in m.iter_mut().zip(b) {
@@ -614,6 +648,45 @@ impl Tracker for LiuTracker {
     fn resamplings(&self) -> &[ResampleDecision] {
         self.stepper.resamplings()
     }
+}
+
+/// The index of the estimate's centre particle: the heaviest of `weights` for `candidates` <= 1;
+/// otherwise, of the `candidates` heaviest particles (`by_weight`: a buffer), the one whose mode
+/// weighs most (`mode_weight`; the heavier particle on a tie).
+fn mode_centre(
+    weights: &[f64],
+    candidates: usize,
+    by_weight: &mut Vec<usize>,
+    mode_weight: impl Fn(usize) -> f64,
+) -> usize {
+    let best = crate::filter::map_index(weights);
+    let k = candidates.min(weights.len());
+    if k <= 1 {
+        return best;
+    }
+    // The k heaviest first, by a partial selection sort: k N steps for a few dozen candidates,
+    // and no sorting routine in the wasm module.
+    by_weight.clear();
+    by_weight.extend(0..weights.len());
+    let heavier =
+        |i: usize, j: usize| weights[i] > weights[j] || (weights[i] == weights[j] && i < j);
+    for r in 0..k {
+        let mut top = r;
+        for j in r + 1..by_weight.len() {
+            if heavier(by_weight[j], by_weight[top]) {
+                top = j;
+            }
+        }
+        by_weight.swap(r, top);
+    }
+    let mut centre = (best, mode_weight(best));
+    for &c in by_weight[..k].iter().filter(|&&c| c != best) {
+        let w = mode_weight(c);
+        if w > centre.1 {
+            centre = (c, w);
+        }
+    }
+    centre.0
 }
 
 /// The models of the schedule's operations: stage k is partition k of the one filter.

@@ -532,3 +532,20 @@ fn at_night_the_papers_intensity_kernel_leaves_most_weight_off_the_markings() {
         assert!(paper < 0.3 && sharp > 0.6, "seed {seed}: {paper} {sharp}");
     }
 }
+
+#[test]
+fn mode_candidates_pick_the_heaviest_mode_not_the_heaviest_particle() {
+    // Particle 0 is alone in its mode; 1, 2 and 3 share one that weighs 0.6.
+    let weights = [0.3, 0.2, 0.2, 0.2, 0.1];
+    let cluster = |c: usize| match c {
+        0 => 0.3,
+        4 => 0.1,
+        _ => 0.6,
+    };
+    let mut buffer = Vec::new();
+    assert_eq!(super::mode_centre(&weights, 1, &mut buffer, cluster), 0);
+    assert_eq!(super::mode_centre(&weights, 2, &mut buffer, cluster), 1);
+    assert_eq!(super::mode_centre(&weights, 50, &mut buffer, cluster), 1);
+    // On a tie the heavier particle keeps it.
+    assert_eq!(super::mode_centre(&weights, 5, &mut buffer, |_| 0.5), 0);
+}

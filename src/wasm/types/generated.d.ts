@@ -1581,6 +1581,18 @@ export interface LiuOptions {
    * @defaultValue `0`
    */
   reacquire_near_m?: number;
+  /**
+   * How the estimate picks its mode (the paper does not say how it reads its estimate off
+   * the particles): among the particles within half the minimum lane spacing of each of the
+   * `mode_candidates` heaviest particles, the set of the largest total weight, whose weighted
+   * mean is the estimate. 1 (the default): the heaviest particle's mode. More (ours, 32 in
+   * `real-roads`): a mode that many particles share wins over one heavy particle's, which on
+   * real footage is often a lane tilted about a far point.
+   *
+   * Range: 1 to 1000.
+   * @defaultValue `1`
+   */
+  mode_candidates?: number;
 }
 
 /**
