@@ -170,6 +170,8 @@ impl LiuConfig {
     /// [`Error::Parameter`] naming the first bad value.
     pub fn validate(&self) -> Result<()> {
         crate::trackers::ranges::check_ranges(super::ID, self)?;
+        // Every single value's range is checked above (`ranges::LIU`); what follows are the
+        // checks between values.
         let (w, h) = self.top_view.size()?;
         if w * h > 2_000_000 {
             return Err(Error::parameter(

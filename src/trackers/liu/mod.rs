@@ -13,9 +13,10 @@
 //! 4. parabolic part (Sec. IV-F): random walk of d_k (eqs. 22-23), weights by the parabolic
 //!    kernel density by Gauss-Hermite quadrature (eqs. 24-25, A = 1/n_k^l);
 //! 5. estimate: the weighted mean of (rho, theta, d) per boundary over the parabolic weights,
-//!    taken over the mode of the best particle (the paper does not say how it reads its
-//!    estimate off the particles; see `LiuTracker::estimate`). The next frame's resampling
-//!    to N gives the paper's X_t.
+//!    taken over the mode of the best particle, or with `mode_candidates` (ours) the heaviest
+//!    of the modes around the K best (the paper does not say how it reads its estimate off
+//!    the particles; see `LiuTracker::read_estimate`). The next frame's resampling to N gives
+//!    the paper's X_t.
 //!
 //! The boundaries (left to right) get their roles from where their near lines cross the car's
 //! axis x = 0: the nearest on the left is `ego-left`, the nearest on the right `ego-right`, the
@@ -80,7 +81,7 @@ pub const STEP_NAMES: [&str; 7] = [
     "resample the N_l particles for the parabolic part",
     "parabolic part: random walk of d (eqs. 22-23)",
     "parabolic part: weigh by the parabolic kernel density (eqs. 24-25)",
-    "estimate: weighted mean of (rho, theta, d) per boundary over the best particle's mode",
+    "estimate: weighted mean of (rho, theta, d) per boundary over the best particle's mode (with mode_candidates: the heaviest mode)",
 ];
 
 /// The steps of PPF-NoKernel.
