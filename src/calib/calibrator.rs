@@ -1,5 +1,6 @@
 //! The online calibrator: frames in, a camera estimate with its confidence out.
 
+use super::bend_regression::yaw_at_zero_bend;
 use super::hough::{bend, Hough, HoughParams, LineFit};
 use super::marking_image::{marking_intensity, working_scale};
 use super::pose::{lateral_at_unit_height, pose_from_vanishing_point, vanishing_point, Pinhole};
@@ -104,6 +105,9 @@ pub(super) struct Sample {
     pub(super) width_at_unit_height: f64,
     /// How far the boundaries bent: |common bend| + |opposite bend| / 3, working pixels.
     pub(super) bend: f64,
+    /// The signed common bend (b_left + b_right) / 2, working pixels (see
+    /// [`super::bend_regression`]).
+    pub(super) common_bend: f64,
 }
 
 /// The calibrator's current answer.
@@ -498,6 +502,7 @@ impl Calibrator {
             if let Some(mut sample) = self.sample(vp, &lines[l], &lines[r], bottom_row) {
                 let (bl, br) = (lines[l].bend / s, lines[r].bend / s);
                 sample.bend = (bl + br).abs() / 2.0 + (bl - br).abs() / 6.0;
+                sample.common_bend = (bl + br) / 2.0;
                 if self.samples.len() == MAX_SAMPLES {
                     self.samples.pop_front();
                 }
@@ -667,6 +672,7 @@ impl Calibrator {
             yaw,
             width_at_unit_height,
             bend: 0.0,
+            common_bend: 0.0,
         })
     }
 
@@ -692,7 +698,8 @@ impl Calibrator {
     }
 
     /// Median pitch, yaw and width at unit height over the chosen samples, their spreads
-    /// (1.4826 MAD) and the number of samples.
+    /// (1.4826 MAD) and the number of samples; the yaw at zero bend instead of the median when
+    /// the samples that agree on the pose fix it ([`super::bend_regression`]).
     fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3], usize)> {
         if self.samples.is_empty() {
             return None;
@@ -705,7 +712,12 @@ impl Calibrator {
             (m, 1.4826 * median(&dev))
         };
         let (pitch, sp) = column(|s| s.pitch);
-        let (yaw, sy) = column(|s| s.yaw);
+        let (mut yaw, sy) = column(|s| s.yaw);
+        // The yaw of a frame that does not bend, over every frame that agrees on the pose.
+        let agreeing = consensus(self.samples.iter().collect());
+        if let Some(y0) = yaw_at_zero_bend(agreeing.iter().map(|s| (s.common_bend, s.yaw))) {
+            yaw = y0;
+        }
         let (w1, sw) = column(|s| s.width_at_unit_height);
         Some((pitch, yaw, w1, [sp, sy, sw], chosen.len()))
     }

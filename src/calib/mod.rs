@@ -29,7 +29,9 @@
 //! with (u, v) the vanishing point, W the lane-width prior (3.6 m by default) and w_1 the
 //! distance between the ego boundaries seen from one metre above the road. The estimate is the
 //! median of each over the frames used, with its spread (1.4826 MAD) and a confidence (see
-//! [`Calibrator::estimate`]).
+//! [`Calibrator::estimate`]); but the yaw, from ten frames on, is that of a frame that does not
+//! bend, from a line through the frames' yaws against their common bend: a gentle bend that
+//! passes as straight moves the vanishing point towards its inside ([`bend_regression`]).
 //!
 //! What it cannot know: the focal length, which one vanishing point and parallel lines leave
 //! undetermined (a wrong f stretches the road lengthwise, not across), comes from the field of
@@ -43,6 +45,7 @@
 //! trucks meet where no mounted camera looks; a camera mounted outside these ranges gets no
 //! estimate.
 
+pub mod bend_regression;
 pub mod box_counts;
 pub mod calibrator;
 pub mod ego_on_road;

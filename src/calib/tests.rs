@@ -239,6 +239,7 @@ fn samples_far_from_the_consensus_do_not_move_the_estimate() {
         yaw: yaw_deg.to_radians(),
         width_at_unit_height: 2.4,
         bend: 0.0,
+        common_bend: 0.0,
     };
     let mut samples = vec![s(-3.5, -2.6), s(-3.4, -2.5), s(-3.6, -2.7), s(-3.5, -2.4)];
     samples.extend([s(3.6, -6.4), s(9.7, 0.3), s(1.7, 5.1)]);
