@@ -722,6 +722,15 @@ impl Calibrator {
         Some((pitch, yaw, w1, [sp, sy, sw], chosen.len()))
     }
 
+    /// The median yaw over the samples the estimate chooses, radians: the estimate's yaw
+    /// before the yaw at zero bend (for the test that compares them).
+    #[cfg(test)]
+    pub(super) fn median_yaw(&self) -> Option<f64> {
+        let chosen = self.chosen_samples();
+        let yaws: Vec<f64> = chosen.iter().map(|s| s.yaw).collect();
+        (!yaws.is_empty()).then(|| median(&yaws))
+    }
+
     /// The current estimate, or `None` before any frame has measured the camera.
     ///
     /// Confidence = min(1, n / 30) exp(-(e_pitch^2 + e_yaw^2) / (2 (0.25 deg)^2) - e_h^2 /
