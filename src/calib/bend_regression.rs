@@ -16,8 +16,9 @@
 //! over the frames that agree on the pose gives yaw_0, the yaw of a frame that does not bend.
 //! The fit is used only when the frames' bends spread enough to fix k (their standard
 //! deviation at least [`MIN_BEND_SPREAD_PX`]) and there are at least [`MIN_SAMPLES`] of them;
-//! otherwise (and where noise in b flattens k) the answer falls back towards the frames' own
-//! yaws.
+//! otherwise the estimate keeps the median yaw of its chosen frames. Noise in b flattens k (by
+//! var(bend) / (var(bend) + var(noise))), so a long bend is corrected only in part, and the
+//! confidence still takes the chosen frames' spread of yaws for the yaw's error.
 
 /// Frames the fit needs.
 pub const MIN_SAMPLES: usize = 10;

@@ -681,11 +681,11 @@ impl Calibrator {
             .map(|(pitch, yaw, ..)| vanishing_point(&self.pinhole, pitch, yaw))
     }
 
-    /// The samples the estimate uses: those that agree with the consensus pose (see
-    /// [`consensus`]), and of them from ten on the straighter half (a gentle bend that passed as
+    /// The samples the estimate uses: of those that agree with the consensus pose (`agreeing`,
+    /// see [`consensus`]), from ten on the straighter half (a gentle bend that passed as
     /// straight shifts the vanishing point sideways).
-    fn chosen_samples(&self) -> Vec<&Sample> {
-        let mut chosen = consensus(self.samples.iter().collect());
+    fn chosen_samples<'a>(agreeing: &[&'a Sample]) -> Vec<&'a Sample> {
+        let mut chosen = agreeing.to_vec();
         if chosen.len() >= 10 {
             // The same order as `chosen.sort_by(|a, b| a.bend.total_cmp(&b.bend))` (stable),
             // through the one instance of the stable sort in box_counts.
@@ -704,7 +704,8 @@ impl Calibrator {
         if self.samples.is_empty() {
             return None;
         }
-        let chosen = self.chosen_samples();
+        let agreeing = consensus(self.samples.iter().collect());
+        let chosen = Self::chosen_samples(&agreeing);
         let column = |f: fn(&Sample) -> f64| -> (f64, f64) {
             let v: Vec<f64> = chosen.iter().map(|s| f(s)).collect();
             let m = median(&v);
@@ -714,7 +715,6 @@ impl Calibrator {
         let (pitch, sp) = column(|s| s.pitch);
         let (mut yaw, sy) = column(|s| s.yaw);
         // The yaw of a frame that does not bend, over every frame that agrees on the pose.
-        let agreeing = consensus(self.samples.iter().collect());
         if let Some(y0) = yaw_at_zero_bend(agreeing.iter().map(|s| (s.common_bend, s.yaw))) {
             yaw = y0;
         }
@@ -726,7 +726,7 @@ impl Calibrator {
     /// before the yaw at zero bend (for the test that compares them).
     #[cfg(test)]
     pub(super) fn median_yaw(&self) -> Option<f64> {
-        let chosen = self.chosen_samples();
+        let chosen = Self::chosen_samples(&consensus(self.samples.iter().collect()));
         let yaws: Vec<f64> = chosen.iter().map(|s| s.yaw).collect();
         (!yaws.is_empty()).then(|| median(&yaws))
     }
