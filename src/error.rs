@@ -4,6 +4,7 @@
 //! say what was wrong, with the offending value, and what is accepted. The wasm binding turns
 //! them into thrown JavaScript `Error`s unchanged.
 
+use crate::num_text::Num;
 use thiserror::Error;
 
 /// Everything that can go wrong in lanepf.
@@ -72,7 +73,9 @@ pub enum Error {
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
-    /// Shorthand for a [`Error::Parameter`] error.
+    /// Shorthand for a [`Error::Parameter`] error. Give an `f64` value as
+    /// [`Num`]`(value)`: an `f64`'s own `Display` brings core's float formatting (24 kB raw) into
+    /// the wasm.
     pub fn parameter(name: &str, value: impl std::fmt::Display, reason: &str) -> Self {
         Error::Parameter {
             name: name.to_string(),
@@ -87,7 +90,11 @@ pub fn require_finite(name: &str, value: f64) -> Result<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::parameter(name, value, "must be a finite number"))
+        Err(Error::parameter(
+            name,
+            Num(value),
+            "must be a finite number",
+        ))
     }
 }
 
@@ -102,7 +109,7 @@ pub fn require_within(
     if range.contains(&value) {
         Ok(value)
     } else {
-        Err(Error::parameter(name, value, reason))
+        Err(Error::parameter(name, Num(value), reason))
     }
 }
 
@@ -112,7 +119,11 @@ pub fn require_positive(name: &str, value: f64) -> Result<f64> {
     if value > 0.0 {
         Ok(value)
     } else {
-        Err(Error::parameter(name, value, "must be greater than zero"))
+        Err(Error::parameter(
+            name,
+            Num(value),
+            "must be greater than zero",
+        ))
     }
 }
 

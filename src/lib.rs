@@ -39,6 +39,7 @@ pub mod image;
 mod keypath;
 pub mod lane;
 pub mod math;
+pub mod num_text;
 pub mod synth;
 pub mod trackers;
 pub mod vision;

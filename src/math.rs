@@ -37,6 +37,20 @@ pub fn cos(x: f64) -> f64 {
 pub fn tan(x: f64) -> f64 {
     libm::tan(x)
 }
+/// `x` limited to `lo..=hi`, as `f64::clamp` gives it (NaN stays NaN) but without its check
+/// that `lo <= hi` (`hi` then): that check's panic message writes the bounds with `{:?}`, which
+/// brings core's float formatting (24 kB raw) into the wasm wherever the bounds are not constants.
+#[inline]
+pub fn clamp(x: f64, lo: f64, hi: f64) -> f64 {
+    let mut x = x;
+    if x < lo {
+        x = lo;
+    }
+    if x > hi {
+        x = hi;
+    }
+    x
+}
 /// Arc tangent of y/x in (-pi, pi].
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {

@@ -401,7 +401,7 @@ impl Calibrator {
         let top = match prior {
             Some(vp) => {
                 let v = vp[1] / self.scale as f64 + 0.03 * h as f64;
-                v.clamp(0.0, 0.8 * h as f64) as usize
+                crate::math::clamp(v, 0.0, 0.8 * h as f64) as usize
             }
             None => h / 4,
         };

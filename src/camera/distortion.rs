@@ -13,6 +13,7 @@
 //! the point is outside the region where the model is invertible.
 
 use crate::error::{Error, Result};
+use crate::num_text::Fixed;
 
 /// Distortion coefficients; all zero means an ideal pinhole.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -127,8 +128,10 @@ impl Distortion {
             }
         }
         Err(Error::Geometry(format!(
-            "cannot undistort normalised point ({xd:.4}, {yd:.4}): outside the region where \
-             the lens distortion model is invertible"
+            "cannot undistort normalised point ({}, {}): outside the region where \
+             the lens distortion model is invertible",
+            Fixed(xd, 4),
+            Fixed(yd, 4)
         )))
     }
 }

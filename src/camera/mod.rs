@@ -30,6 +30,7 @@ pub use stereo::StereoRig;
 use crate::error::{require_finite, require_positive, Error, Result};
 use crate::image::check_dimensions;
 use crate::math;
+use crate::num_text::{Fixed, Num};
 use nalgebra::{Matrix3, Vector3};
 
 /// Largest accepted |pitch|, |yaw|, |roll| in degrees: beyond it the camera does not see the
@@ -68,8 +69,8 @@ impl Camera {
         if file.height_m > MAX_HEIGHT_M {
             return Err(Error::parameter(
                 "height_m",
-                file.height_m,
-                &format!("must be at most {MAX_HEIGHT_M} m"),
+                Num(file.height_m),
+                &format!("must be at most {} m", Num(MAX_HEIGHT_M)),
             ));
         }
         for (name, v) in [
@@ -81,8 +82,8 @@ impl Camera {
             if v.abs() > MAX_ANGLE_DEG {
                 return Err(Error::parameter(
                     name,
-                    v,
-                    &format!("must be between -{MAX_ANGLE_DEG} and {MAX_ANGLE_DEG} degrees"),
+                    Num(v),
+                    &format!("must be between -{0} and {0} degrees", Num(MAX_ANGLE_DEG)),
                 ));
             }
         }
@@ -271,7 +272,9 @@ impl Camera {
         // that the point is absurdly far (beyond 1e6 camera heights).
         if r[2] >= -1e-6 * (r[0] * r[0] + r[1] * r[1]).sqrt() {
             return Err(Error::Geometry(format!(
-                "pixel ({u:.1}, {v:.1}) is at or above the horizon: its ray never meets the road"
+                "pixel ({}, {}) is at or above the horizon: its ray never meets the road",
+                Fixed(u, 1),
+                Fixed(v, 1)
             )));
         }
         let t = self.file.height_m / -r[2];

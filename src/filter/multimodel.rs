@@ -6,6 +6,7 @@
 use super::model::MotionModel;
 use super::rng::Rng;
 use crate::error::{Error, Result};
+use crate::num_text::Num;
 
 /// A validated K x K row-stochastic transition matrix.
 #[derive(Debug, Clone, PartialEq)]
@@ -40,7 +41,8 @@ impl MarkovChain {
             let sum: f64 = row.iter().sum();
             if (sum - 1.0).abs() > 1e-9 {
                 return Err(Error::Config(format!(
-                    "transition row {i} sums to {sum}, not 1"
+                    "transition row {i} sums to {}, not 1",
+                    Num(sum)
                 )));
             }
             let mut acc = 0.0;

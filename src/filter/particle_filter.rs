@@ -21,6 +21,7 @@ use super::resampling_log::{ResampleDecision, ResampleRule};
 use super::rng::Rng;
 use super::weights::{effective_sample_size, normalise};
 use crate::error::{require_finite, Error, Result};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// How many initialisation particles to inject per frame.
@@ -105,7 +106,7 @@ impl<S: Clone> ParticleFilter<S> {
                 if !(0.0..1.0).contains(&f) {
                     return Err(Error::parameter(
                         "injection",
-                        f,
+                        Num(f),
                         "a fraction must be in [0, 1)",
                     ));
                 }
@@ -124,7 +125,7 @@ impl<S: Clone> ParticleFilter<S> {
             if !(0.0..=1.0).contains(&f) {
                 return Err(Error::parameter(
                     "ess_threshold",
-                    f,
+                    Num(f),
                     "must be a fraction in [0, 1]",
                 ));
             }

@@ -5,6 +5,7 @@
 //! [`MAX_POINT_SPACING_PX`] apart in y, plus the lane parameters every paper shares and a map of
 //! tracker-specific state.
 
+use crate::num_text::Fixed;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -139,9 +140,10 @@ impl Boundary {
             }
             if dy > MAX_POINT_SPACING_PX + 1e-9 {
                 return Err(format!(
-                    "{}: points {i} and {} are {dy:.1} px apart in y",
+                    "{}: points {i} and {} are {} px apart in y",
                     self.role.as_str(),
-                    i + 1
+                    i + 1,
+                    Fixed(dy, 1)
                 ));
             }
         }

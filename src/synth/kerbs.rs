@@ -152,7 +152,7 @@ pub(super) fn surface(
         depth: t,
         s: s1 + (s - s1) * k,
         d: face,
-        height: (z - geo.surface_height(x)).clamp(0.0, height),
+        height: crate::math::clamp(z - geo.surface_height(x), 0.0, height),
         face: true,
     }
 }

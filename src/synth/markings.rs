@@ -12,6 +12,7 @@
 
 use super::road::Road;
 use crate::error::{require_positive, require_within, Error, Result};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// The dash pattern of a marking.
@@ -165,7 +166,7 @@ impl MarkingConfig {
             if st.width_m > 1.0 {
                 return Err(Error::parameter(
                     "width_m",
-                    st.width_m,
+                    Num(st.width_m),
                     "must be at most 1 m",
                 ));
             }
@@ -176,7 +177,7 @@ impl MarkingConfig {
                     if dash_m > period_m {
                         return Err(Error::parameter(
                             "dash_m",
-                            dash_m,
+                            Num(dash_m),
                             "must not exceed period_m",
                         ));
                     }

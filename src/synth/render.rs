@@ -247,7 +247,7 @@ impl FrameGeometry {
         let mut across = 0.0;
         let last = self.table.len() - 2;
         for _ in 0..4 {
-            let k = ((s - self.table_s0) / TABLE_STEP).clamp(0.0, last as f64);
+            let k = crate::math::clamp((s - self.table_s0) / TABLE_STEP, 0.0, last as f64);
             let i = (k as usize).min(last);
             let f = k - i as f64;
             let (a, b) = (self.table[i], self.table[i + 1]);

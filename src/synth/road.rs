@@ -16,6 +16,7 @@
 
 use crate::error::{require_finite, require_positive, Error, Result};
 use crate::math;
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// Spacing of the stored centre-line samples, metres.
@@ -112,7 +113,7 @@ impl Road {
         if length_m > MAX_LENGTH_M {
             return Err(Error::parameter(
                 "length_m",
-                length_m,
+                Num(length_m),
                 "must be at most 50 km",
             ));
         }
@@ -130,7 +131,7 @@ impl Road {
             if seg.curvature.abs() > 0.1 {
                 return Err(Error::parameter(
                     "segments.curvature",
-                    seg.curvature,
+                    Num(seg.curvature),
                     "must be within +-0.1 1/m (radius >= 10 m)",
                 ));
             }
@@ -180,7 +181,7 @@ impl Road {
     /// The reference line at arc length `s` (clamped to the built length): position, heading,
     /// curvature and curvature rate.
     pub fn at(&self, s: f64) -> Sample {
-        let s = s.clamp(0.0, self.length());
+        let s = crate::math::clamp(s, 0.0, self.length());
         let k = ((s / STEP_M) as usize).min(self.samples.len() - 2);
         let a = self.samples[k];
         let ds = s - k as f64 * STEP_M;

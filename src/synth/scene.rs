@@ -5,6 +5,7 @@ use super::ego::EgoConfig;
 use super::markings::MarkingConfig;
 use super::road::RoadConfig;
 use crate::error::{require_finite, require_positive, Error, Result};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// Road surface shape in the vehicle frame (Danescu eq. 4): height of the road at distance
@@ -168,7 +169,7 @@ impl SceneConfig {
         if self.vertical.curvature.abs() > 0.01 {
             return Err(Error::parameter(
                 "vertical.curvature",
-                self.vertical.curvature,
+                Num(self.vertical.curvature),
                 "must be within +-0.01 1/m",
             ));
         }
@@ -199,7 +200,7 @@ impl SceneConfig {
         ] {
             require_finite(name, v)?;
             if v < 0.0 {
-                return Err(Error::parameter(name, v, "must not be negative"));
+                return Err(Error::parameter(name, Num(v), "must not be negative"));
             }
         }
         if a.hood > 0.5 || a.vignette > 1.0 || a.exposure > 0.9 || a.blur > 8 {

@@ -20,6 +20,7 @@ use crate::error::{require_finite, require_positive, Error, Result};
 use crate::image::check_dimensions;
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
 use crate::math;
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// Options of the straight test road (all optional; a field left out takes its default).
@@ -80,21 +81,21 @@ impl TestRoadConfig {
         if self.marking_width_m >= self.lane_width_m / 2.0 {
             return Err(Error::parameter(
                 "marking_width_m",
-                self.marking_width_m,
+                Num(self.marking_width_m),
                 "must be less than half the lane width",
             ));
         }
         if self.dash_length_m > self.dash_period_m {
             return Err(Error::parameter(
                 "dash_length_m",
-                self.dash_length_m,
+                Num(self.dash_length_m),
                 "must not exceed dash_period_m",
             ));
         }
         if self.sway_amplitude_m.abs() >= self.lane_width_m / 2.0 {
             return Err(Error::parameter(
                 "sway_amplitude_m",
-                self.sway_amplitude_m,
+                Num(self.sway_amplitude_m),
                 "must keep the camera inside the lane (|A| < W/2)",
             ));
         }

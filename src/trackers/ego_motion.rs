@@ -1,6 +1,7 @@
 //! The car's motion at a frame, the ego-motion input of the trackers that have one.
 
 use crate::error::{Error, Result};
+use crate::num_text::Num;
 use serde::Deserialize;
 
 /// The car's motion at a frame: its timestamp, speed and yaw rate (the frame interval is the
@@ -37,8 +38,8 @@ impl EgoMotion {
             if v.abs() > max {
                 return Err(Error::parameter(
                     name,
-                    v,
-                    &format!("must be within +-{max}"),
+                    Num(v),
+                    &format!("must be within +-{}", Num(max)),
                 ));
             }
         }

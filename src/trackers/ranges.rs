@@ -9,6 +9,7 @@
 
 use super::liu;
 use super::{Error, Result};
+use crate::num_text::{Exp, Num};
 use serde::Serialize;
 use serde_json::Value;
 
@@ -308,9 +309,9 @@ fn out_of_range(range: OptionRange, value: impl std::fmt::Display) -> Error {
 /// A limit as a person writes it: 1e-9 and 1e6 rather than 0.000000001 and 1000000.
 fn short(v: f64) -> String {
     if v != 0.0 && !(1e-3..1e6).contains(&v.abs()) {
-        format!("{v:e}")
+        Exp(v).to_string()
     } else {
-        format!("{v}")
+        Num(v).to_string()
     }
 }
 
@@ -406,7 +407,7 @@ mod tests {
             (
                 lee::ID,
                 r#""spiral_length_m": 5e-324"#,
-                "`spiral_length_m` = 5e-324: must be between 1 and 1000",
+                "`spiral_length_m` = 4.94066e-324: must be between 1 and 1000",
             ),
             (
                 liu::ID,
@@ -416,7 +417,7 @@ mod tests {
             (
                 adachi::ID,
                 r#""near_m": 5e-324"#,
-                "`near_m` = 5e-324: must be between 0.5 and 100",
+                "`near_m` = 4.94066e-324: must be between 0.5 and 100",
             ),
             (
                 danescu::ID_MONO,

@@ -6,6 +6,7 @@
 use crate::error::{require_positive, Error, Result};
 use crate::image::{Image, ImageView};
 use crate::math;
+use crate::num_text::Num;
 
 /// Largest accepted sigma, pixels.
 pub const MAX_SIGMA: f64 = 50.0;
@@ -29,7 +30,7 @@ impl GaussianBlur {
         if sigma > MAX_SIGMA {
             return Err(Error::parameter(
                 "sigma",
-                sigma,
+                Num(sigma),
                 "must be at most 50 pixels",
             ));
         }

@@ -15,6 +15,7 @@ use super::blur::GaussianBlur;
 use super::gradient::Gradients;
 use crate::error::{require_finite, require_positive, Error, Result};
 use crate::image::{Image, ImageView};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// A Canny edge detector: smoothing and the two hysteresis thresholds.
@@ -65,7 +66,7 @@ impl Canny {
         if config.low < 0.0 || config.low > config.high {
             return Err(Error::parameter(
                 "low",
-                config.low,
+                Num(f64::from(config.low)),
                 "must be between 0 and high",
             ));
         }

@@ -48,6 +48,7 @@
 
 use crate::error::{Error, Result};
 use crate::image::{check_dimensions, Image, ImageView};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// Largest accepted `max_disparity`.
@@ -115,14 +116,14 @@ impl DisparityConfig {
         if !(self.uniqueness > 0.0 && self.uniqueness <= 1.0) {
             return Err(Error::parameter(
                 "uniqueness",
-                self.uniqueness,
+                Num(f64::from(self.uniqueness)),
                 "must be in (0, 1]",
             ));
         }
         if !(self.left_right_tolerance.is_finite() && self.left_right_tolerance >= 0.0) {
             return Err(Error::parameter(
                 "left_right_tolerance",
-                self.left_right_tolerance,
+                Num(f64::from(self.left_right_tolerance)),
                 "must be a finite number >= 0",
             ));
         }

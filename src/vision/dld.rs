@@ -18,6 +18,7 @@
 
 use crate::error::{require_finite, Error, Result};
 use crate::image::{Image, ImageView};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// Edge-map value of a rising edge e_r.
@@ -72,7 +73,7 @@ impl Dld {
         if config.gamma < 0.0 {
             return Err(Error::parameter(
                 "gamma",
-                config.gamma,
+                Num(f64::from(config.gamma)),
                 "must not be negative",
             ));
         }

@@ -27,6 +27,7 @@
 use crate::camera::Camera;
 use crate::error::{require_positive, Error, Result};
 use crate::image::{check_dimensions, Image, ImageView};
+use crate::num_text::{Fixed, Num};
 use serde::{Deserialize, Serialize};
 
 /// The area and resolution of the top view.
@@ -72,21 +73,23 @@ impl TopViewConfig {
         if !(depth.is_finite() && depth > 0.0) {
             return Err(Error::parameter(
                 "x_max_m",
-                self.x_max_m,
+                Num(self.x_max_m),
                 "must be a finite distance beyond x_min_m",
             ));
         }
         if !(breadth.is_finite() && breadth > 0.0) {
             return Err(Error::parameter(
                 "y_left_m",
-                self.y_left_m,
+                Num(self.y_left_m),
                 "must be a finite offset left of y_right_m",
             ));
         }
         let (w, h) = (breadth / self.m_per_px, depth / self.m_per_px);
         if w > crate::image::MAX_SIDE as f64 || h > crate::image::MAX_SIDE as f64 {
             return Err(Error::Dimensions(format!(
-                "a top view of {w:.0}x{h:.0} pixels is too large: use a coarser m_per_px"
+                "a top view of {}x{} pixels is too large: use a coarser m_per_px",
+                Fixed(w, 0),
+                Fixed(h, 0)
             )));
         }
         let size = ((w.round() as usize).max(1), (h.round() as usize).max(1));

@@ -8,6 +8,7 @@
 //! wasm frame would leave the object it was called on locked.
 
 use super::error::Thrown;
+use crate::num_text::Num;
 use wasm_bindgen::prelude::*;
 use wasm_bindgen::JsCast;
 
@@ -74,8 +75,10 @@ pub fn whole(value: &JsValue, what: &str, min: f64, max: f64) -> Result<f64, Thr
     let x = number(value, what)?;
     if x.fract() != 0.0 || x < min || x > max {
         return Err(Thrown::input(format!(
-            "{what} is {}: it must be a whole number from {min} to {max}",
-            show(x)
+            "{what} is {}: it must be a whole number from {} to {}",
+            show(x),
+            show(min),
+            show(max)
         )));
     }
     Ok(x)
@@ -130,8 +133,9 @@ pub fn rgba(
     let expected = width * height * 4;
     if length != expected as f64 {
         return Err(Thrown::input(format!(
-            "{what} has {length} bytes but a {width}x{height} RGBA frame needs {expected} \
-             (width*height*4)"
+            "{what} has {} bytes but a {width}x{height} RGBA frame needs {expected} \
+             (width*height*4)",
+            show(length)
         )));
     }
     out.clear();
@@ -147,16 +151,22 @@ pub fn rgba(
     })
 }
 
-/// A number as JavaScript writes it, roughly: `Infinity`, `1e+300` rather than Rust's `inf` and
-/// 301 digits.
+/// A number as JavaScript writes it, roughly: `Infinity` rather than Rust's `inf`, whole numbers
+/// in full up to 1e19 (`4294967936`), other numbers to 6 significant digits as [`Num`] writes
+/// them (`640.5`, `1e300`).
 pub fn show(x: f64) -> String {
     if x.is_infinite() {
         return if x > 0.0 { "Infinity" } else { "-Infinity" }.into();
     }
-    if x != 0.0 && !(1e-6..1e21).contains(&x.abs()) {
-        return format!("{x:e}");
+    if x == x.trunc() && x.abs() < 1e19 {
+        let whole = x.abs() as u64;
+        return if x < 0.0 {
+            format!("-{whole}")
+        } else {
+            whole.to_string()
+        };
     }
-    format!("{x}")
+    Num(x).to_string()
 }
 
 /// The message of a caught exception, read without running anything that can throw.

@@ -4,6 +4,7 @@ use super::args;
 use super::error::{config, input, Kind, Thrown};
 use super::object;
 use crate::camera::{Camera, CameraFile};
+use crate::num_text::Num;
 use wasm_bindgen::prelude::*;
 
 /// A validated camera (intrinsics, distortion, height and angles). In the main module only:
@@ -58,7 +59,13 @@ impl JsCamera {
         self.inner
             .road_to_pixel(x, y)
             .map(|p| p.to_vec())
-            .ok_or_else(|| Thrown::input(format!("road point ({x}, {y}) is behind the camera")))
+            .ok_or_else(|| {
+                Thrown::input(format!(
+                    "road point ({}, {}) is behind the camera",
+                    Num(x),
+                    Num(y)
+                ))
+            })
     }
 
     /// The pixels of many road points in one call: `xy` holds x0, y0, x1, y1, ... (metres),

@@ -1,6 +1,7 @@
 //! Settings of the Adachi tracker (all optional in the tracker config; defaults documented).
 
 use crate::error::{Error, Result};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// Which side of a marking votes (Sec. 3.2 uses the left edge of each white line).
@@ -220,13 +221,17 @@ impl AdachiConfig {
         if self.far_m <= self.near_m {
             return Err(Error::parameter(
                 "far_m",
-                self.far_m,
+                Num(self.far_m),
                 "must be beyond near_m",
             ));
         }
         let [lo, hi] = self.width_range_m;
         if hi <= lo {
-            return Err(Error::parameter("width_range_m", hi, "max must exceed min"));
+            return Err(Error::parameter(
+                "width_range_m",
+                Num(hi),
+                "max must exceed min",
+            ));
         }
         if self.transitions.len() != 4 {
             return Err(Error::Config(

@@ -77,6 +77,7 @@ use crate::filter::{
     Stepper, SwitchingMotion,
 };
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
+use crate::num_text::Num;
 use config::AdachiConfig;
 use likelihood::{Likelihood, COEFFICIENTS, OFFSETS};
 use motion::{Initial, Lane, Motion};
@@ -194,7 +195,8 @@ impl AdachiTracker {
         if votes.is_empty() {
             return Err(Error::Config(format!(
                 "the voting region ({} to {} m ahead) is not visible in this camera's image",
-                adachi.near_m, adachi.far_m
+                Num(adachi.near_m),
+                Num(adachi.far_m)
             )));
         }
         let likelihood = Likelihood::new(&adachi);
@@ -266,7 +268,7 @@ impl AdachiTracker {
                 model: old.model,
                 state: Lane {
                     q: rng.gaussian(q, sq),
-                    w: rng.gaussian(w, sw).clamp(lo, hi),
+                    w: crate::math::clamp(rng.gaussian(w, sw), lo, hi),
                     change: 0,
                 },
             });
@@ -292,7 +294,7 @@ impl AdachiTracker {
             let Some((q, w)) = pairs.draw(rng) else {
                 return *old;
             };
-            let w = rng.gaussian(w, sw).clamp(lo, hi);
+            let w = crate::math::clamp(rng.gaussian(w, sw), lo, hi);
             let (q, _) = motion::wrap(rng.gaussian(q, sq), w);
             Regime {
                 model: rng.below(4),

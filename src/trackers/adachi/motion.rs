@@ -46,8 +46,11 @@ pub fn wrap(q: f64, w: f64) -> (f64, i8) {
 
 impl ModelMotion<Lane> for Motion {
     fn propagate(&self, _model: usize, s: &mut Lane, rng: &mut Rng) {
-        s.w =
-            (s.w + rng.gaussian(0.0, self.sigma_w)).clamp(self.width_range[0], self.width_range[1]);
+        s.w = crate::math::clamp(
+            s.w + rng.gaussian(0.0, self.sigma_w),
+            self.width_range[0],
+            self.width_range[1],
+        );
         let q = s.q + rng.gaussian(0.0, self.sigma_q);
         let (q, change) = wrap(q, s.w);
         s.q = q;

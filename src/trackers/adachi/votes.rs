@@ -141,7 +141,9 @@ impl Votes {
             .map(|v| {
                 camera
                     .pixel_to_road(w as f64 / 2.0, v as f64)
-                    .map_or(config.far_m, |[x, _]| x.clamp(config.near_m, config.far_m))
+                    .map_or(config.far_m, |[x, _]| {
+                        crate::math::clamp(x, config.near_m, config.far_m)
+                    })
             })
             .collect();
         let near_m = row_m.iter().copied().fold(config.far_m, f64::min);

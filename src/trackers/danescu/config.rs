@@ -8,6 +8,7 @@
 
 use super::elevation::CurbConfig;
 use crate::error::{Error, Result};
+use crate::num_text::Num;
 use crate::vision::{CannyConfig, DensityConfig, DisparityConfig, HGradientConfig};
 use serde::{Deserialize, Serialize};
 
@@ -238,7 +239,11 @@ impl DanescuConfig {
         // Every single value's range is checked above (`ranges::DANESCU`); what follows are
         // the checks between values.
         if self.far_m <= self.near_m {
-            return Err(Error::parameter("far_m", self.far_m, "must exceed near_m"));
+            return Err(Error::parameter(
+                "far_m",
+                Num(self.far_m),
+                "must exceed near_m",
+            ));
         }
         for (name, [lo, hi]) in [
             ("init_width_m", self.init_width_m),
@@ -249,7 +254,7 @@ impl DanescuConfig {
             if hi < lo {
                 return Err(Error::parameter(
                     name,
-                    format!("[{lo}, {hi}]"),
+                    format!("[{}, {}]", Num(lo), Num(hi)),
                     "must be a range [low, high] with 0 <= low <= high",
                 ));
             }

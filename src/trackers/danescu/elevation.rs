@@ -27,6 +27,7 @@
 //!    to a pixel where the map places it to a cell (our refinement).
 
 use crate::error::{require_finite, require_positive, require_within, Error, Result};
+use crate::num_text::Num;
 use serde::{Deserialize, Serialize};
 
 /// Options of the curb detection (stereo only).
@@ -83,7 +84,7 @@ impl CurbConfig {
         if !(self.height_m[0] > 0.0 && self.height_m[0] < self.height_m[1]) {
             return Err(Error::parameter(
                 "curbs.height_m",
-                self.height_m[0],
+                Num(self.height_m[0]),
                 "must be a positive [lowest, highest] curb height with lowest < highest",
             ));
         }
@@ -91,7 +92,7 @@ impl CurbConfig {
         if cells > 4e6 {
             return Err(Error::parameter(
                 "curbs.cell_m",
-                self.cell_m[0],
+                Num(self.cell_m[0]),
                 "makes an elevation map of over 4 million cells",
             ));
         }

@@ -35,6 +35,7 @@ use crate::camera::{Camera, StereoRig};
 use crate::error::{Error, Result};
 use crate::image::{rgba_to_gray, Image};
 use crate::math;
+use crate::num_text::Num;
 use crate::vision::{Density, DisparityConfig, StereoMatcher, EDGE};
 use nalgebra::{Matrix3, Vector3};
 
@@ -102,7 +103,7 @@ impl StereoCues {
         if bins > 100_000 {
             return Err(Error::parameter(
                 "pitch_bin_rad",
-                config.pitch_bin_rad,
+                Num(config.pitch_bin_rad),
                 "is too small for pitch_range_rad (over 100 000 bins)",
             ));
         }

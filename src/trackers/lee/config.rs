@@ -1,6 +1,7 @@
 //! Settings of the Lee tracker (all optional in the tracker config; defaults documented).
 
 use crate::error::{Error, Result};
+use crate::num_text::Num;
 use crate::vision::{CannyConfig, DldConfig};
 use serde::{Deserialize, Serialize};
 
@@ -250,7 +251,7 @@ impl LeeConfig {
         if !(self.near_m < self.split_m && self.split_m < self.far_m) {
             return Err(Error::parameter(
                 "split_m",
-                self.split_m,
+                Num(self.split_m),
                 "must lie between near_m and far_m",
             ));
         }
@@ -259,7 +260,7 @@ impl LeeConfig {
         if cells > 4.0e6 {
             return Err(Error::parameter(
                 "cell_m",
-                self.cell_m,
+                Num(self.cell_m),
                 "gives a likelihood map of more than 4 million cells",
             ));
         }
@@ -273,20 +274,24 @@ impl LeeConfig {
             if points > 10_000.0 {
                 return Err(Error::parameter(
                     name,
-                    points,
+                    Num(points),
                     "gives more than 10 000 evaluation points",
                 ));
             }
         }
         let [lo, hi] = self.width_range_m;
         if hi <= lo {
-            return Err(Error::parameter("width_range_m", hi, "max must exceed min"));
+            return Err(Error::parameter(
+                "width_range_m",
+                Num(hi),
+                "max must exceed min",
+            ));
         }
         // The Fresnel series is exact while the spiral turns by at most 1.5 rad.
         if self.max_curvature * self.spiral_length_m / 2.0 > 1.5 {
             return Err(Error::parameter(
                 "max_curvature",
-                self.max_curvature,
+                Num(self.max_curvature),
                 "times spiral_length_m / 2 (the spiral's turn) must be at most 1.5 rad",
             ));
         }

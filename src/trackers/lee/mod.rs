@@ -85,6 +85,7 @@ use crate::filter::{
 };
 use crate::image::{luma, Image};
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, Role};
+use crate::num_text::Num;
 use candidates::Candidates;
 use clothoid::{Curve, LaneState};
 use config::{LeeConfig, Variant};
@@ -308,7 +309,8 @@ impl LeeTracker {
         if near_m >= lee.split_m || near_rows.len() < 2 {
             return Err(Error::Config(format!(
                 "the near range ({} to {} m ahead) is not visible in this camera's image",
-                lee.near_m, lee.split_m
+                Num(lee.near_m),
+                Num(lee.split_m)
             )));
         }
         let far_rows = band_rows(&camera, lee.split_m, lee.far_m);
@@ -481,9 +483,9 @@ impl LeeTracker {
         }
         let sd = self.config.process_sd;
         self.stage1.replace_share(share, |old, rng| LaneState {
-            psi: rng.gaussian(psi, sd[0]).clamp(-l.heading, l.heading),
+            psi: crate::math::clamp(rng.gaussian(psi, sd[0]), -l.heading, l.heading),
             y0: rng.gaussian(y0, sd[1]),
-            w: rng.gaussian(w, sd[2]).clamp(l.width[0], l.width[1]),
+            w: crate::math::clamp(rng.gaussian(w, sd[2]), l.width[0], l.width[1]),
             ..*old
         });
     }

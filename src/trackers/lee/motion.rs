@@ -42,15 +42,23 @@ pub fn wrap(y0: f64, w: f64) -> (f64, i8) {
 }
 
 fn diffuse_first_order(s: &mut LaneState, sd: &[f64; 6], l: &Limits, rng: &mut Rng) {
-    s.psi = (s.psi + rng.gaussian(0.0, sd[0])).clamp(-l.heading, l.heading);
-    s.w = (s.w + rng.gaussian(0.0, sd[2])).clamp(l.width[0], l.width[1]);
-    s.w1 = (s.w1 + rng.gaussian(0.0, sd[3])).clamp(-l.width_rate, l.width_rate);
+    s.psi = crate::math::clamp(s.psi + rng.gaussian(0.0, sd[0]), -l.heading, l.heading);
+    s.w = crate::math::clamp(s.w + rng.gaussian(0.0, sd[2]), l.width[0], l.width[1]);
+    s.w1 = crate::math::clamp(s.w1 + rng.gaussian(0.0, sd[3]), -l.width_rate, l.width_rate);
     s.y0 += rng.gaussian(0.0, sd[1]);
 }
 
 fn diffuse_curve(s: &mut LaneState, sd: &[f64; 6], l: &Limits, rng: &mut Rng) {
-    s.c = (s.c + rng.gaussian(0.0, sd[4])).clamp(l.transition[0], l.transition[1]);
-    s.delta = (s.delta + rng.gaussian(0.0, sd[5])).clamp(-l.curvature, l.curvature);
+    s.c = crate::math::clamp(
+        s.c + rng.gaussian(0.0, sd[4]),
+        l.transition[0],
+        l.transition[1],
+    );
+    s.delta = crate::math::clamp(
+        s.delta + rng.gaussian(0.0, sd[5]),
+        -l.curvature,
+        l.curvature,
+    );
 }
 
 /// Which states a motion model moves.

@@ -8,6 +8,7 @@
 //! hold at any resolution. What the paper leaves open is our choice, said so below.
 
 use crate::error::{Error, Result};
+use crate::num_text::Num;
 use crate::vision::TopViewConfig;
 use serde::{Deserialize, Serialize};
 
@@ -184,7 +185,7 @@ impl LiuConfig {
         if hi < lo {
             return Err(Error::parameter(
                 "default_width_m",
-                hi,
+                Num(hi),
                 "max must not be below min",
             ));
         }

@@ -51,6 +51,7 @@ use crate::filter::{
 };
 use crate::lane::{sample_road_curve, Boundary, LaneEstimate, LinearParabolic, Role};
 use crate::math;
+use crate::num_text::Num;
 use config::{LiuConfig, MAX_BOUNDARIES};
 use descriptors::Descriptors;
 use model::{DefaultLanes, LaneParticle, PpfModel};
@@ -182,8 +183,8 @@ impl LiuTracker {
             return Err(Error::Config(format!(
                 "the top view ({} to {} m ahead) is hardly visible in this camera's image \
                  ({visible} of {} pixels); check the camera height and pitch or the top_view",
-                liu.top_view.x_min_m,
-                liu.top_view.x_max_m,
+                Num(liu.top_view.x_min_m),
+                Num(liu.top_view.x_max_m),
                 w * h
             )));
         }
