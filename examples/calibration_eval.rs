@@ -1,8 +1,10 @@
 //! How well auto-calibration recovers a camera, and what it costs a tracker.
 //!
-//! `cargo run --release --example calibration_eval -- [SEED_FROM SEED_TO] [FRAMES] [SCENARIOS]`
-//! (defaults: seeds 101..=112, 150 frames, scenarios highway-straight,highway-curve,s-curve,
-//! shadows,worn-markings,multi-lane cycled over the seeds).
+//! `cargo run --release --example calibration_eval -- [SEED_FROM SEED_TO] [FRAMES] [SCENARIOS]
+//! [--tangent-yaw] [--no-trackers]` (defaults: seeds 101..=112, 150 frames, scenarios
+//! highway-straight,highway-curve,s-curve,shadows,worn-markings,multi-lane cycled over the
+//! seeds; `--tangent-yaw` sets the calibrator's `tangent_yaw`, `--no-trackers` skips the
+//! tracking).
 //!
 //! For each seed a camera pose is drawn (`synth::drawn_camera`: pitch -2..8 deg, yaw -3..3 deg,
 //! height 1.1..2.4 m, horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
@@ -44,7 +46,14 @@ fn track(
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().collect();
+    let all: Vec<String> = std::env::args().collect();
+    let flag = |name: &str| all.iter().any(|a| a == name);
+    let (tangent_yaw, with_trackers) = (flag("--tangent-yaw"), !flag("--no-trackers"));
+    let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
+    let calibration = CalibratorConfig {
+        tangent_yaw,
+        ..CalibratorConfig::default()
+    };
     let from: u64 = args.get(1).map_or(Ok(101), |s| s.parse())?;
     let to: u64 = args.get(2).map_or(Ok(112), |s| s.parse())?;
     let n_frames: u32 = args.get(3).map_or(Ok(150), |s| s.parse())?;
@@ -86,8 +95,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             frames.push(rgba);
             gt.push(lanepf::trackers::scene_truth(&scene, i));
         }
-        let mut known = Calibrator::new(w, h, Some(&truth_cam), CalibratorConfig::default())?;
-        let mut unknown = Calibrator::new(w, h, None, CalibratorConfig::default())?;
+        let mut known = Calibrator::new(w, h, Some(&truth_cam), calibration)?;
+        let mut unknown = Calibrator::new(w, h, None, calibration)?;
         // The car's heading relative to the lane, summed over the frames the calibrator used.
         let (mut heading_used, mut used) = (0.0, 0);
         for (f, g) in frames.iter().zip(&gt) {
@@ -125,7 +134,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         });
         let hfov = 2.0 * lanepf::math::atan(0.5 * w as f64 / truth_cam.fx).to_degrees();
         let mut cells = Vec::new();
-        for (k, id) in TRACKERS.iter().enumerate() {
+        for (k, id) in TRACKERS.iter().enumerate().filter(|_| with_trackers) {
             let score = |preds: &[LaneEstimate]| -> Result<(f64, f64), Box<dyn std::error::Error>> {
                 let refs: Vec<Option<&LaneEstimate>> = preds.iter().map(Some).collect();
                 let r = evaluate(&gt, &refs)?;

@@ -1,11 +1,12 @@
 //! The online calibrator: frames in, a camera estimate with its confidence out.
 
 use super::bend_regression::yaw_at_zero_bend;
-use super::hough::{bend, Hough, HoughParams, LineFit};
+use super::hough::{bend, Hough, HoughParams, LineFit, BEND_BAND_PX};
 use super::marking_image::{marking_intensity, working_scale};
 use super::pose::{lateral_at_unit_height, pose_from_vanishing_point, vanishing_point, Pinhole};
 use super::ridges::{find_ridges, keep_continuous, RidgePixel};
 use super::road_colour::keep_on_grey_road;
+use super::tangent::tangent_column;
 use super::vp_votes::VpVotes;
 use crate::camera::{Camera, CameraFile, Distortion};
 use crate::error::{require_within, Error, Result};
@@ -30,6 +31,12 @@ pub struct CalibratorConfig {
     /// Largest common bend of the ego boundaries on straight road, in working pixels (0.1 to
     /// 10; see [`super::hough`]).
     pub max_bend_px: f64,
+    /// Each frame's yaw from the lane's tangent at the car (a fit of both boundaries with a
+    /// curvature term, [`super::tangent`]) instead of the straight boundaries' crossing (ours;
+    /// off by default). On the simulator's long drives it takes the gentle bends' pull out of
+    /// the yaw; on real frames whose lens distortion is not given it reads the lens's bend as
+    /// the road's (RESULTS.md, *Auto-calibration*).
+    pub tangent_yaw: bool,
 }
 
 impl Default for CalibratorConfig {
@@ -39,6 +46,7 @@ impl Default for CalibratorConfig {
             hfov_deg: 60.0,
             stable_frames: 5,
             max_bend_px: 1.5,
+            tangent_yaw: false,
         }
     }
 }
@@ -472,15 +480,9 @@ impl Calibrator {
         self.vote_crossings(&lines, &left, &right, bottom_row);
         let vanishing_point = ego.and_then(|[l, r]| crossing(&lines[l], &lines[r]));
         if let (Some([l, r]), Some(vp)) = (ego, vanishing_point) {
-            // Bends over the rows from 15 % of the way down from the vanishing point.
-            let from = (vp[1] + 0.15 * (bottom_row - vp[1])) / s;
+            let rows = shape_rows(vp, bottom, s);
             for i in [l, r] {
-                let working = LineFit {
-                    x_ref: lines[i].x_ref / s,
-                    y_ref: lines[i].y_ref / s,
-                    ..lines[i]
-                };
-                lines[i].bend = bend(&self.points, &working, (from, bottom as f64)) * s;
+                lines[i].bend = bend(&self.points, &working_line(&lines[i], s), rows) * s;
             }
         }
         // A bend in the road bends both boundaries the same way; a crest or a dip bends them
@@ -499,7 +501,16 @@ impl Calibrator {
         let stable = self.stable();
         let mut used = false;
         if let (Some(vp), true, Some([l, r])) = (vp_straight, stable, ego) {
-            if let Some(mut sample) = self.sample(vp, &lines[l], &lines[r], bottom_row) {
+            let tangent_vp = if self.config.tangent_yaw {
+                let pair = [&working_line(&lines[l], s), &working_line(&lines[r], s)];
+                let rows = shape_rows(vp, bottom, s);
+                tangent_column(&self.points, pair, vp[1] / s, rows, BEND_BAND_PX)
+                    .map(|u| [u * s, vp[1]])
+            } else {
+                None
+            };
+            if let Some(mut sample) = self.sample(vp, tangent_vp, &lines[l], &lines[r], bottom_row)
+            {
                 let (bl, br) = (lines[l].bend / s, lines[r].bend / s);
                 sample.bend = (bl + br).abs() / 2.0 + (bl - br).abs() / 6.0;
                 sample.common_bend = (bl + br) / 2.0;
@@ -584,9 +595,10 @@ impl Calibrator {
         self.votes.decay();
         for &l in left {
             for &r in right {
-                let vp = self
-                    .meeting(&lines[l], &lines[r])
-                    .filter(|&vp| self.sample(vp, &lines[l], &lines[r], bottom_row).is_some());
+                let vp = self.meeting(&lines[l], &lines[r]).filter(|&vp| {
+                    self.sample(vp, None, &lines[l], &lines[r], bottom_row)
+                        .is_some()
+                });
                 if let Some(vp) = vp {
                     let weight = lines[l].support.min(lines[r].support) as f32;
                     self.votes.vote(vp, weight);
@@ -628,7 +640,8 @@ impl Calibrator {
                     for &r in right {
                         let score = lines[l].support + lines[r].support;
                         let plausible = self.meeting(&lines[l], &lines[r]).is_some_and(|vp| {
-                            self.sample(vp, &lines[l], &lines[r], bottom_row).is_some()
+                            self.sample(vp, None, &lines[l], &lines[r], bottom_row)
+                                .is_some()
                         });
                         if plausible && best.is_none_or(|(s, _)| score > s) {
                             best = Some((score, [l, r]));
@@ -657,7 +670,16 @@ impl Calibrator {
             .all(|p| (p[0] - mu).abs() <= tol && (p[1] - mv).abs() <= tol)
     }
 
-    fn sample(&self, vp: [f64; 2], left: &LineFit, right: &LineFit, row: f64) -> Option<Sample> {
+    /// The frame's sample from its vanishing point `vp`; its yaw from `tangent_vp` when given
+    /// (`tangent_yaw`).
+    fn sample(
+        &self,
+        vp: [f64; 2],
+        tangent_vp: Option<[f64; 2]>,
+        left: &LineFit,
+        right: &LineFit,
+        row: f64,
+    ) -> Option<Sample> {
         let [pitch, yaw] = pose_from_vanishing_point(&self.pinhole, vp);
         let k = &self.pinhole;
         let yl = lateral_at_unit_height(k, pitch, yaw, [left.x_at(row), row])?;
@@ -667,6 +689,8 @@ impl Calibrator {
         let [lo, hi] = HEIGHT_RANGE_M;
         // The camera (lateral 0) inside the lane, near its middle.
         let centred = (yl + yr).abs() / 2.0 <= MAX_LANE_OFFSET * width_at_unit_height;
+        // The width through the crossing's pose: the lines' own geometry at the bottom row.
+        let yaw = tangent_vp.map_or(yaw, |t| pose_from_vanishing_point(&self.pinhole, t)[1]);
         (width_at_unit_height > 0.0 && (lo..=hi).contains(&height) && centred).then_some(Sample {
             pitch,
             yaw,
@@ -827,6 +851,23 @@ pub(super) fn consensus(samples: Vec<&Sample>) -> Vec<&Sample> {
         group
     } else {
         agree
+    }
+}
+
+/// The working-pixel rows the boundaries' shape is measured on (their bend, their tangent):
+/// from 15 % of the way down from the vanishing point `vp` (full-resolution pixels) to the
+/// working row `bottom`; `s` full pixels per working pixel.
+fn shape_rows(vp: [f64; 2], bottom: usize, s: f64) -> (f64, f64) {
+    let bottom_row = bottom as f64 * s;
+    ((vp[1] + 0.15 * (bottom_row - vp[1])) / s, bottom as f64)
+}
+
+/// `line` (full-resolution pixels) in working pixels.
+fn working_line(line: &LineFit, s: f64) -> LineFit {
+    LineFit {
+        x_ref: line.x_ref / s,
+        y_ref: line.y_ref / s,
+        ..*line
     }
 }
 

@@ -32,6 +32,8 @@
 //! [`Calibrator::estimate`]); but the yaw, from ten frames on, is that of a frame that does not
 //! bend, from a line through the frames' yaws against their common bend: a gentle bend that
 //! passes as straight moves the vanishing point towards its inside ([`bend_regression`]).
+//! With `tangent_yaw` each frame's yaw comes from the lane's tangent at the car instead of
+//! the straight lines' crossing ([`tangent`]: both boundaries fitted with a curvature term).
 //!
 //! What it cannot know: the focal length, which one vanishing point and parallel lines leave
 //! undetermined (a wrong f stretches the road lengthwise, not across), comes from the field of
@@ -54,6 +56,7 @@ pub mod marking_image;
 pub mod pose;
 pub mod ridges;
 pub mod road_colour;
+pub mod tangent;
 pub mod vp_votes;
 
 pub use calibrator::{CalibrationEstimate, Calibrator, CalibratorConfig, FrameObservation};

@@ -26,6 +26,8 @@ struct Options {
     stable_frames: Option<usize>,
     #[serde(default)]
     max_bend_px: Option<f64>,
+    #[serde(default)]
+    tangent_yaw: Option<bool>,
 }
 
 impl Options {
@@ -36,6 +38,7 @@ impl Options {
             hfov_deg: self.hfov_deg.unwrap_or(d.hfov_deg),
             stable_frames: self.stable_frames.unwrap_or(d.stable_frames),
             max_bend_px: self.max_bend_px.unwrap_or(d.max_bend_px),
+            tangent_yaw: self.tangent_yaw.unwrap_or(d.tangent_yaw),
         }
     }
 }
@@ -65,8 +68,8 @@ pub struct JsCalibrator {
 #[wasm_bindgen(js_class = Calibrator)]
 impl JsCalibrator {
     /// `new Calibrator({ width, height, intrinsics?, lane_width_m?, hfov_deg?, stable_frames?,
-    /// max_bend_px? })`: a calibrator for `width` x `height` frames. `intrinsics` (a camera
-    /// object of the same size; its pose is ignored) gives the focal length, principal point
+    /// max_bend_px?, tangent_yaw? })`: a calibrator for `width` x `height` frames.
+    /// `intrinsics` (a camera object of the same size; its pose is ignored) gives the focal length, principal point
     /// and lens; without it the focal length comes from `hfov_deg` (60) and the principal
     /// point is the image centre. Throws an `Error` naming a bad or unknown option.
     #[wasm_bindgen(constructor)]
@@ -99,7 +102,8 @@ impl JsCalibrator {
         self.inner.size()[1]
     }
 
-    /// The options in effect: `{ lane_width_m, hfov_deg, stable_frames, max_bend_px }`.
+    /// The options in effect: `{ lane_width_m, hfov_deg, stable_frames, max_bend_px,
+    /// tangent_yaw }`.
     #[wasm_bindgen(
         unchecked_return_type = "Required<Omit<CalibratorOptions, 'width' | 'height' | 'intrinsics'>>"
     )]

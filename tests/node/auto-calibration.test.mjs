@@ -104,6 +104,7 @@ test('Calibrator in Node: bad options and frames throw Errors that say what to d
   throws(() => new Calibrator({ width: 640, height: 480, lane_width_m: NaN }), /lane_width_m is NaN/);
   throws(() => new Calibrator({ width: 640, height: 480, lane_width_m: 9 }), /lane_width_m.*2\.5 to 5/);
   throws(() => new Calibrator({ width: 640, height: 480, stable_frames: 2.5 }), /stable_frames/);
+  throws(() => new Calibrator({ width: 640, height: 480, tangent_yaw: 'yes' }), /tangent_yaw/);
   throws(() => new Calibrator({ width: 0, height: 480 }), /0x480/);
   throws(() => new Calibrator({ width: 1e5, height: 480 }), /at most/);
   throws(() => new Calibrator({ width: 640, height: 480, intrinsics: { ...cam(3, 0, 1.4), width: 320 } }), /intrinsics are for 320x480 frames, not 640x480/);
@@ -117,7 +118,7 @@ test('Calibrator in Node: bad options and frames throw Errors that say what to d
   throws(() => c.feed(new Float32Array(64 * 48 * 4), 64, 48), /not a Float32Array/);
   throws(() => c.feed(null, 64, 48), /not null/);
   assert.equal(c.feed(frame, 64, 48).frames_seen, 1, 'the failed calls counted nothing');
-  assert.deepEqual(c.options(), { lane_width_m: 3.6, hfov_deg: 60, stable_frames: 5, max_bend_px: 1.5 });
+  assert.deepEqual(c.options(), { lane_width_m: 3.6, hfov_deg: 60, stable_frames: 5, max_bend_px: 1.5, tangent_yaw: false });
   c.reset();
   assert.equal(c.feed(frame, 64, 48).frames_seen, 1);
   c.free();

@@ -30,6 +30,11 @@ pub struct CalibrationArgs {
     /// Frame rate of the folder, for --seconds.
     #[arg(long, default_value_t = 30.0)]
     pub fps: f64,
+    /// Each frame's yaw from the lane's tangent at the car instead of the boundaries' straight
+    /// crossing (better on long gentle bends; a wide lens without its distortion in
+    /// --intrinsics biases it).
+    #[arg(long)]
+    pub tangent_yaw: bool,
 }
 
 /// Options of `lanepf calibrate`.
@@ -104,6 +109,7 @@ pub fn calibrate(files: &[PathBuf], args: &CalibrationArgs) -> Result<Calibratio
         } else {
             CalibratorConfig::default().stable_frames
         },
+        tangent_yaw: args.tangent_yaw,
         ..CalibratorConfig::default()
     };
     let limit = match args.seconds {

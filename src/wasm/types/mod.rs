@@ -249,6 +249,10 @@ export interface CalibratorOptions {
   /** Largest common bend of the ego boundaries on straight road, working pixels (0.1 to 10;
    *  default 1.5). */
   max_bend_px?: number;
+  /** Each frame's yaw from the lane's tangent at the car (a fit with a curvature term) instead
+   *  of the boundaries' straight crossing (default false): better on long gentle bends, but
+   *  a wide lens whose distortion is not in `intrinsics` biases it. */
+  tangent_yaw?: boolean;
 }
 
 /** What `Calibrator.feed` says about one frame. */
