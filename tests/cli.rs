@@ -452,6 +452,28 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
         "{est:?}, heading {heading_deg}"
     );
     assert!((est.height_m / 1.6 - 1.0).abs() < 0.1, "{est:?}");
+    // The same with each frame's yaw from the lane's tangent (on a straight road, the same
+    // vanishing point).
+    let (code, _, err) = lanepf(&[
+        "calibrate",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--intrinsics",
+        cam.to_str().unwrap(),
+        "--tangent-yaw",
+        "--out",
+        estimate.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let by_tangent = lanepf::camera::CameraFile::read(&estimate).unwrap();
+    assert!(
+        (by_tangent.pitch_deg - est.pitch_deg).abs() < 0.02,
+        "{by_tangent:?}"
+    );
+    assert!(
+        (by_tangent.yaw_deg - (1.0 - heading_deg)).abs() < 0.2,
+        "{by_tangent:?}, heading {heading_deg}"
+    );
 
     let pred = out.join("p.jsonl");
     let (code, _, err) = lanepf(&[
@@ -491,6 +513,20 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
     ]);
     assert_eq!(code, 1);
     assert!(err.contains("--intrinsics is for --camera auto"), "{err}");
+    let (code, _, err) = lanepf(&[
+        "track",
+        "--tracker",
+        "adachi-mmpf",
+        "--camera",
+        cam.to_str().unwrap(),
+        "--tangent-yaw",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--out",
+        pred.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1);
+    assert!(err.contains("--tangent-yaw is for --camera auto"), "{err}");
     let blank = out.join("blank");
     std::fs::create_dir_all(&blank).unwrap();
     let grey = vec![100u8; 320 * 240 * 4];

@@ -34,8 +34,8 @@ pub struct CalibratorConfig {
     /// Each frame's yaw from the lane's tangent at the car (a fit of both boundaries with a
     /// curvature term, [`super::tangent`]) instead of the straight boundaries' crossing (ours;
     /// off by default). On the simulator's long drives it takes the gentle bends' pull out of
-    /// the yaw; on real frames whose lens distortion is not given it reads the lens's bend as
-    /// the road's (RESULTS.md, *Auto-calibration*).
+    /// the yaw; on real frames whose lens distortion is not given it may read the lens's bend
+    /// as the road's (RESULTS.md, *Auto-calibration*).
     pub tangent_yaw: bool,
 }
 

@@ -62,6 +62,11 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
+    if args.camera != "auto" && args.calibration.tangent_yaw {
+        return Err(Error::Config(
+            "--tangent-yaw is for --camera auto; with a camera file nothing is calibrated".into(),
+        ));
+    }
     let camera = if args.camera == "auto" {
         let files = frames::list(&args.frames)?;
         let estimate = super::calibrate::calibrate(&files, &args.calibration)?;
