@@ -11,8 +11,8 @@
 //! u(t) = A + B t + C / t,   A = cx - fx psi / cos(theta),   B ~ y0,   C ~ kappa
 //! ```
 //!
-//! up to a constant kappa h tan(theta) / cos(theta) in the heading (under 0.02 degrees for a
-//! 500 m curve, 1.5 m and 6 degrees). The two ego boundaries share A and C (one lane, one
+//! up to a constant kappa h tan(theta) in the heading (under 0.02 degrees for a 500 m curve,
+//! 1.5 m and 6 degrees). The two ego boundaries share A and C (one lane, one
 //! heading, one curvature) and have their own B; least squares over both boundaries' pixels
 //! gives the four. A is the vanishing point's column of the lane's direction at the car. The
 //! crossing of two straight lines through the same pixels is the direction of a chord some
