@@ -1,10 +1,11 @@
 //! How well auto-calibration recovers a camera, and what it costs a tracker.
 //!
 //! `cargo run --release --example calibration_eval -- [SEED_FROM SEED_TO] [FRAMES] [SCENARIOS]
-//! [--tangent-yaw] [--no-trackers]` (defaults: seeds 101..=112, 150 frames, scenarios
-//! highway-straight,highway-curve,s-curve,shadows,worn-markings,multi-lane cycled over the
-//! seeds; `--tangent-yaw` sets the calibrator's `tangent_yaw`, `--no-trackers` skips the
-//! tracking).
+//! [--tangent-yaw] [--no-trackers] [--preset=NAME]` (defaults: seeds 101..=112, 150 frames,
+//! scenarios highway-straight,highway-curve,s-curve,shadows,worn-markings,multi-lane cycled over
+//! the seeds; `--tangent-yaw` sets the calibrator's `tangent_yaw`, `--no-trackers` skips the
+//! tracking, `--preset=real-roads` runs the trackers with that preset instead of the papers'
+//! defaults).
 //!
 //! For each seed a camera pose is drawn (`synth::drawn_camera`: pitch -2..8 deg, yaw -3..3 deg,
 //! height 1.1..2.4 m, horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
@@ -22,7 +23,7 @@ use lanepf::camera::{Camera, CameraFile};
 use lanepf::eval::synthetic::evaluate;
 use lanepf::lane::LaneEstimate;
 use lanepf::synth::{drawn_camera, scenario, Eye, Scene};
-use lanepf::trackers::{self, TrackerConfig};
+use lanepf::trackers::{self, Preset, TrackerConfig, TrackerOptions};
 
 const TRACKERS: [&str; 4] = ["adachi-mmpf", "danescu-mono", "lee-cpf", "liu-ppf"];
 
@@ -30,12 +31,13 @@ fn track(
     id: &str,
     camera: &CameraFile,
     frames: &[Vec<u8>],
+    preset: Preset,
 ) -> Result<Vec<LaneEstimate>, Box<dyn std::error::Error>> {
     let config = TrackerConfig {
         camera: camera.clone(),
         particles: None,
         seed: 1,
-        options: Default::default(),
+        options: TrackerOptions::preset(id, preset)?.into(),
     };
     let mut tracker = trackers::create(id, &config)?;
     let mut out = Vec::with_capacity(frames.len());
@@ -49,6 +51,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let all: Vec<String> = std::env::args().collect();
     let flag = |name: &str| all.iter().any(|a| a == name);
     let (tangent_yaw, with_trackers) = (flag("--tangent-yaw"), !flag("--no-trackers"));
+    let preset: Preset = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--preset="))
+        .unwrap_or("paper")
+        .parse()?;
     let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
     let calibration = CalibratorConfig {
         tangent_yaw,
@@ -143,8 +150,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     100.0 * r.params.detection_rate.unwrap_or(0.0),
                 ))
             };
-            let (a_true, d_true) = score(&track(id, &truth_cam, &frames)?)?;
-            let (a_auto, d_auto) = score(&track(id, c, &frames)?)?;
+            let (a_true, d_true) = score(&track(id, &truth_cam, &frames, preset)?)?;
+            let (a_auto, d_auto) = score(&track(id, c, &frames, preset)?)?;
             losses[k].push(a_true - a_auto);
             cells.push(format!(
                 "{a_true:.1} / {a_auto:.1} (det {d_true:.0} / {d_auto:.0})"
