@@ -40,10 +40,11 @@ pub type NearestPixel = Option<(f64, f64, f64)>;
 /// side, the one of `points` nearest that side's line of `lines` (left, right; working pixels)
 /// and within `band` pixels of it. One pixel a row: the second stripe of a double line, which
 /// leaves the band where the stripes diverge towards the car, would otherwise weigh the far
-/// rows twice and read as a bend (on Caltech's double yellow line a median 6 pixels, 1.1
-/// degrees, of the column). `nearest` is scratch space, kept between calls so that a frame
-/// allocates nothing. `None` with fewer than [`MIN_POINTS`] rows on a boundary, rows that do not reach
-/// [`MIN_ROW_SPAN`] times as far below the horizon as they start, or a singular fit.
+/// rows twice and read as a bend (on Caltech's double yellow line a median 6 full-resolution
+/// pixels, 1.1 degrees, of the column). `nearest` is scratch space kept between calls: it
+/// grows only when the rows do. `None` with fewer than [`MIN_POINTS`] rows on a boundary, rows
+/// that do not reach [`MIN_ROW_SPAN`] times as far below the horizon as they start, or a
+/// singular fit.
 pub fn tangent_column(
     points: &[[f32; 2]],
     lines: [&LineFit; 2],
