@@ -819,7 +819,7 @@ impl Calibrator {
 }
 
 /// Largest distance in pitch or in yaw, degrees, of a sample from the consensus pose for it to
-/// count (see [`consensus`]).
+/// count (see `consensus`).
 pub const CONSENSUS_DEG: f64 = 2.0;
 
 /// The samples that agree on the pose: the largest group within [`CONSENSUS_DEG`] in pitch

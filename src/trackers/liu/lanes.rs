@@ -3,7 +3,7 @@
 //! elsewhere.
 //!
 //! Every operation is the IEEE operation the scalar code performs, lane by lane (no fused
-//! multiply-add, no reordering), and the integer steps of [`F32x4::pow2_neg_trunc`] are exact,
+//! multiply-add, no reordering), and the integer steps of [`F32x4::pow2_neg_round`] are exact,
 //! so a sum written with these lanes has the same bits on every target (tests/web.rs compares
 //! liu-ppf in Chromium with the native bits). Masks are lanes of all ones (true) or all zeros
 //! (false).
