@@ -69,9 +69,10 @@ pub struct JsCalibrator {
 impl JsCalibrator {
     /// `new Calibrator({ width, height, intrinsics?, lane_width_m?, hfov_deg?, stable_frames?,
     /// max_bend_px?, tangent_yaw? })`: a calibrator for `width` x `height` frames.
-    /// `intrinsics` (a camera object of the same size; its pose is ignored) gives the focal length, principal point
-    /// and lens; without it the focal length comes from `hfov_deg` (60) and the principal
-    /// point is the image centre. Throws an `Error` naming a bad or unknown option.
+    /// `intrinsics` (a camera object of the same size; its pose is ignored) gives the focal
+    /// length, principal point and lens; without it the focal length comes from `hfov_deg` (60)
+    /// and the principal point is the image centre. Throws an `Error` naming a bad or unknown
+    /// option.
     #[wasm_bindgen(constructor)]
     pub fn new(
         #[wasm_bindgen(unchecked_param_type = "CalibratorOptions")] options: JsValue,
