@@ -22,8 +22,9 @@
 //! - *all lanes*: every labelled lane, every predicted boundary;
 //! - *ego lanes* (Aly's "2 lanes"): of the labelled lanes only the nearest one left and the
 //!   nearest one right of the image centre x = (width - 1) / 2 at the bottom row, where a lane's
-//!   bottom position is the point where its end tangent, extended from its lowest end, meets the
-//!   row y = height - 1 (lanes that leave through the side of the image lie far out); of the
+//!   bottom position is the point where the lane, extended from its lowest end along the chord
+//!   of its lowest [`END_DIRECTION_ARC_PX`] of arc length, meets the row y = height - 1 (lanes
+//!   that leave through the side of the image lie far out); of the
 //!   predictions only the `ego-left` and `ego-right` boundaries. Matching ignores the roles.
 //!
 //! correct rate = matched labelled lanes / labelled lanes; false-positive rate = unmatched
@@ -47,6 +48,9 @@ pub const BEZIER_SEGMENTS: usize = 64;
 pub const MEDIAN_THRESHOLD_PX: f64 = 20.0;
 /// Largest min(mean d1, mean d2) of a match, pixels.
 pub const MEAN_THRESHOLD_PX: f64 = 15.0;
+/// Arc length over which a label's direction at its lowest end is taken when it is extended to
+/// the bottom row (see [`bottom_x`]), pixels.
+pub const END_DIRECTION_ARC_PX: f64 = 30.0;
 
 /// One labelled lane.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -117,19 +121,34 @@ pub fn bezier_polyline(p: &[[f64; 2]; 4], segments: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// x where the lane, extended along its tangent at its lowest end, crosses the row
-/// `bottom_y`; the lowest end's own x when the tangent does not go down.
+/// x where the lane, extended from its lowest end along the direction of its lowest
+/// [`END_DIRECTION_ARC_PX`] of arc length (the whole curve when it is shorter), crosses the row
+/// `bottom_y`; the lowest end's own x when that direction does not go down.
+///
+/// The direction is a chord, not the Bezier end tangent P3 - P2: on a short label the end
+/// tangent spans a few pixels and a pixel of labelling noise turns it. cordova1's 214 and 215
+/// label a solid line that starts 15 m ahead, 1.0 m left of the camera, 22 rows tall: its end
+/// tangent (0.9 px right over 7.9 rows) put it right of the image centre at the bottom row, and
+/// so the ego-right lane, where its chord (4.4 px left over 22 rows) puts it left.
 pub fn bottom_x(p: &[[f64; 2]; 4], bottom_y: f64) -> f64 {
-    // The lowest end and the control points behind it, nearest first.
-    let (end, inner) = if p[3][1] >= p[0][1] {
-        (p[3], [p[2], p[1], p[0]])
-    } else {
-        (p[0], [p[1], p[2], p[3]])
+    let lowest_first = p[3][1] >= p[0][1];
+    let at = |k: usize| {
+        let t = k as f64 / BEZIER_SEGMENTS as f64;
+        bezier_point(p, if lowest_first { 1.0 - t } else { t })
     };
-    let Some(q) = inner.iter().find(|q| **q != end) else {
-        return end[0];
-    };
-    let (dx, dy) = (end[0] - q[0], end[1] - q[1]);
+    let end = at(0);
+    // Walk up the curve from its lowest end until END_DIRECTION_ARC_PX of arc length.
+    let mut from = end;
+    let mut arc = 0.0;
+    for k in 1..=BEZIER_SEGMENTS {
+        let q = at(k);
+        arc += (q[0] - from[0]).hypot(q[1] - from[1]);
+        from = q;
+        if arc >= END_DIRECTION_ARC_PX {
+            break;
+        }
+    }
+    let (dx, dy) = (end[0] - from[0], end[1] - from[1]);
     if dy > 1e-9 * (dx.abs() + dy.abs()) {
         end[0] + (bottom_y - end[1]) * dx / dy
     } else {
@@ -510,6 +529,37 @@ mod tests {
         assert_eq!(ego_lanes(&lanes, [640, 480]), [Some(1), Some(2)]);
         assert!(bottom_x(&lanes[4].bezier_xy, 479.0) < -500.0);
         assert_eq!(ego_lanes(&lanes[..1], [640, 480]), [Some(0), None]);
+    }
+
+    #[test]
+    fn a_short_label_is_placed_by_its_chord_not_its_end_tangent() {
+        // cordova1 f00214's solid line: 22 rows tall, 4.4 px left from top to bottom, but its
+        // last control segment turns 0.9 px right. Extended by the end tangent it would cross
+        // the bottom row right of the centre (about 327) and be the ego-right lane.
+        let short = CaltechLane {
+            bezier_xy: [
+                [301.9, 199.5],
+                [300.2, 206.5],
+                [296.6, 213.6],
+                [297.5, 221.5],
+            ],
+            kind: "sw".into(),
+        };
+        let x = bottom_x(&short.bezier_xy, 479.0);
+        assert!((240.0..260.0).contains(&x), "{x}");
+        let lanes = vec![vertical(100.0), short, vertical(480.0)];
+        assert_eq!(ego_lanes(&lanes, [640, 480]), [Some(1), Some(2)]);
+        // A long curve keeps the direction of its lowest 30 px, not its whole chord: a lane
+        // bending from x = 300 at the top to straight down at x = 200 meets the bottom row
+        // within a pixel of 200 (its whole chord would give 188.4).
+        let bend = [
+            [300.0, 200.0],
+            [200.0, 250.0],
+            [200.0, 300.0],
+            [200.0, 450.0],
+        ];
+        let x = bottom_x(&bend, 479.0);
+        assert!((x - 200.0).abs() < 1.0, "{x}");
     }
 
     #[test]
