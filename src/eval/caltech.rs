@@ -142,7 +142,7 @@ pub fn bottom_x(p: &[[f64; 2]; 4], bottom_y: f64) -> f64 {
     let mut arc = 0.0;
     for k in 1..=BEZIER_SEGMENTS {
         let q = at(k);
-        arc += (q[0] - from[0]).hypot(q[1] - from[1]);
+        arc += crate::math::hypot(q[0] - from[0], q[1] - from[1]);
         from = q;
         if arc >= END_DIRECTION_ARC_PX {
             break;
