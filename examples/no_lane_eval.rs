@@ -1,8 +1,9 @@
 //! "No lane" as an answer: every mono tracker through unmarked crossings of a simulated road.
 //!
-//! `cargo run --release --example no_lane_eval -- [SEED_FROM SEED_TO] [SCENARIO] [TRACKERS]`
-//! (defaults: seeds 301..=312, `highway-straight`, every mono tracker; `TRACKERS` a
-//! comma-separated list of ids).
+//! `cargo run --release --example no_lane_eval -- [SEED_FROM SEED_TO] [SCENARIO] [TRACKERS]
+//! [OPTIONS]` (defaults: seeds 301..=312, `highway-straight`, every mono tracker; `TRACKERS` a
+//! comma-separated list of ids; `OPTIONS` a JSON object of options set on top of both presets,
+//! e.g. `'{"valid_marking_factor": 3}'` with `danescu-mono`).
 //!
 //! Each seed renders the scenario for [`FRAMES`] frames through its drawn camera
 //! (`synth::drawn_camera`; the trackers get the true camera) with every marking of the road
@@ -23,7 +24,7 @@ use lanepf::eval::params::{error_series, recovery_frames};
 use lanepf::eval::synthetic::RECOVERY_THRESHOLD_M;
 use lanepf::lane::LaneEstimate;
 use lanepf::synth::{drawn_camera, scenario, Eye, Scene, Wear};
-use lanepf::trackers::{self, Preset, TrackerConfig, TrackerOptions};
+use lanepf::trackers::{self, Preset, TrackerConfig};
 
 const TRACKERS: [&str; 4] = ["adachi-mmpf", "danescu-mono", "lee-cpf", "liu-ppf"];
 /// Frames a run (12 s at 30 frames a second).
@@ -49,13 +50,17 @@ fn track(
     scene_camera: &lanepf::camera::CameraFile,
     frames: &[Vec<u8>],
     preset: Preset,
+    extra: &serde_json::Map<String, serde_json::Value>,
 ) -> Result<Vec<LaneEstimate>, Box<dyn std::error::Error>> {
-    let config = TrackerConfig {
-        camera: scene_camera.clone(),
-        particles: None,
-        seed: 1,
-        options: TrackerOptions::preset(id, preset)?.into(),
-    };
+    let mut options = extra.clone();
+    if let serde_json::Value::Object(base) = trackers::preset_options(id, preset)? {
+        for (key, value) in base {
+            options.entry(key).or_insert(value);
+        }
+    }
+    options.insert("camera".into(), serde_json::to_value(scene_camera)?);
+    options.insert("seed".into(), 1.into());
+    let config = TrackerConfig::from_json_str(&serde_json::Value::Object(options).to_string())?;
     let mut tracker = trackers::create(id, &config)?;
     let mut out = Vec::with_capacity(frames.len());
     for f in frames {
@@ -86,6 +91,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if let Some(bad) = ids.iter().find(|id| !TRACKERS.contains(id)) {
         return Err(format!("{bad} is not one of {}", TRACKERS.join(", ")).into());
     }
+    let extra: serde_json::Map<String, serde_json::Value> = match args.get(5) {
+        Some(json) => serde_json::from_str(json)?,
+        None => serde_json::Map::new(),
+    };
     let presets = [Preset::Paper, Preset::RealRoads];
     let mut tallies: Vec<Tally> = (0..ids.len() * presets.len())
         .map(|_| Tally::default())
@@ -122,7 +131,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut cells = Vec::new();
         for (t, id) in ids.iter().enumerate() {
             for (p, preset) in presets.iter().enumerate() {
-                let preds = track(id, &truth_cam, &frames, *preset)?;
+                let preds = track(id, &truth_cam, &frames, *preset, &extra)?;
                 let tally = &mut tallies[t * presets.len() + p];
                 let (mut u, mut uv, mut m, mut mi) = (0, 0, 0, 0);
                 for (e, &(unmarked, marked)) in preds.iter().zip(&kind) {

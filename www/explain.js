@@ -103,6 +103,7 @@ export const TRACKERS = {
       { path: 'start_iterations', label: 'start rounds on the first frame (ours; 0: the paper’s start)', min: 0, max: 30, step: 1 },
       { path: 'valid_distance_m', label: 'validity tolerance on the road (m; ours; 0: pixels only)', min: 0, max: 0.1, step: 0.005 },
       SUPPORT_FRAMES,
+      { path: 'valid_marking_factor', label: 'support only with a marking edge within this many tolerances too (ours; 0: any road edge)', min: 0, max: 6, step: 0.5 },
       RELOCK,
       ADJACENT,
     ],

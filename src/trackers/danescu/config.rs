@@ -129,6 +129,13 @@ pub struct DanescuConfig {
     /// support swings with the dashes' phase ([`crate::trackers::support_memory`]; ours,
     /// beyond the paper; 1: this frame's alone, the default).
     pub valid_support_frames: usize,
+    /// Validity: an inner-edge point supports its side only when a marking edge (the marking
+    /// image of DT^S) also lies within this many times its tolerance (`valid_distance_px`,
+    /// `valid_distance_m`), besides the road edge (ours, beyond the paper; 0: off, any road
+    /// edge supports, the default). A tree shadow's edge or a seam is a road edge with no
+    /// marking beside it, and would otherwise keep a lane through an unmarked crossing; so is
+    /// a kerb, so a lane bounded by a kerb without paint is never valid with it.
+    pub valid_marking_factor: f64,
     /// Validity: the estimate's MBSAS cluster holds at least this share of the resampled
     /// particles.
     pub valid_cluster_share: f64,
@@ -206,6 +213,7 @@ impl Default for DanescuConfig {
             valid_distance_m: 0.0,
             valid_support: 0.15,
             valid_support_frames: 1,
+            valid_marking_factor: 0.0,
             valid_cluster_share: 0.3,
             relock_share: 0.0,
             start_iterations: 0,

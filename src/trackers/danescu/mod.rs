@@ -44,7 +44,9 @@
 //! resampled particles and, on each side, at least `valid_support` of the estimate's
 //! inner-edge points are within `valid_distance_px` of a road edge (our definition, as for
 //! `lee-cpf`; the paper's validation step is not spelled out; `valid_support_frames`, ours,
-//! lets a side between a dashed line's dashes count on its recent support).
+//! lets a side between a dashed line's dashes count on its recent support; with a positive
+//! `valid_marking_factor`, ours, a point counts only with a marking edge near it as well, so
+//! that shadow edges do not hold a lane through an unmarked crossing).
 //!
 //! With a positive `relock_share` (ours, off by default) a share of the particles is drawn each frame,
 //! after the drift, around the ego pair a bottom-up line detector finds ([`super::relock`]),
@@ -822,6 +824,8 @@ impl Scheduled for DanescuTracker {
     }
 }
 
+#[cfg(test)]
+mod marking_support_tests;
 #[cfg(test)]
 mod start_tests;
 #[cfg(test)]

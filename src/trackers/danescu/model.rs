@@ -160,7 +160,7 @@ pub struct Distances {
     /// D^D (eq. 13), when the density cue is on.
     pub density: Option<f64>,
     /// Share of the left and right inner-edge points within `valid_distance_px` of a road
-    /// edge (the validity check).
+    /// edge (and, with `valid_marking_factor`, of a marking edge; the validity check).
     pub support: [f64; 2],
 }
 
@@ -253,7 +253,9 @@ impl Measurement {
                 });
                 sums[0] += e;
                 sums[2] += m;
-                if e <= near {
+                // A road edge, and with `valid_marking_factor` a marking edge near it too.
+                let marking = self.config.valid_marking_factor;
+                if e <= near && (marking <= 0.0 || m <= marking * near) {
                     support[side] += 1.0;
                 }
             }

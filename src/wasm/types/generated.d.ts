@@ -996,6 +996,18 @@ export interface DanescuOptions {
    */
   valid_support_frames?: number;
   /**
+   * Validity: an inner-edge point supports its side only when a marking edge (the marking
+   * image of DT^S) also lies within this many times its tolerance (`valid_distance_px`,
+   * `valid_distance_m`), besides the road edge (ours, beyond the paper; 0: off, any road
+   * edge supports, the default). A tree shadow's edge or a seam is a road edge with no
+   * marking beside it, and would otherwise keep a lane through an unmarked crossing; so is
+   * a kerb, so a lane bounded by a kerb without paint is never valid with it.
+   *
+   * Range: 0 to 100.
+   * @defaultValue `0`
+   */
+  valid_marking_factor?: number;
+  /**
    * Validity: the estimate's MBSAS cluster holds at least this share of the resampled
    * particles.
    *
