@@ -134,7 +134,8 @@ pub struct DanescuConfig {
     /// `valid_distance_m`), besides the road edge (ours, beyond the paper; 0: off, any road
     /// edge supports, the default). A tree shadow's edge or a seam is a road edge with no
     /// marking beside it, and would otherwise keep a lane through an unmarked crossing; so is
-    /// a kerb, so a lane bounded by a kerb without paint is never valid with it.
+    /// a kerb to danescu-mono, whose lane bounded by a kerb without paint is then never valid
+    /// (danescu-stereo puts the kerbs' feet into the marking image).
     pub valid_marking_factor: f64,
     /// Validity: the estimate's MBSAS cluster holds at least this share of the resampled
     /// particles.
