@@ -233,6 +233,7 @@ impl Measurement {
         let far = MAX_DISTANCE_PX as f64;
         let reach = self.config.negative_reach_px;
         let inset = self.config.negative_offset_m;
+        let marking = self.config.valid_marking_factor;
         let mut sums = [0.0f64; 6];
         let mut n = 0.0;
         let mut support = [0.0f64; 2];
@@ -254,7 +255,6 @@ impl Measurement {
                 sums[0] += e;
                 sums[2] += m;
                 // A road edge, and with `valid_marking_factor` a marking edge near it too.
-                let marking = self.config.valid_marking_factor;
                 if e <= near && (marking <= 0.0 || m <= marking * near) {
                     support[side] += 1.0;
                 }
