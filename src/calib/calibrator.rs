@@ -6,7 +6,7 @@ use super::marking_image::{marking_intensity, working_scale};
 use super::pose::{lateral_at_unit_height, pose_from_vanishing_point, vanishing_point, Pinhole};
 use super::ridges::{find_ridges, keep_continuous, RidgePixel};
 use super::road_colour::keep_on_grey_road;
-use super::tangent::{tangent_column, NearestPixel};
+use super::tangent::{tangent_column, NearestPixel, HORIZON_SEARCH_PX};
 use super::vp_votes::VpVotes;
 use crate::camera::{Camera, CameraFile, Distortion};
 use crate::error::{require_within, Error, Result};
@@ -508,15 +508,24 @@ impl Calibrator {
             let tangent_vp = if self.config.tangent_yaw {
                 let pair = [&working_line(&lines[l], s), &working_line(&lines[r], s)];
                 let rows = shape_rows(vp, bottom, s);
+                // The crossing's row is the horizon on a straight frame; a bend lifts it, and
+                // there the fit takes the row too.
+                let common_bend = (lines[l].bend + lines[r].bend) / (2.0 * s);
+                let search = if common_bend.abs() > BENT_SHARE * self.config.max_bend_px {
+                    HORIZON_SEARCH_PX
+                } else {
+                    0.0
+                };
                 tangent_column(
                     &self.points,
                     pair,
                     vp[1] / s,
                     rows,
                     BEND_BAND_PX,
+                    search,
                     &mut self.tangent_rows,
                 )
-                .map(|u| [u * s, vp[1]])
+                .map(|(u, _)| [u * s, vp[1]])
             } else {
                 None
             };
@@ -734,26 +743,33 @@ impl Calibrator {
 
     /// Median pitch, yaw and width at unit height over the chosen samples, their spreads
     /// (1.4826 MAD) and the number of samples; the yaw at zero bend instead of the median when
-    /// the samples that agree on the pose fix it ([`super::bend_regression`]).
+    /// the samples that agree on the pose fix it ([`super::bend_regression`]); with
+    /// `tangent_yaw` the yaw's median and spread over every sample that agrees on the pose.
     fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3], usize)> {
         if self.samples.is_empty() {
             return None;
         }
         let agreeing = consensus(self.samples.iter().collect());
         let chosen = Self::chosen_samples(&agreeing);
-        let column = |f: fn(&Sample) -> f64| -> (f64, f64) {
-            let v: Vec<f64> = chosen.iter().map(|s| f(s)).collect();
+        let column = |samples: &[&Sample], f: fn(&Sample) -> f64| -> (f64, f64) {
+            let v: Vec<f64> = samples.iter().map(|s| f(s)).collect();
             let m = median(&v);
             let dev: Vec<f64> = v.iter().map(|x| (x - m).abs()).collect();
             (m, 1.4826 * median(&dev))
         };
-        let (pitch, sp) = column(|s| s.pitch);
-        let (mut yaw, sy) = column(|s| s.yaw);
-        // The yaw of a frame that does not bend, over every frame that agrees on the pose.
-        if let Some(y0) = yaw_at_zero_bend(agreeing.iter().map(|s| (s.common_bend, s.yaw))) {
-            yaw = y0;
-        }
-        let (w1, sw) = column(|s| s.width_at_unit_height);
+        let (pitch, sp) = column(&chosen, |s| s.pitch);
+        let (yaw, sy) = if self.config.tangent_yaw {
+            // The tangent's yaw does not follow the bend: the median over every frame that
+            // agrees on the pose. Choosing the straighter frames would choose those whose
+            // pixels happen to bend less, and with them a tangent pulled towards the chord.
+            column(&agreeing, |s| s.yaw)
+        } else {
+            let (median_yaw, sy) = column(&chosen, |s| s.yaw);
+            // The yaw of a frame that does not bend, over every frame that agrees on the pose.
+            let at_zero_bend = yaw_at_zero_bend(agreeing.iter().map(|s| (s.common_bend, s.yaw)));
+            (at_zero_bend.unwrap_or(median_yaw), sy)
+        };
+        let (w1, sw) = column(&chosen, |s| s.width_at_unit_height);
         Some((pitch, yaw, w1, [sp, sy, sw], chosen.len()))
     }
 
@@ -817,6 +833,12 @@ impl Calibrator {
         })
     }
 }
+
+/// A frame whose common bend exceeds this share of `max_bend_px` counts as bent for
+/// `tangent_yaw`: its straight lines' crossing row is lifted by the bend, so the tangent's fit
+/// takes the horizon row too ([`super::tangent`]); on a straighter frame the crossing's row is
+/// the horizon and a free row would only add noise.
+pub const BENT_SHARE: f64 = 0.5;
 
 /// Largest distance in pitch or in yaw, degrees, of a sample from the consensus pose for it to
 /// count (see `consensus`).

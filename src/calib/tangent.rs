@@ -21,6 +21,16 @@
 //! far parts, takes one pixel a row and side (anything more near the horizon, such as a
 //! double line's second stripe, reads as a bend), and where the lens bends lines that its
 //! model does not know (no distortion given for a wide lens) takes that bend for the road's.
+//!
+//! For the same reason t must be counted from the true horizon: a horizon a pixel or two off
+//! also reads as a bend. The straight lines' crossing, which gives the row, rises by 1-3
+//! working pixels on a bend (in the simulator at 1/500 m) when the two boundaries' pixels
+//! cover different rows, so on a bent frame the horizon row v_h is fitted too: the row within
+//! [`HORIZON_SEARCH_PX`] of the crossing's whose least-squares fit leaves the smallest sum of
+//! squared residuals (the tangent lines of both boundaries meet on it; a grid, then a
+//! golden-section search). On a straight frame the crossing's row is the horizon, and the
+//! calibrator holds it there ([`super::calibrator::BENT_SHARE`]): a free row there only adds
+//! noise to a fit whose yaw already scatters by about half a degree from frame to frame.
 
 use super::hough::LineFit;
 use nalgebra::{Matrix4, Vector4};
@@ -31,19 +41,25 @@ pub const MIN_POINTS: usize = 6;
 /// The pixels' rows below the horizon must reach this many times as far as they start.
 pub const MIN_ROW_SPAN: f64 = 1.2;
 
+/// How far (working pixels) the fitted horizon row may lie from the straight lines' crossing
+/// on a bent frame (the calibrator holds it there on a straight one).
+pub const HORIZON_SEARCH_PX: f64 = 3.0;
+
 /// One row's pixel nearest a boundary's straight line: its distance from the line, its column
 /// and its row (working pixels).
 pub type NearestPixel = Option<(f64, f64, f64)>;
 
-/// The column A (working pixels) of the lane's tangent direction at the car: the joint fit of
-/// u = A + B_side t + C / t, t = v - `horizon`, over the rows `rows`, to one pixel a row and
-/// side, the one of `points` nearest that side's line of `lines` (left, right; working pixels)
-/// and within `band` pixels of it. One pixel a row: the second stripe of a double line, which
+/// The column A (working pixels) of the lane's tangent direction at the car, and the horizon
+/// row v_h it used: the joint fit of u = A + B_side t + C / t, t = v - v_h, over the rows
+/// `rows`, to one pixel a row and side, the one of `points` nearest that side's line of
+/// `lines` (left, right; working pixels) and within `band` pixels of it. v_h is `horizon`
+/// when `search` is 0, else the best row within `search` pixels of it (and at most halfway
+/// down to the highest pixel). One pixel a row: the second stripe of a double line, which
 /// leaves the band where the stripes diverge towards the car, would otherwise weigh the far
 /// rows twice and read as a bend (on Caltech's double yellow line a median 6 full-resolution
 /// pixels, 1.1 degrees, of the column). `nearest` is scratch space kept between calls: it
-/// grows only when the rows do. `None` with fewer than [`MIN_POINTS`] rows on a boundary, rows
-/// that do not reach [`MIN_ROW_SPAN`] times as far below the horizon as they start, or a
+/// grows only when the rows do. `None` with fewer than [`MIN_POINTS`] rows on a boundary,
+/// rows that do not reach [`MIN_ROW_SPAN`] times as far below the horizon as they start, or a
 /// singular fit.
 pub fn tangent_column(
     points: &[[f32; 2]],
@@ -51,8 +67,9 @@ pub fn tangent_column(
     horizon: f64,
     rows: (f64, f64),
     band: f64,
+    search: f64,
     nearest: &mut Vec<[NearestPixel; 2]>,
-) -> Option<f64> {
+) -> Option<(f64, f64)> {
     let first = rows.0.max(horizon + 1.0).floor();
     let n_rows = (rows.1 - first).max(0.0) as usize + 1;
     nearest.clear();
@@ -72,28 +89,81 @@ pub fn tangent_column(
             }
         }
     }
-    let mut normal = Matrix4::<f64>::zeros();
-    let mut rhs = Vector4::<f64>::zeros();
     let mut counts = [0usize; 2];
-    let (mut t_min, mut t_max) = (f64::INFINITY, 0.0f64);
+    let (mut y_min, mut y_max) = (f64::INFINITY, f64::NEG_INFINITY);
     for row in nearest.iter() {
         for (side, pixel) in row.iter().enumerate() {
-            let Some((_, x, y)) = *pixel else { continue };
-            let t = y - horizon;
-            let mut basis = Vector4::new(1.0, 0.0, 0.0, 1.0 / t);
-            basis[1 + side] = t;
-            normal += basis * basis.transpose();
-            rhs += basis * x;
-            counts[side] += 1;
-            t_min = t_min.min(t);
-            t_max = t_max.max(t);
+            if let Some((_, _, y)) = *pixel {
+                counts[side] += 1;
+                y_min = y_min.min(y);
+                y_max = y_max.max(y);
+            }
         }
     }
-    if counts.iter().any(|&n| n < MIN_POINTS) || t_max < MIN_ROW_SPAN * t_min {
+    if counts.iter().any(|&n| n < MIN_POINTS) || y_max - horizon < MIN_ROW_SPAN * (y_min - horizon)
+    {
         return None;
     }
-    let solution = normal.try_inverse()? * rhs;
-    solution[0].is_finite().then_some(solution[0])
+    let pixels = || {
+        nearest.iter().flat_map(|row| {
+            row.iter()
+                .enumerate()
+                .filter_map(|(side, p)| p.map(|(_, x, y)| (side, x, y)))
+        })
+    };
+    // The least-squares (A, B_left, B_right, C) for the horizon row `v_h`, and its sum of
+    // squared residuals.
+    let fit = |v_h: f64| -> Option<(Vector4<f64>, f64)> {
+        let basis = |side: usize, y: f64| {
+            let t = y - v_h;
+            let mut b = Vector4::new(1.0, 0.0, 0.0, 1.0 / t);
+            b[1 + side] = t;
+            b
+        };
+        let mut normal = Matrix4::<f64>::zeros();
+        let mut rhs = Vector4::<f64>::zeros();
+        for (side, x, y) in pixels() {
+            let b = basis(side, y);
+            normal += b * b.transpose();
+            rhs += b * x;
+        }
+        let solution = normal.try_inverse()? * rhs;
+        let rss = pixels()
+            .map(|(side, x, y)| (x - basis(side, y).dot(&solution)).powi(2))
+            .sum::<f64>();
+        (solution.iter().all(|v| v.is_finite()) && rss.is_finite()).then_some((solution, rss))
+    };
+    let rss = |v_h: f64| fit(v_h).map_or(f64::INFINITY, |f| f.1);
+    let (lo, hi) = (
+        horizon - search,
+        (horizon + search).min(horizon + 0.5 * (y_min - horizon)),
+    );
+    let mut v_h = horizon;
+    if search > 0.0 {
+        const GRID: usize = 24;
+        let step = (hi - lo) / GRID as f64;
+        let mut best = (rss(horizon), horizon);
+        for k in 0..=GRID {
+            let v = lo + step * k as f64;
+            let r = rss(v);
+            if r < best.0 {
+                best = (r, v);
+            }
+        }
+        // Golden-section search in the grid cells either side of the best row.
+        let (mut a, mut b) = ((best.1 - step).max(lo), (best.1 + step).min(hi));
+        const INV_PHI: f64 = 0.618_033_988_749_895;
+        for _ in 0..30 {
+            let (m1, m2) = (b - INV_PHI * (b - a), a + INV_PHI * (b - a));
+            if rss(m1) < rss(m2) {
+                b = m2;
+            } else {
+                a = m1;
+            }
+        }
+        v_h = 0.5 * (a + b);
+    }
+    fit(v_h).map(|(solution, _)| (solution[0], v_h))
 }
 
 #[cfg(test)]
@@ -139,9 +209,11 @@ mod tests {
                 100.0,
                 (115.0, 300.0),
                 40.0,
+                0.0,
                 &mut Vec::new(),
             )
-            .unwrap();
+            .unwrap()
+            .0;
             assert!((a - 320.0).abs() < 0.05, "c {c}: {a}");
             // The chords cross off the tangent's column on a bend, on it on a straight road.
             let [l, r] = lines;
@@ -157,6 +229,32 @@ mod tests {
     }
 
     #[test]
+    fn the_horizon_row_is_fitted_not_taken_from_the_crossing() {
+        // The chords' crossing two rows off the horizon (row 100), as on a bend: held there,
+        // the fit reads the error as a bend and moves the column; fitted, it finds the row.
+        let (points, lines) = lane(320.0, 300.0);
+        for given in [98.0, 102.0] {
+            let fit = |search: f64| {
+                tangent_column(
+                    &points,
+                    [&lines[0], &lines[1]],
+                    given,
+                    (115.0, 300.0),
+                    40.0,
+                    search,
+                    &mut Vec::new(),
+                )
+                .unwrap()
+            };
+            let (held, _) = fit(0.0);
+            assert!((held - 320.0).abs() > 0.5, "given {given}: {held}");
+            let (column, row) = fit(HORIZON_SEARCH_PX);
+            assert!((column - 320.0).abs() < 0.05, "given {given}: {column}");
+            assert!((row - 100.0).abs() < 0.01, "given {given}: {row}");
+        }
+    }
+
+    #[test]
     fn too_few_pixels_or_rows_give_no_column() {
         let (points, lines) = lane(320.0, 100.0);
         let fit = |rows: (f64, f64), band: f64| {
@@ -166,6 +264,7 @@ mod tests {
                 100.0,
                 rows,
                 band,
+                HORIZON_SEARCH_PX,
                 &mut Vec::new(),
             )
         };
@@ -179,6 +278,7 @@ mod tests {
             100.0,
             (0.0, 300.0),
             4.0,
+            0.0,
             &mut Vec::new(),
         );
         assert!(none.is_none());
@@ -202,9 +302,11 @@ mod tests {
                 100.0,
                 (115.0, 300.0),
                 4.0,
+                0.0,
                 scratch,
             )
             .unwrap()
+            .0
         };
         let a = fit(&points, &mut scratch);
         assert!((a - 320.0).abs() < 0.05, "{a}");
