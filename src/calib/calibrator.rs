@@ -744,7 +744,8 @@ impl Calibrator {
     /// Median pitch, yaw and width at unit height over the chosen samples, their spreads
     /// (1.4826 MAD) and the number of samples; the yaw at zero bend instead of the median when
     /// the samples that agree on the pose fix it ([`super::bend_regression`]); with
-    /// `tangent_yaw` the yaw's median and spread over every sample that agrees on the pose.
+    /// `tangent_yaw` the yaw's median and spread over every sample that agrees on the pose (the
+    /// count stays the chosen samples', so the confidence errs low there).
     fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3], usize)> {
         if self.samples.is_empty() {
             return None;

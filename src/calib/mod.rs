@@ -34,9 +34,9 @@
 //! passes as straight moves the vanishing point towards its inside ([`bend_regression`]).
 //! With `tangent_yaw` each frame's yaw comes from the lane's tangent at the car instead of
 //! the straight lines' crossing ([`tangent`]: both boundaries fitted with a curvature term,
-//! and on a bent frame the horizon row), and the estimate's yaw is the median over every frame that agrees
-//! on the pose: the tangent does not follow the bend, so neither the straighter half nor the
-//! yaw at zero bend applies to it.
+//! and on a bent frame the horizon row), and the estimate's yaw is the median over every
+//! frame that agrees on the pose: the tangent does not follow the bend, so neither the
+//! straighter half nor the yaw at zero bend applies to it.
 //!
 //! What it cannot know: the focal length, which one vanishing point and parallel lines leave
 //! undetermined (a wrong f stretches the road lengthwise, not across), comes from the field of
