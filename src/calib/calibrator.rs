@@ -505,12 +505,14 @@ impl Calibrator {
         let stable = self.stable();
         let mut used = false;
         if let (Some(vp), true, Some([l, r])) = (vp_straight, stable, ego) {
+            // The boundaries' bends in working pixels, and their common bend.
+            let (bl, br) = (lines[l].bend / s, lines[r].bend / s);
+            let common_bend = (bl + br) / 2.0;
             let tangent_vp = if self.config.tangent_yaw {
                 let pair = [&working_line(&lines[l], s), &working_line(&lines[r], s)];
                 let rows = shape_rows(vp, bottom, s);
                 // The crossing's row is the horizon on a straight frame; a bend lifts it, and
                 // there the fit takes the row too.
-                let common_bend = (lines[l].bend + lines[r].bend) / (2.0 * s);
                 let search = if common_bend.abs() > BENT_SHARE * self.config.max_bend_px {
                     HORIZON_SEARCH_PX
                 } else {
@@ -531,9 +533,8 @@ impl Calibrator {
             };
             if let Some(mut sample) = self.sample(vp, tangent_vp, &lines[l], &lines[r], bottom_row)
             {
-                let (bl, br) = (lines[l].bend / s, lines[r].bend / s);
-                sample.bend = (bl + br).abs() / 2.0 + (bl - br).abs() / 6.0;
-                sample.common_bend = (bl + br) / 2.0;
+                sample.bend = common_bend.abs() + (bl - br).abs() / 6.0;
+                sample.common_bend = common_bend;
                 if self.samples.len() == MAX_SAMPLES {
                     self.samples.pop_front();
                 }

@@ -150,15 +150,21 @@ pub fn tangent_column(
                 best = (r, v);
             }
         }
-        // Golden-section search in the grid cells either side of the best row.
+        // Golden-section search in the grid cells either side of the best row: one new fit an
+        // iteration, the other inner point carried over.
         let (mut a, mut b) = ((best.1 - step).max(lo), (best.1 + step).min(hi));
         const INV_PHI: f64 = 0.618_033_988_749_895;
+        let (mut m1, mut m2) = (b - INV_PHI * (b - a), a + INV_PHI * (b - a));
+        let (mut r1, mut r2) = (rss(m1), rss(m2));
         for _ in 0..30 {
-            let (m1, m2) = (b - INV_PHI * (b - a), a + INV_PHI * (b - a));
-            if rss(m1) < rss(m2) {
-                b = m2;
+            if r1 < r2 {
+                (b, m2, r2) = (m2, m1, r1);
+                m1 = b - INV_PHI * (b - a);
+                r1 = rss(m1);
             } else {
-                a = m1;
+                (a, m1, r1) = (m1, m2, r2);
+                m2 = a + INV_PHI * (b - a);
+                r2 = rss(m2);
             }
         }
         v_h = 0.5 * (a + b);
