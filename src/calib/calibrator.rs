@@ -166,6 +166,11 @@ pub const HEIGHT_RANGE_M: [f64; 2] = [0.8, 4.0];
 pub const MAX_LANE_OFFSET: f64 = 0.35;
 /// Samples for full confidence by count.
 const FULL_COUNT: f64 = 30.0;
+/// Samples that must agree on the pose before the estimate sets the rows searched and picks
+/// the ego pair ([`Calibrator::prior_vanishing_point`]): five stills that each imply a pose of
+/// their own make a "consensus" of the earliest one, and a band searched from a wrong horizon
+/// finds trees and buildings that keep it wrong.
+const MIN_PRIOR_AGREEING: usize = 3;
 
 /// Estimates a camera's pitch, yaw and height from the lane markings of the frames it is fed
 /// (see the [module docs](super)).
@@ -554,8 +559,9 @@ impl Calibrator {
 
     /// Where the road vanishes, as far as is known before this frame: the mode of the recent
     /// line crossings once it holds a fair share of them (it follows the road and cannot lock
-    /// onto the calibrator's own earlier choices), else the estimate once it has a few frames.
-    fn prior_vanishing_point(&self) -> Option<[f64; 2]> {
+    /// onto the calibrator's own earlier choices), else the estimate once a few frames agree on
+    /// it.
+    pub(super) fn prior_vanishing_point(&self) -> Option<[f64; 2]> {
         if self.known_vanishing_point.is_some() {
             return self.known_vanishing_point;
         }
@@ -565,7 +571,7 @@ impl Calibrator {
             {
                 Some(mode)
             }
-            _ if self.samples.len() >= 5 => self.current_vanishing_point(),
+            _ if self.samples.len() >= 5 => self.agreed_vanishing_point(),
             _ => None,
         }
     }
@@ -721,8 +727,10 @@ impl Calibrator {
         })
     }
 
-    fn current_vanishing_point(&self) -> Option<[f64; 2]> {
+    /// The estimate's vanishing point once [`MIN_PRIOR_AGREEING`] samples agree on the pose.
+    fn agreed_vanishing_point(&self) -> Option<[f64; 2]> {
         self.estimate_angles()
+            .filter(|&(.., n)| n >= MIN_PRIOR_AGREEING)
             .map(|(pitch, yaw, ..)| vanishing_point(&self.pinhole, pitch, yaw))
     }
 
@@ -773,6 +781,12 @@ impl Calibrator {
         };
         let (w1, sw) = column(&chosen, |s| s.width_at_unit_height);
         Some((pitch, yaw, w1, [sp, sy, sw], chosen.len()))
+    }
+
+    /// Adds a measured sample as a frame would (for the tests of the prior).
+    #[cfg(test)]
+    pub(super) fn push_sample(&mut self, sample: Sample) {
+        self.samples.push_back(sample);
     }
 
     /// The median yaw over the samples the estimate chooses, radians: the estimate's yaw

@@ -262,6 +262,51 @@ fn samples_far_from_the_consensus_do_not_move_the_estimate() {
     assert_eq!(kept.len(), calibrator::MAX_SAMPLES * 3 / 4);
 }
 
+/// Five frames that each imply a pose of their own are no consensus: the estimate (then the
+/// earliest frame's pose) does not set the rows searched; once three agree, their pose does.
+/// (On CULane's stills a band searched from one still's wrong horizon found the trees above
+/// the road and kept the estimate there.)
+#[test]
+fn a_pose_no_frames_agree_on_does_not_set_the_search() {
+    use super::calibrator::Sample;
+    use super::pose::vanishing_point;
+    let truth = drawn_camera(101);
+    let mut cal = Calibrator::new(640, 480, Some(&truth), CalibratorConfig::default()).unwrap();
+    let s = |pitch_deg: f64, yaw_deg: f64| Sample {
+        pitch: pitch_deg.to_radians(),
+        yaw: yaw_deg.to_radians(),
+        width_at_unit_height: 2.4,
+        bend: 0.0,
+        common_bend: 0.0,
+    };
+    for (pitch, yaw) in [
+        (9.0, 13.0),
+        (-3.5, -2.6),
+        (3.6, -6.4),
+        (14.0, 0.3),
+        (1.7, 5.1),
+    ] {
+        cal.push_sample(s(pitch, yaw));
+    }
+    assert!(cal.estimate().is_some());
+    assert_eq!(cal.prior_vanishing_point(), None);
+    cal.push_sample(s(-3.4, -2.5));
+    assert_eq!(cal.prior_vanishing_point(), None, "two agree");
+    cal.push_sample(s(-3.6, -2.7));
+    let k = super::pose::Pinhole {
+        fx: truth.fx,
+        fy: truth.fy,
+        cx: truth.cx,
+        cy: truth.cy,
+    };
+    let want = vanishing_point(&k, (-3.5f64).to_radians(), (-2.6f64).to_radians());
+    let got = cal.prior_vanishing_point().expect("three agree");
+    assert!(
+        (got[0] - want[0]).abs() < 1.0 && (got[1] - want[1]).abs() < 1.0,
+        "{got:?} against {want:?}"
+    );
+}
+
 /// Calibrators with the intrinsics of `drawn_camera(seed)`, one per config, fed the same
 /// `frames` frames of scenario `name` seen through that camera.
 fn feed_drive<const N: usize>(
