@@ -1,5 +1,6 @@
 //! The calibrator against the simulator's known cameras, and its input checks.
 
+use super::calibrator::Sample;
 use super::*;
 use crate::camera::{Camera, CameraFile};
 use crate::synth::{drawn_camera, scenario, Eye, Scene};
@@ -229,18 +230,22 @@ fn a_vehicles_bright_lines_beside_the_car_do_not_set_the_camera() {
     );
 }
 
-/// The estimate is the median over the samples that agree on the pose: a third of the samples
-/// from elsewhere (a vehicle's lines, a bend) do not move it.
-#[test]
-fn samples_far_from_the_consensus_do_not_move_the_estimate() {
-    use super::calibrator::Sample;
-    let s = |pitch_deg: f64, yaw_deg: f64| Sample {
+/// A measured sample of straight road (2.4 of lane width per metre of height).
+fn sample(pitch_deg: f64, yaw_deg: f64) -> Sample {
+    Sample {
         pitch: pitch_deg.to_radians(),
         yaw: yaw_deg.to_radians(),
         width_at_unit_height: 2.4,
         bend: 0.0,
         common_bend: 0.0,
-    };
+    }
+}
+
+/// The estimate is the median over the samples that agree on the pose: a third of the samples
+/// from elsewhere (a vehicle's lines, a bend) do not move it.
+#[test]
+fn samples_far_from_the_consensus_do_not_move_the_estimate() {
+    let s = sample;
     let mut samples = vec![s(-3.5, -2.6), s(-3.4, -2.5), s(-3.6, -2.7), s(-3.5, -2.4)];
     samples.extend([s(3.6, -6.4), s(9.7, 0.3), s(1.7, 5.1)]);
     let kept = calibrator::consensus(samples.iter().collect());
@@ -268,17 +273,10 @@ fn samples_far_from_the_consensus_do_not_move_the_estimate() {
 /// the road and kept the estimate there.)
 #[test]
 fn a_pose_no_frames_agree_on_does_not_set_the_search() {
-    use super::calibrator::Sample;
     use super::pose::vanishing_point;
     let truth = drawn_camera(101);
     let mut cal = Calibrator::new(640, 480, Some(&truth), CalibratorConfig::default()).unwrap();
-    let s = |pitch_deg: f64, yaw_deg: f64| Sample {
-        pitch: pitch_deg.to_radians(),
-        yaw: yaw_deg.to_radians(),
-        width_at_unit_height: 2.4,
-        bend: 0.0,
-        common_bend: 0.0,
-    };
+    let s = sample;
     for (pitch, yaw) in [
         (9.0, 13.0),
         (-3.5, -2.6),
