@@ -8,7 +8,10 @@
 //! gives pitch and yaw (`pose_from_vanishing_point`, no roll), and with the dataset's height the
 //! lane width at the lowest labelled row. Prints each frame and the medians, then the dataset's
 //! pose and what `Calibrator` estimates from the frames (intrinsics given), so the three are
-//! compared in one run.
+//! compared in one run. Last, over the frames the calibrator used (not all of them straight),
+//! the yaw of the labels' tangent at the car: each ego lane's line over its lowest
+//! `TANGENT_ROWS_PX` rows, where the two meet, which is what `tangent_yaw` measures in the
+//! pixels. `-- [DATA_DIR] --tangent-yaw` calibrates with `tangent_yaw`.
 
 use lanepf::calib::pose::{lateral_at_unit_height, pose_from_vanishing_point, Pinhole};
 use lanepf::calib::{Calibrator, CalibratorConfig};
@@ -22,6 +25,9 @@ type Res<T> = Result<T, Box<dyn std::error::Error>>;
 /// Largest distance, pixels, of a labelled lane's samples from its fitted line for the lane
 /// to count as straight.
 const STRAIGHT_PX: f64 = 2.0;
+
+/// Rows above a labelled lane's lowest point over which its tangent at the car is fitted.
+const TANGENT_ROWS_PX: f64 = 40.0;
 
 /// x = a + b y fitted to `pts`, and the largest residual.
 fn fit_line(pts: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
@@ -47,11 +53,22 @@ fn median(v: &mut [f64]) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
+/// Where the lines x = a + b y of two fits meet, unless they are parallel.
+fn crossing(l: &(f64, f64, f64), r: &(f64, f64, f64)) -> Option<[f64; 2]> {
+    if (l.1 - r.1).abs() < 1e-6 {
+        return None;
+    }
+    let y = (r.0 - l.0) / (l.1 - r.1);
+    Some([l.0 + l.1 * y, y])
+}
+
 fn main() -> Res<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let tangent_yaw = args.iter().any(|a| a == "--tangent-yaw");
     let data = PathBuf::from(
-        std::env::args()
-            .nth(1)
-            .unwrap_or_else(|| "../shared/data".into()),
+        args.iter()
+            .find(|a| !a.starts_with("--"))
+            .map_or("../shared/data", |a| a.as_str()),
     )
     .join("caltech-cordova1");
     let camera = CameraFile::read(&data.join("camera.json"))?;
@@ -74,11 +91,13 @@ fn main() -> Res<()> {
         let (Some(l), Some(r)) = (fit_line(&lp), fit_line(&rp)) else {
             continue;
         };
-        if l.2 > STRAIGHT_PX || r.2 > STRAIGHT_PX || (l.1 - r.1).abs() < 1e-6 {
+        if l.2 > STRAIGHT_PX || r.2 > STRAIGHT_PX {
             continue;
         }
-        let y = (r.0 - l.0) / (l.1 - r.1);
-        let [pitch, yaw] = pose_from_vanishing_point(&k, [l.0 + l.1 * y, y]);
+        let Some(vp) = crossing(&l, &r) else {
+            continue;
+        };
+        let [pitch, yaw] = pose_from_vanishing_point(&k, vp);
         // The lowest row both lanes reach.
         let low = |p: &[[f64; 2]]| p.iter().map(|q| q[1]).fold(f64::MIN, f64::max);
         let row = low(&lp).min(low(&rp));
@@ -117,11 +136,32 @@ fn main() -> Res<()> {
         camera.width,
         camera.height,
         Some(&camera),
-        CalibratorConfig::default(),
+        CalibratorConfig {
+            tangent_yaw,
+            ..CalibratorConfig::default()
+        },
     )?;
+    let mut tangent_yaws = Vec::new();
     for frame in &labels.frames {
         let image = read_rgba(&data.join("frames").join(&frame.frame))?;
         calibrator.feed_rgba(&image.data, image.width, image.height)?;
+        if calibrator.last_observation().used {
+            let [Some(li), Some(ri)] = ego_lanes(&frame.lanes, size) else {
+                continue;
+            };
+            let near = |i: usize| {
+                let p = bezier_polyline(&frame.lanes[i].bezier_xy, 200);
+                let lowest = p.iter().map(|q| q[1]).fold(f64::MIN, f64::max);
+                let rows: Vec<[f64; 2]> = p
+                    .into_iter()
+                    .filter(|q| q[1] >= lowest - TANGENT_ROWS_PX)
+                    .collect();
+                fit_line(&rows)
+            };
+            if let Some(vp) = near(li).zip(near(ri)).and_then(|(l, r)| crossing(&l, &r)) {
+                tangent_yaws.push(pose_from_vanishing_point(&k, vp)[1].to_degrees());
+            }
+        }
     }
     match calibrator.estimate() {
         Some(e) => println!(
@@ -129,6 +169,13 @@ fn main() -> Res<()> {
             e.camera.pitch_deg, e.camera.yaw_deg, e.camera.height_m, e.frames_used, e.confidence
         ),
         None => println!("calibrator:   no estimate"),
+    }
+    if !tangent_yaws.is_empty() {
+        println!(
+            "labels' tangent at the car over the {} labelled frames the calibrator used: median yaw {:.2} deg",
+            tangent_yaws.len(),
+            median(&mut tangent_yaws)
+        );
     }
     Ok(())
 }
