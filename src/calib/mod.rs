@@ -9,7 +9,8 @@
 //! 1. the marking intensity (white in luma, yellow where blue is low) and the saturation are
 //!    box-averaged to at most 480 columns ([`marking_image`]);
 //! 2. marking pixels are the centres of narrow bright ridges along rows ([`ridges`]), taken
-//!    from just below the horizon (once it is known) to near the bottom, kept where grey road
+//!    from just below the horizon (once it is known: the mode of the recent lines' crossings,
+//!    else the estimate once three frames agree on it) to near the bottom, kept where grey road
 //!    darker than the paint lies beside them ([`road_colour`]: not foliage, car paint or sky),
 //!    and undistorted when the lens is known;
 //! 3. straight lines through them come from a Hough transform with least-squares refinement,
