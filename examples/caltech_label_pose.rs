@@ -11,7 +11,10 @@
 //! compared in one run. Last, over the frames the calibrator used (not all of them straight),
 //! the yaw of the labels' tangent at the car: each ego lane's line over its lowest
 //! `TANGENT_ROWS_PX` rows, where the two meet, which is what `tangent_yaw` measures in the
-//! pixels. `-- [DATA_DIR] --tangent-yaw` calibrates with `tangent_yaw`.
+//! pixels. `-- [DATA_DIR] --tangent-yaw` calibrates with `tangent_yaw`. Then, on the same
+//! frames, where the calibrator's marking pixels lie against the labels: per ego side and
+//! band of `RESIDUAL_BAND_PX` rows, the mean column of the pixel nearest each labelled row
+//! (within `RESIDUAL_MAX_PX`) minus the label's.
 
 use lanepf::calib::pose::{lateral_at_unit_height, pose_from_vanishing_point, Pinhole};
 use lanepf::calib::{Calibrator, CalibratorConfig};
@@ -28,6 +31,25 @@ const STRAIGHT_PX: f64 = 2.0;
 
 /// Rows above a labelled lane's lowest point over which its tangent at the car is fitted.
 const TANGENT_ROWS_PX: f64 = 40.0;
+
+/// Rows per band of the pixels-against-labels table.
+const RESIDUAL_BAND_PX: f64 = 40.0;
+
+/// A marking pixel further than this from a label's column in its row is not that label's.
+const RESIDUAL_MAX_PX: f64 = 8.0;
+
+/// Column of the polyline `p` at row `y`, where it crosses that row.
+fn column_at(p: &[[f64; 2]], y: f64) -> Option<f64> {
+    p.windows(2).find_map(|w| {
+        let (lo, hi) = if w[0][1] < w[1][1] {
+            (w[0], w[1])
+        } else {
+            (w[1], w[0])
+        };
+        (lo[1] <= y && y <= hi[1] && hi[1] > lo[1])
+            .then(|| lo[0] + (hi[0] - lo[0]) * (y - lo[1]) / (hi[1] - lo[1]))
+    })
+}
 
 /// x = a + b y fitted to `pts`, and the largest residual.
 fn fit_line(pts: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
@@ -142,6 +164,8 @@ fn main() -> Res<()> {
         },
     )?;
     let mut tangent_yaws = Vec::new();
+    // (side, band) -> sum and count of pixel column minus label column.
+    let mut residuals = std::collections::BTreeMap::<(usize, i64), (f64, usize)>::new();
     for frame in &labels.frames {
         let image = read_rgba(&data.join("frames").join(&frame.frame))?;
         calibrator.feed_rgba(&image.data, image.width, image.height)?;
@@ -158,6 +182,29 @@ fn main() -> Res<()> {
                     .collect();
                 fit_line(&rows)
             };
+            for (side, i) in [(0, li), (1, ri)] {
+                let label = bezier_polyline(&frame.lanes[i].bezier_xy, 400);
+                // Per pixel row, the marking pixel nearest the label.
+                let mut nearest = std::collections::BTreeMap::<i64, f64>::new();
+                for q in calibrator.marking_pixels() {
+                    let Some(x) = column_at(&label, q[1]) else {
+                        continue;
+                    };
+                    let d = q[0] - x;
+                    let e = nearest.entry(q[1].round() as i64).or_insert(d);
+                    if d.abs() < e.abs() {
+                        *e = d;
+                    }
+                }
+                for (row, d) in nearest {
+                    if d.abs() <= RESIDUAL_MAX_PX {
+                        let band = (row as f64 / RESIDUAL_BAND_PX).floor() as i64;
+                        let cell = residuals.entry((side, band)).or_insert((0.0, 0));
+                        cell.0 += d;
+                        cell.1 += 1;
+                    }
+                }
+            }
             if let Some(vp) = near(li).zip(near(ri)).and_then(|(l, r)| crossing(&l, &r)) {
                 tangent_yaws.push(pose_from_vanishing_point(&k, vp)[1].to_degrees());
             }
@@ -176,6 +223,24 @@ fn main() -> Res<()> {
             tangent_yaws.len(),
             median(&mut tangent_yaws)
         );
+    }
+    println!(
+        "the calibrator's marking pixels nearest the labels, minus the labels, on those frames (mean, pixels; rows):"
+    );
+    for (side, name) in [(0, "ego-left "), (1, "ego-right")] {
+        let cells: Vec<String> = residuals
+            .iter()
+            .filter(|((s, _), _)| *s == side)
+            .map(|((_, band), (sum, n))| {
+                let top = *band as f64 * RESIDUAL_BAND_PX;
+                format!(
+                    "{top:.0}-{:.0}: {:+.2} ({n})",
+                    top + RESIDUAL_BAND_PX - 1.0,
+                    sum / *n as f64
+                )
+            })
+            .collect();
+        println!("  {name}  {}", cells.join(", "));
     }
     Ok(())
 }
