@@ -24,6 +24,7 @@
 
 pub mod caltech;
 pub mod culane;
+pub mod kitti_road;
 pub mod lane_changes;
 pub mod lane_configuration;
 pub mod params;
