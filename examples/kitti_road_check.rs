@@ -9,7 +9,8 @@
 //! with the papers' options and with `real-roads`; its ego lane (the image area between its ego-left and ego-right
 //! boundaries) is scored against the mask pixel by pixel in the image
 //! ([`lanepf::eval::kitti_road::score_ego_lane`]; KITTI's own benchmark scores a bird's-eye
-//! view, so the figures are not comparable with its table).
+//! view, so the figures are not comparable with its table). It prints the camera as a
+//! `camera.json` too, for `lanepf track --camera` and `lanepf eval --format kitti-road`.
 
 use lanepf::calib::{Calibrator, CalibratorConfig};
 use lanepf::eval::kitti_road::{camera_from_calib, read_ego_lane_mask, score_ego_lane};
@@ -49,6 +50,7 @@ fn main() -> Res<()> {
         camera.roll_deg,
         camera.height_m
     );
+    println!("as a camera.json: {}", camera.to_json_string());
     println!(
         "\ntracker seeds {}-{}: mean (min-max) over the seeds; a seed's figures count 0 when it is not valid",
         SEEDS.start(),

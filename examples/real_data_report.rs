@@ -356,6 +356,12 @@ fn summary(metrics: &Metrics) -> String {
             r.fp,
             r.fn_rate
         ),
+        Metrics::KittiRoad(r) => format!(
+            "F1 {:.3} (P {} R {})",
+            r.f1.unwrap_or(0.0),
+            pct(r.precision),
+            pct(r.recall)
+        ),
         Metrics::Synthetic(_) => String::new(),
     }
 }

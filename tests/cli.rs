@@ -280,7 +280,7 @@ fn eval_scores_ground_truth_as_perfect_and_a_shifted_copy_lower() {
     let (code, _, err) = lanepf(&["eval", "--pred", o, "--gt", o, "--format", "kitti"]);
     assert_eq!(code, 1);
     assert!(
-        err.contains("synthetic, caltech, tusimple or culane"),
+        err.contains("synthetic, caltech, tusimple, culane or kitti-road"),
         "{err}"
     );
     std::fs::remove_dir_all(&out).unwrap();
@@ -957,5 +957,84 @@ fn eval_suite_adachi_finds_the_boundaries_of_drawn_straight_highways() {
     assert_eq!(scores["detection_rate"], 1.0, "{scores}");
     let accuracy = scores["point_accuracy"].as_f64().unwrap();
     assert!(accuracy > 0.9, "boundary accuracy {accuracy}");
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// `eval --format kitti-road`: a folder of KITTI lane masks, each frame's ego lane scored pixel
+/// by pixel; a mask named otherwise is an error that says how KITTI names them.
+#[test]
+fn eval_scores_the_ego_lane_against_kitti_road_masks() {
+    let out = temp("kitti-road");
+    let gt = out.join("gt_image_2");
+    std::fs::create_dir_all(&gt).unwrap();
+    // 20 x 10: rows 0-3 not evaluated (black), rows 4-9 the lane in columns 8-11 (magenta).
+    let mut rgba = Vec::new();
+    for y in 0..10 {
+        for x in 0..20 {
+            let c = match (y, x) {
+                (0..=3, _) => [0, 0, 0],
+                (_, 8..=11) => [255, 0, 255],
+                _ => [255, 0, 0],
+            };
+            rgba.extend_from_slice(&[c[0], c[1], c[2], 255]);
+        }
+    }
+    lanepf::image::write_rgba_png(&gt.join("um_lane_000000.png"), &rgba, 20, 10).unwrap();
+    lanepf::image::write_rgba_png(&gt.join("umm_lane_000001.png"), &rgba, 20, 10).unwrap();
+    // um_000000: the lane exactly; umm_000001: two columns to the right (columns 10-13).
+    let line = |frame: &str, left: f64, right: f64| {
+        format!(
+            r#"{{"frame": "{frame}", "valid": true, "ms": 1, "lateral_offset_m": 0, "heading_rad": 0, "curvature_per_m": 0, "lane_width_m": 3.6, "boundaries": [{{"role": "ego-left", "points": [[{left}, 9], [{left}, 0]]}}, {{"role": "ego-right", "points": [[{right}, 9], [{right}, 0]]}}]}}"#
+        )
+    };
+    let pred = out.join("pred.jsonl");
+    std::fs::write(
+        &pred,
+        [
+            line("image_2/um_000000.png", 8.0, 11.0),
+            line("image_2/umm_000001.png", 10.0, 13.0),
+        ]
+        .join("\n"),
+    )
+    .unwrap();
+    let (p, g) = (pred.to_str().unwrap(), gt.to_str().unwrap());
+    let (code, stdout, err) = lanepf(&[
+        "eval",
+        "--pred",
+        p,
+        "--gt",
+        g,
+        "--format",
+        "kitti-road",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let kitti = &report["metrics"]["kitti-road"];
+    // 24 lane pixels a frame: the first all found; the second 12 found, 12 false, 12 missed.
+    assert_eq!(kitti["total"]["true_positives"], 36, "{stdout}");
+    assert_eq!(kitti["total"]["false_positives"], 12, "{stdout}");
+    assert_eq!(kitti["total"]["false_negatives"], 12, "{stdout}");
+    assert_eq!(kitti["frames"][0]["frame"], "um_000000.png", "{stdout}");
+    let (code, stdout, err) = lanepf(&[
+        "eval",
+        "--pred",
+        p,
+        "--gt",
+        g,
+        "--format",
+        "kitti-road",
+        "--per-frame",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        stdout.contains("F1                                   75.0 %"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("umm_000001.png"), "{stdout}");
+    std::fs::copy(gt.join("um_lane_000000.png"), gt.join("_lane_000002.png")).unwrap();
+    let (code, _, err) = lanepf(&["eval", "--pred", p, "--gt", g, "--format", "kitti-road"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("<category>_lane_<number>.png"), "{err}");
     std::fs::remove_dir_all(&out).unwrap();
 }

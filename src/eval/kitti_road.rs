@@ -33,7 +33,9 @@ use crate::error::{Error, Result};
 use crate::image::read_rgba;
 use crate::lane::{LaneEstimate, Role};
 use crate::math::{atan2, rad_to_deg};
-use std::path::Path;
+use serde::Serialize;
+use std::fmt;
+use std::path::{Path, PathBuf};
 
 /// The camera of a KITTI road frame `width` x `height` from its calibration file's text.
 ///
@@ -146,7 +148,7 @@ pub fn read_ego_lane_mask(path: &Path) -> Result<EgoLaneMask> {
 }
 
 /// Pixel counts of a predicted ego lane against a mask.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub struct MaskScore {
     /// Lane pixels predicted as lane.
     pub true_positives: usize,
@@ -237,6 +239,169 @@ pub fn score_ego_lane(estimate: &LaneEstimate, mask: &EgoLaneMask) -> Result<Mas
         }
     }
     Ok(score)
+}
+
+/// One KITTI road ground-truth frame: the image's file name and its lane mask's path.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct KittiRoadFrame {
+    /// The image's file name (`um_000000.png` for the mask `um_lane_000000.png`).
+    pub frame: String,
+    /// The mask file.
+    pub mask: PathBuf,
+}
+
+/// The frames of a KITTI road lane mask `path`, or of every `*_lane_*.png` in the folder
+/// `path` (KITTI's `gt_image_2`), sorted by name. The masks are read when scored.
+///
+/// # Errors
+/// [`Error::Io`] when the folder cannot be listed; [`Error::Config`] when it holds no lane
+/// masks or a file's name is not `<category>_lane_<number>.png`.
+pub fn read_labels(path: &Path) -> Result<Vec<KittiRoadFrame>> {
+    let frame = |mask: &Path| -> Result<KittiRoadFrame> {
+        let name = mask
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        match name.split_once("_lane_") {
+            Some((category, rest)) if !category.is_empty() && rest.ends_with(".png") => {
+                Ok(KittiRoadFrame {
+                    frame: format!("{category}_{rest}"),
+                    mask: mask.to_path_buf(),
+                })
+            }
+            _ => Err(Error::Config(format!(
+                "{}: a KITTI road lane mask is named <category>_lane_<number>.png \
+                 (gt_image_2/um_lane_000000.png)",
+                mask.display()
+            ))),
+        }
+    };
+    if !path.is_dir() {
+        return Ok(vec![frame(path)?]);
+    }
+    let io = |e: std::io::Error| Error::Io {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    };
+    let mut masks: Vec<PathBuf> = std::fs::read_dir(path)
+        .map_err(io)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n.to_string_lossy().contains("_lane_"))
+        })
+        .collect();
+    masks.sort();
+    if masks.is_empty() {
+        return Err(Error::Config(format!(
+            "{}: no KITTI road lane masks (*_lane_*.png)",
+            path.display()
+        )));
+    }
+    masks.iter().map(|m| frame(m)).collect()
+}
+
+/// One frame's pixel counts.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct KittiRoadFrameScore {
+    /// The image's file name.
+    pub frame: String,
+    /// Its pixel counts.
+    pub score: MaskScore,
+}
+
+/// The ego-lane pixel counts over every frame, and each frame's.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct KittiRoadReport {
+    /// Pixels summed over the frames.
+    pub total: MaskScore,
+    /// Precision of the summed pixels (`None` when nothing was predicted).
+    pub precision: Option<f64>,
+    /// Recall of the summed pixels.
+    pub recall: Option<f64>,
+    /// F1 of the summed pixels.
+    pub f1: Option<f64>,
+    /// Each frame, in the ground truth's order.
+    pub frames: Vec<KittiRoadFrameScore>,
+}
+
+impl KittiRoadReport {
+    /// One line a frame: its pixel counts and F1 (`lanepf eval --per-frame`).
+    pub fn frames_table(&self) -> String {
+        let mut out = String::from("  frame                     TP       FP       FN     F1\n");
+        for f in &self.frames {
+            let s = f.score;
+            out.push_str(&format!(
+                "  {:<20} {:>8} {:>8} {:>8}  {}\n",
+                f.frame,
+                s.true_positives,
+                s.false_positives,
+                s.false_negatives,
+                s.f1().map_or("n/a".into(), |v| format!("{v:.3}"))
+            ));
+        }
+        out
+    }
+}
+
+impl fmt::Display for KittiRoadReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let pct = |r: Option<f64>| r.map_or("n/a".into(), |r| format!("{:.1} %", 100.0 * r));
+        let t = &self.total;
+        writeln!(f, "  KITTI road ego lane (image pixels)   value")?;
+        writeln!(
+            f,
+            "  TP / FP / FN pixels                  {} / {} / {}",
+            t.true_positives, t.false_positives, t.false_negatives
+        )?;
+        writeln!(
+            f,
+            "  precision                            {}",
+            pct(self.precision)
+        )?;
+        writeln!(
+            f,
+            "  recall                               {}",
+            pct(self.recall)
+        )?;
+        write!(f, "  F1                                   {}", pct(self.f1))
+    }
+}
+
+/// Scores predictions (`preds[i]` belongs to `labels[i]`; `None`: no prediction, nothing
+/// predicted), reading each frame's mask.
+///
+/// # Errors
+/// [`Error::Config`] when there are no frames; [`Error::Io`] / [`Error::Decode`] when a mask
+/// cannot be read; [`Error::Parameter`] for a boundary point that is not finite.
+pub fn evaluate(
+    labels: &[KittiRoadFrame],
+    preds: &[Option<&LaneEstimate>],
+) -> Result<KittiRoadReport> {
+    if labels.is_empty() {
+        return Err(Error::Config("no KITTI road frames to evaluate".into()));
+    }
+    let nothing = LaneEstimate::default();
+    let mut total = MaskScore::default();
+    let mut frames = Vec::with_capacity(labels.len());
+    for (label, pred) in labels.iter().zip(preds) {
+        let mask = read_ego_lane_mask(&label.mask)?;
+        let score = score_ego_lane(pred.unwrap_or(&nothing), &mask)?;
+        total.true_positives += score.true_positives;
+        total.false_positives += score.false_positives;
+        total.false_negatives += score.false_negatives;
+        frames.push(KittiRoadFrameScore {
+            frame: label.frame.clone(),
+            score,
+        });
+    }
+    Ok(KittiRoadReport {
+        total,
+        precision: total.precision(),
+        recall: total.recall(),
+        f1: total.f1(),
+        frames,
+    })
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Evaluation: how well a tracker's [`LaneEstimate`]s agree with ground truth.
 //!
 //! Predictions are the JSON lines of `lanepf track` ([`read_predictions`]); the ground truth is
-//! one of four formats ([`Format`]), each with its own metric:
+//! one of five formats ([`Format`]), each with its own metric:
 //!
 //! | format | ground truth (`--gt`) | metric |
 //! |---|---|---|
@@ -9,6 +9,7 @@
 //! | `caltech` | Caltech Lanes `labels.json` (or its folder) | Aly 2008 correct and false-positive rates, all lanes and ego lanes ([`caltech`]) |
 //! | `tusimple` | TuSimple label JSON lines (or a folder with `labels.json`) | official accuracy, FP, FN ([`tusimple`]) |
 //! | `culane` | a folder of `NNNNN.lines.txt` (or one file) | IoU matching, precision, recall, F1 ([`culane`]) |
+//! | `kitti-road` | KITTI road's `gt_image_2` folder of `*_lane_*.png` masks (or one mask) | the ego lane's pixels in the image: precision, recall, F1 ([`kitti_road`]) |
 //!
 //! **Frames.** A prediction belongs to the ground-truth frame named by its `frame` field:
 //! names are compared by file name, without directories (`frames/f00088.png` finds
@@ -47,7 +48,8 @@ use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 
-/// A ground-truth format, named on the command line `synthetic|caltech|tusimple|culane`.
+/// A ground-truth format, named on the command line
+/// `synthetic|caltech|tusimple|culane|kitti-road`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Format {
@@ -59,15 +61,19 @@ pub enum Format {
     Tusimple,
     /// CULane `.lines.txt` files.
     Culane,
+    /// KITTI road ego-lane masks (`gt_image_2/*_lane_*.png`).
+    #[serde(rename = "kitti-road")]
+    KittiRoad,
 }
 
 impl Format {
     /// Every format, in command-line order.
-    pub const ALL: [Format; 4] = [
+    pub const ALL: [Format; 5] = [
         Format::Synthetic,
         Format::Caltech,
         Format::Tusimple,
         Format::Culane,
+        Format::KittiRoad,
     ];
 
     /// The command-line name.
@@ -77,6 +83,7 @@ impl Format {
             Format::Caltech => "caltech",
             Format::Tusimple => "tusimple",
             Format::Culane => "culane",
+            Format::KittiRoad => "kitti-road",
         }
     }
 }
@@ -98,7 +105,7 @@ impl FromStr for Format {
                 Error::parameter(
                     "format",
                     s,
-                    "expected synthetic, caltech, tusimple or culane",
+                    "expected synthetic, caltech, tusimple, culane or kitti-road",
                 )
             })
     }
@@ -138,6 +145,9 @@ pub enum Metrics {
     Tusimple(tusimple::TusimpleReport),
     /// CULane precision, recall, F1.
     Culane(culane::CulaneReport),
+    /// KITTI road ego-lane pixels.
+    #[serde(rename = "kitti-road")]
+    KittiRoad(kitti_road::KittiRoadReport),
 }
 
 /// The result of an evaluation: frame bookkeeping and the format's figures. Serialises to JSON
@@ -192,6 +202,7 @@ impl fmt::Display for EvalReport {
             Metrics::Caltech(r) => write!(f, "{r}"),
             Metrics::Tusimple(r) => write!(f, "{r}"),
             Metrics::Culane(r) => write!(f, "{r}"),
+            Metrics::KittiRoad(r) => write!(f, "{r}"),
         }
     }
 }
@@ -205,6 +216,7 @@ impl EvalReport {
             Metrics::Caltech(r) => r.frames_table(),
             Metrics::Tusimple(r) => r.frames_table(),
             Metrics::Culane(r) => r.frames_table(),
+            Metrics::KittiRoad(r) => r.frames_table(),
         }
     }
 }
@@ -336,6 +348,7 @@ enum GroundTruth {
     Caltech(caltech::CaltechLabels),
     Tusimple(Vec<tusimple::TusimpleFrame>),
     Culane(Vec<culane::CulaneFrame>),
+    KittiRoad(Vec<kitti_road::KittiRoadFrame>),
 }
 
 impl GroundTruth {
@@ -376,6 +389,7 @@ impl GroundTruth {
                 GroundTruth::Tusimple(tusimple::read_labels(&file_or_in_dir(path, "labels.json"))?)
             }
             Format::Culane => GroundTruth::Culane(culane::read_labels(path)?),
+            Format::KittiRoad => GroundTruth::KittiRoad(kitti_road::read_labels(path)?),
         })
     }
 
@@ -385,6 +399,7 @@ impl GroundTruth {
             GroundTruth::Caltech(l) => l.frames.iter().map(|f| f.frame.as_str()).collect(),
             GroundTruth::Tusimple(l) => l.iter().map(|f| f.frame.as_str()).collect(),
             GroundTruth::Culane(l) => l.iter().map(|f| f.frame.as_str()).collect(),
+            GroundTruth::KittiRoad(l) => l.iter().map(|f| f.frame.as_str()).collect(),
         }
     }
 
@@ -404,6 +419,7 @@ impl GroundTruth {
             GroundTruth::Culane(l) => {
                 Metrics::Culane(culane::evaluate(l, preds, options.image_size)?)
             }
+            GroundTruth::KittiRoad(l) => Metrics::KittiRoad(kitti_road::evaluate(l, preds)?),
         })
     }
 }

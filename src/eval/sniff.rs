@@ -38,6 +38,7 @@ pub fn describe(format: Format) -> &'static str {
             "lane estimates (JSON lines with `frame` and `boundaries`: a gt.jsonl or track output)"
         }
         Format::Culane => "CULane lane lines (x y pairs)",
+        Format::KittiRoad => "KITTI road lane masks (*_lane_*.png)",
     }
 }
 

@@ -10,11 +10,11 @@ pub struct Args {
     /// The tracker's output (JSON lines, one per frame).
     #[arg(long)]
     pred: PathBuf,
-    /// Ground truth: gt.jsonl (synthetic), labels.json (caltech, tusimple) or a folder of
-    /// .lines.txt files (culane).
+    /// Ground truth: gt.jsonl (synthetic), labels.json (caltech, tusimple), a folder of
+    /// .lines.txt files (culane) or of *_lane_*.png masks (kitti-road, KITTI's gt_image_2).
     #[arg(long)]
     gt: PathBuf,
-    /// synthetic, caltech, tusimple or culane.
+    /// synthetic, caltech, tusimple, culane or kitti-road.
     #[arg(long)]
     format: String,
     /// Print the report as JSON (it holds every frame's figures).
