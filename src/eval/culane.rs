@@ -32,7 +32,7 @@ use crate::error::{Error, Result};
 use crate::lane::LaneEstimate;
 use serde::Serialize;
 use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Width of a drawn lane, pixels.
 pub const LANE_WIDTH_PX: f64 = 30.0;
@@ -120,26 +120,12 @@ pub fn read_frame(path: &Path) -> Result<CulaneFrame> {
 /// [`Error::Io`] when the folder or a file cannot be read; [`Error::Config`] when the folder
 /// has no `.lines.txt` file or a file is malformed.
 pub fn read_labels(path: &Path) -> Result<Vec<CulaneFrame>> {
-    if !path.is_dir() {
-        return Ok(vec![read_frame(path)?]);
-    }
-    let io = |e: std::io::Error| Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(path)
-        .map_err(io)?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.to_string_lossy().ends_with(".lines.txt"))
-        .collect();
-    files.sort();
-    if files.is_empty() {
-        return Err(Error::Config(format!(
-            "{}: no .lines.txt files",
-            path.display()
-        )));
-    }
-    files.iter().map(|f| read_frame(f)).collect()
+    super::each_file(
+        path,
+        |name| name.ends_with(".lines.txt"),
+        ".lines.txt files",
+        read_frame,
+    )
 }
 
 /// A binary mask of one drawn lane: one bit per pixel, rows of `words` u64.

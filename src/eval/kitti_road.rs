@@ -276,29 +276,12 @@ pub fn read_labels(path: &Path) -> Result<Vec<KittiRoadFrame>> {
             ))),
         }
     };
-    if !path.is_dir() {
-        return Ok(vec![frame(path)?]);
-    }
-    let io = |e: std::io::Error| Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    };
-    let mut masks: Vec<PathBuf> = std::fs::read_dir(path)
-        .map_err(io)?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            p.file_name()
-                .is_some_and(|n| n.to_string_lossy().contains("_lane_"))
-        })
-        .collect();
-    masks.sort();
-    if masks.is_empty() {
-        return Err(Error::Config(format!(
-            "{}: no KITTI road lane masks (*_lane_*.png)",
-            path.display()
-        )));
-    }
-    masks.iter().map(|m| frame(m)).collect()
+    super::each_file(
+        path,
+        |name| name.contains("_lane_"),
+        "KITTI road lane masks (*_lane_*.png)",
+        frame,
+    )
 }
 
 /// One frame's pixel counts.

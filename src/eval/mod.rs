@@ -45,7 +45,7 @@ use crate::lane::LaneEstimate;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 /// A ground-truth format, named on the command line
@@ -219,6 +219,36 @@ impl EvalReport {
             Metrics::KittiRoad(r) => r.frames_table(),
         }
     }
+}
+
+/// `read` of the file `path`, or of every file of the folder `path` whose name passes `keep`,
+/// in name order.
+///
+/// # Errors
+/// [`Error::Io`] when the folder cannot be listed; [`Error::Config`] when it holds no such
+/// file (`what` names them); `read`'s errors.
+pub(crate) fn each_file<T>(
+    path: &Path,
+    keep: impl Fn(&str) -> bool,
+    what: &str,
+    read: impl Fn(&Path) -> Result<T>,
+) -> Result<Vec<T>> {
+    if !path.is_dir() {
+        return Ok(vec![read(path)?]);
+    }
+    let mut files: Vec<PathBuf> = std::fs::read_dir(path)
+        .map_err(|e| Error::Io {
+            path: path.display().to_string(),
+            reason: e.to_string(),
+        })?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.file_name().is_some_and(|n| keep(&n.to_string_lossy())))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(Error::Config(format!("{}: no {what}", path.display())));
+    }
+    files.iter().map(|f| read(f)).collect()
 }
 
 /// Reads a whole text file of at most [`limits::MAX_FILE_BYTES`].
