@@ -188,7 +188,8 @@ fn ratio(num: usize, den: usize) -> Option<f64> {
     (den > 0).then(|| num as f64 / den as f64)
 }
 
-/// Scores `estimate`'s ego lane against `mask` (see the module docs).
+/// Scores `estimate`'s ego lane against `mask` (see the module docs). The boundaries are in
+/// the mask's pixels: track the frame at its own size (KITTI's masks are the images' size).
 ///
 /// # Errors
 /// [`Error::Parameter`] when a boundary point is not finite.
