@@ -496,6 +496,31 @@ mod tests {
     }
 
     #[test]
+    fn a_folder_gives_its_lane_masks_as_frames() {
+        let dir = std::env::temp_dir().join(format!("lanepf-kitti-labels-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let err = read_labels(&dir).unwrap_err().to_string();
+        assert!(err.contains("no KITTI road lane masks"), "{err}");
+        for name in [
+            "umm_lane_000003.png",
+            "um_road_000000.png",
+            "um_lane_000000.png",
+        ] {
+            std::fs::write(dir.join(name), b"").unwrap();
+        }
+        let frames = read_labels(&dir).unwrap();
+        let names: Vec<&str> = frames.iter().map(|f| f.frame.as_str()).collect();
+        assert_eq!(
+            names,
+            ["um_000000.png", "umm_000003.png"],
+            "road masks are not lanes"
+        );
+        assert_eq!(frames[0].mask, dir.join("um_lane_000000.png"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn the_ego_lane_is_scored_pixel_by_pixel() {
         let m = mask();
         let exact = score_ego_lane(&estimate(true, 3.0, 6.0), &m).unwrap();
