@@ -192,8 +192,17 @@ fn ratio(num: usize, den: usize) -> Option<f64> {
 /// the mask's pixels: track the frame at its own size (KITTI's masks are the images' size).
 ///
 /// # Errors
-/// [`Error::Parameter`] when a boundary point is not finite.
+/// [`Error::Parameter`] when a boundary point is not finite; [`Error::BufferSize`] when the
+/// mask's pixels are not `width` x `height`.
 pub fn score_ego_lane(estimate: &LaneEstimate, mask: &EgoLaneMask) -> Result<MaskScore> {
+    let expected = mask.width.saturating_mul(mask.height);
+    if mask.pixels.len() != expected {
+        return Err(Error::BufferSize {
+            what: format!("a {}x{} lane mask", mask.width, mask.height),
+            expected,
+            actual: mask.pixels.len(),
+        });
+    }
     let boundary = |role: Role| {
         estimate
             .boundaries
@@ -551,5 +560,11 @@ mod tests {
         let mut nan = estimate(true, 3.0, 6.0);
         nan.boundaries[0].points[0][0] = f64::NAN;
         assert!(score_ego_lane(&nan, &m).is_err());
+        let short = EgoLaneMask {
+            height: 5,
+            ..m.clone()
+        };
+        let err = score_ego_lane(&estimate(true, 3.0, 6.0), &short).unwrap_err();
+        assert!(err.to_string().contains("10x5 lane mask"), "{err}");
     }
 }
