@@ -27,7 +27,7 @@
 //! from frame to frame; a lane only clears and counts the rows it touched.
 
 use super::assign::match_pairs;
-use super::percent;
+use super::{percent, ratio};
 use crate::error::{Error, Result};
 use crate::lane::LaneEstimate;
 use serde::Serialize;
@@ -444,7 +444,6 @@ pub struct CulaneFrameScore {
 impl CulaneReport {
     /// The rates of summed counts.
     pub fn from_counts(c: Counts) -> Self {
-        let ratio = |n: usize, d: usize| (d > 0).then(|| n as f64 / d as f64);
         CulaneReport {
             counts: c,
             precision: ratio(c.tp, c.tp + c.fp),

@@ -28,6 +28,7 @@
 //! evaluated pixels.
 
 use super::polyline::x_at_y;
+use super::{percent, ratio};
 use crate::camera::{Camera, CameraFile};
 use crate::error::{Error, Result};
 use crate::image::read_rgba;
@@ -184,10 +185,6 @@ impl MaskScore {
     }
 }
 
-fn ratio(num: usize, den: usize) -> Option<f64> {
-    (den > 0).then(|| num as f64 / den as f64)
-}
-
 /// Scores `estimate`'s ego lane against `mask` (see the module docs). The boundaries are in
 /// the mask's pixels: track the frame at its own size (KITTI's masks are the images' size).
 ///
@@ -339,7 +336,6 @@ impl KittiRoadReport {
 
 impl fmt::Display for KittiRoadReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let pct = |r: Option<f64>| r.map_or("n/a".into(), |r| format!("{:.1} %", 100.0 * r));
         let t = &self.total;
         writeln!(f, "  KITTI road ego lane (image pixels)   value")?;
         writeln!(
@@ -350,14 +346,18 @@ impl fmt::Display for KittiRoadReport {
         writeln!(
             f,
             "  precision                            {}",
-            pct(self.precision)
+            percent(self.precision)
         )?;
         writeln!(
             f,
             "  recall                               {}",
-            pct(self.recall)
+            percent(self.recall)
         )?;
-        write!(f, "  F1                                   {}", pct(self.f1))
+        write!(
+            f,
+            "  F1                                   {}",
+            percent(self.f1)
+        )
     }
 }
 

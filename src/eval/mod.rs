@@ -256,6 +256,11 @@ pub(crate) fn read_text(path: &Path) -> Result<String> {
     limits::read_text(path)
 }
 
+/// `num / den`, or `None` when `den` is 0 (precision, recall and F1 of pixel or lane counts).
+pub(crate) fn ratio(num: usize, den: usize) -> Option<f64> {
+    (den > 0).then(|| num as f64 / den as f64)
+}
+
 /// A rate as a percentage, or "n/a".
 pub(crate) fn percent(rate: Option<f64>) -> String {
     rate.map_or_else(|| "n/a".to_string(), |r| format!("{:.1} %", 100.0 * r))
