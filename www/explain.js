@@ -104,6 +104,7 @@ export const TRACKERS = {
       { path: 'valid_distance_m', label: 'validity tolerance on the road (m; ours; 0: pixels only)', min: 0, max: 0.1, step: 0.005 },
       SUPPORT_FRAMES,
       { path: 'valid_marking_factor', label: 'support only with a marking edge within this many tolerances too (ours; 0: any road edge)', min: 0, max: 6, step: 0.5 },
+      { path: 'valid_marking_sides', label: 'sides that need that marking support: 2 both, 1 at least one (ours)', min: 1, max: 2, step: 1 },
       RELOCK,
       ADJACENT,
     ],

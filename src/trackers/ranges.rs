@@ -227,6 +227,7 @@ pub(super) const DANESCU: &[&[OptionRange]] = &[
         r("valid_support", 0.0, 1.0),
         r("valid_support_frames", 1.0, 100.0),
         r("valid_marking_factor", 0.0, 100.0),
+        r("valid_marking_sides", 1.0, 2.0),
         r("valid_cluster_share", 0.0, 1.0),
         r("relock_share", 0.0, 0.5),
         r("start_iterations", 0.0, 1000.0),

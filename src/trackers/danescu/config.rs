@@ -137,6 +137,14 @@ pub struct DanescuConfig {
     /// a kerb to danescu-mono, whose lane bounded by a kerb without paint is then never valid
     /// (danescu-stereo puts the kerbs' feet into the marking image).
     pub valid_marking_factor: f64,
+    /// Validity with a positive `valid_marking_factor`: on how many sides (1 or 2) the support
+    /// must come from points with a marking edge beside the road edge. 2 (the default): on
+    /// both, each side's support counts only such points. 1 (ours): on at least one side (its
+    /// share of such points, averaged over the last `valid_support_frames` frames, reaches
+    /// `valid_support`), while each side's support counts any road edge as without the factor;
+    /// so a lane between a painted line and a kerb without paint stays valid, and a crossing
+    /// without paint on either side, where only shadow edges or kerbs remain, is not.
+    pub valid_marking_sides: usize,
     /// Validity: the estimate's MBSAS cluster holds at least this share of the resampled
     /// particles.
     pub valid_cluster_share: f64,
@@ -215,6 +223,7 @@ impl Default for DanescuConfig {
             valid_support: 0.15,
             valid_support_frames: 1,
             valid_marking_factor: 0.0,
+            valid_marking_sides: 2,
             valid_cluster_share: 0.3,
             relock_share: 0.0,
             start_iterations: 0,

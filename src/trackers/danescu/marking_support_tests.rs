@@ -1,4 +1,5 @@
-//! `valid_marking_factor`: tree shadows do not hold a lane through an unmarked crossing.
+//! `valid_marking_factor`: tree shadows do not hold a lane through an unmarked crossing;
+//! with `valid_marking_sides` 1 a kerb without paint may still bound the lane.
 
 use super::*;
 use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
@@ -7,9 +8,10 @@ use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
 const CROSSING: [f64; 2] = [60.0, 90.0];
 
 /// danescu-mono with `extra` options through the first 150 frames of `shadows` (seed `seed`,
-/// 320x240) with [`CROSSING`]: (frames whose next 10 m lie in the crossing, how many of them
-/// valid; frames whose next 30 m are marked after the first second, how many of them valid).
-fn crossing_validity(seed: u64, extra: &str) -> ((usize, usize), (usize, usize)) {
+/// 320x240) with [`CROSSING`]: (frames whose next `ahead_m` metres lie in the crossing, how
+/// many of them valid; frames whose next 30 m are marked after the first second, how many of
+/// them valid).
+fn crossing_validity(seed: u64, extra: &str, ahead_m: f64) -> ((usize, usize), (usize, usize)) {
     let (w, h) = (320, 240);
     let camera = default_camera(w, h).unwrap();
     let mut config = scenario("shadows").unwrap();
@@ -31,7 +33,7 @@ fn crossing_validity(seed: u64, extra: &str) -> ((usize, usize), (usize, usize))
     for f in 0..150 {
         let s = scene.render(f, Eye::Left, &mut rgba, None).unwrap().s;
         let valid = tracker.track(&rgba, w, h).unwrap().valid;
-        if s >= CROSSING[0] && s + 10.0 <= CROSSING[1] {
+        if s >= CROSSING[0] && s + ahead_m <= CROSSING[1] {
             unmarked.0 += 1;
             unmarked.1 += usize::from(valid);
         } else if (s + 30.0 < CROSSING[0] || s > CROSSING[1]) && f >= 30 {
@@ -45,8 +47,8 @@ fn crossing_validity(seed: u64, extra: &str) -> ((usize, usize), (usize, usize))
 #[test]
 fn shadow_edges_hold_no_lane_through_a_crossing_with_the_marking_factor() {
     for seed in [3, 4] {
-        let (paper_unmarked, paper_marked) = crossing_validity(seed, "");
-        let (unmarked, marked) = crossing_validity(seed, r#", "valid_marking_factor": 3"#);
+        let (paper_unmarked, paper_marked) = crossing_validity(seed, "", 10.0);
+        let (unmarked, marked) = crossing_validity(seed, r#", "valid_marking_factor": 3"#, 10.0);
         let msg = format!(
             "seed {seed}: (frames, valid) paper unmarked {paper_unmarked:?} marked \
              {paper_marked:?}; factor 3 unmarked {unmarked:?} marked {marked:?}"
@@ -58,4 +60,56 @@ fn shadow_edges_hold_no_lane_through_a_crossing_with_the_marking_factor() {
         assert!(unmarked.0 == paper_unmarked.0 && unmarked.1 <= 1, "{msg}");
         assert!(marked.0 >= 50 && marked.1 * 10 >= marked.0 * 9, "{msg}");
     }
+}
+
+#[test]
+fn paint_on_one_side_ends_the_lane_at_a_crossing_and_keeps_it_beside_a_kerb() {
+    // `real-roads`' memory of 5 frames, where the one-side rule reads the painted shares'
+    // means. One side's paint is enough, so the lane comes back as the markings beyond the
+    // crossing come into the support's range (the last metres of frames whose next 10 m are
+    // unmarked, when written: seed 4 valid from 13 m before the paint); the frames whose next
+    // 15 m are unmarked hold no lane.
+    const ONE_SIDE: &str =
+        r#", "valid_support_frames": 5, "valid_marking_factor": 3, "valid_marking_sides": 1"#;
+    for seed in [3, 4] {
+        let (base_unmarked, _) = crossing_validity(seed, r#", "valid_support_frames": 5"#, 15.0);
+        let (unmarked, marked) = crossing_validity(seed, ONE_SIDE, 15.0);
+        let msg = format!(
+            "seed {seed}: (frames, valid) without unmarked {base_unmarked:?}; one side \
+             unmarked {unmarked:?} marked {marked:?}"
+        );
+        assert!(base_unmarked.1 >= 3, "the scene shows the failure: {msg}");
+        assert!(unmarked.0 == base_unmarked.0 && unmarked.1 == 0, "{msg}");
+        assert!(marked.0 >= 50 && marked.1 * 10 >= marked.0 * 9, "{msg}");
+    }
+    // `urban`: the car's lane between the double yellow line and a kerb without paint. Paint
+    // on both sides is never there; on one side it is wherever the lane is valid without the
+    // rule.
+    let urban_valid = |extra: &str| {
+        let (w, h) = (320, 240);
+        let camera = default_camera(w, h).unwrap();
+        let mut config = scenario("urban").unwrap();
+        config.frames = 120;
+        let mut scene = Scene::new(config, camera.clone(), 5).unwrap();
+        let cam = serde_json::to_string(&camera.to_file()).unwrap();
+        let tracker_config =
+            TrackerConfig::from_json_str(&format!(r#"{{"camera": {cam}, "seed": 3 {extra}}}"#))
+                .unwrap();
+        let mut tracker = DanescuTracker::new(&tracker_config, ID_MONO).unwrap();
+        let mut rgba = vec![0; w * h * 4];
+        (0..120)
+            .filter(|&f| {
+                scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+                tracker.track(&rgba, w, h).unwrap().valid
+            })
+            .count()
+    };
+    let without = urban_valid(r#", "valid_support_frames": 5"#);
+    let one_side = urban_valid(ONE_SIDE);
+    let both = urban_valid(r#", "valid_support_frames": 5, "valid_marking_factor": 3"#);
+    let msg =
+        format!("urban valid frames of 120: without {without}, one side {one_side}, both {both}");
+    assert!(without >= 60, "{msg}");
+    assert!(both * 5 <= without, "the kerb side has no paint: {msg}");
+    assert!(one_side * 10 >= without * 9, "{msg}");
 }

@@ -46,7 +46,9 @@
 //! `lee-cpf`; the paper's validation step is not spelled out; `valid_support_frames`, ours,
 //! lets a side between a dashed line's dashes count on its recent support; with a positive
 //! `valid_marking_factor`, ours, a point counts only with a marking edge near it as well, so
-//! that shadow edges do not hold a lane through an unmarked crossing).
+//! that shadow edges do not hold a lane through an unmarked crossing; with
+//! `valid_marking_sides` 1 that paint is needed on one side only, so a kerb may bound the
+//! other).
 //!
 //! With a positive `relock_share` (ours, off by default) a share of the particles is drawn each frame,
 //! after the drift, around the ego pair a bottom-up line detector finds ([`super::relock`]),
@@ -182,6 +184,8 @@ pub struct DanescuTracker {
     detector: Option<RelockDetector>,
     /// The last `valid_support_frames` frames' support, for the validity.
     support_memory: SupportMemory,
+    /// The last `valid_support_frames` frames' painted shares (`valid_marking_sides` 1).
+    painted_memory: SupportMemory,
     /// The frame's schedule in progress and the last frame's times.
     stepper: Stepper,
 }
@@ -247,6 +251,7 @@ impl DanescuTracker {
             id,
             camera,
             support_memory: SupportMemory::new(danescu.valid_support_frames),
+            painted_memory: SupportMemory::new(danescu.valid_support_frames),
             config: danescu,
             right: if is_stereo {
                 vec![0; n_pixels * 4]
@@ -412,8 +417,10 @@ impl DanescuTracker {
         );
         e.support = d.support;
         let remembered = self.support_memory.push(d.support);
+        let painted = self.painted_memory.push(d.painted);
         e.valid = e.cluster_share >= self.config.valid_cluster_share
             && support_memory::supported(d.support, remembered, self.config.valid_support)
+            && self.measurement.paint_seen(painted)
             && self.measurement.is_valid(&e.lane);
         // Lane change (the shared rule, `super::lane_change`): the car has crossed the
         // centre of a marking; re-centre the cloud on the lane the car is now in.
@@ -595,6 +602,7 @@ impl Tracker for DanescuTracker {
         self.stepper.abandon();
         self.last_lane = None;
         self.support_memory.clear();
+        self.painted_memory.clear();
         self.motion = None;
         self.last_time = None;
     }

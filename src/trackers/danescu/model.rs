@@ -160,8 +160,12 @@ pub struct Distances {
     /// D^D (eq. 13), when the density cue is on.
     pub density: Option<f64>,
     /// Share of the left and right inner-edge points within `valid_distance_px` of a road
-    /// edge (and, with `valid_marking_factor`, of a marking edge; the validity check).
+    /// edge (and, with `valid_marking_factor` on both sides, of a marking edge; the validity
+    /// check).
     pub support: [f64; 2],
+    /// Share of the left and right inner-edge points near a road edge and, within
+    /// `valid_marking_factor` times the tolerance, a marking edge (0 with the factor off).
+    pub painted: [f64; 2],
 }
 
 impl Measurement {
@@ -205,6 +209,17 @@ impl Measurement {
         &self.distances
     }
 
+    /// Whether the paint the validity asks for is there, given each side's `painted` share
+    /// averaged over the last `valid_support_frames` frames (`valid_marking_factor` with
+    /// `valid_marking_sides` 1: one side's mean reaches `valid_support`; otherwise always, the
+    /// support itself carries the rule).
+    pub fn paint_seen(&self, painted: [f64; 2]) -> bool {
+        let c = &self.config;
+        c.valid_marking_factor <= 0.0
+            || c.valid_marking_sides >= 2
+            || painted[0].max(painted[1]) >= c.valid_support
+    }
+
     /// Whether the lane passes the validation of Sec. VII-D.
     pub fn is_valid(&self, lane: &Lane3d) -> bool {
         let c = &self.config;
@@ -234,9 +249,12 @@ impl Measurement {
         let reach = self.config.negative_reach_px;
         let inset = self.config.negative_offset_m;
         let marking = self.config.valid_marking_factor;
+        // Whether each side's support counts only painted points.
+        let painted_only = marking > 0.0 && self.config.valid_marking_sides >= 2;
         let mut sums = [0.0f64; 6];
         let mut n = 0.0;
         let mut support = [0.0f64; 2];
+        let mut painted = [0.0f64; 2];
         for (&z, &near) in self.distances.iter().zip(&self.support_px) {
             let x_li = lane.edge_x(Edge::LeftInner, z);
             let x_ri = lane.edge_x(Edge::RightInner, z);
@@ -255,8 +273,12 @@ impl Measurement {
                 sums[0] += e;
                 sums[2] += m;
                 // A road edge, and with `valid_marking_factor` a marking edge near it too.
-                if e <= near && (marking <= 0.0 || m <= marking * near) {
+                let paint = marking > 0.0 && m <= marking * near;
+                if e <= near && (paint || !painted_only) {
                     support[side] += 1.0;
+                }
+                if e <= near && paint {
+                    painted[side] += 1.0;
                 }
             }
             for p in neg {
@@ -283,6 +305,7 @@ impl Measurement {
             gradient,
             density,
             support: support.map(|c| c / self.distances.len() as f64),
+            painted: painted.map(|c| c / self.distances.len() as f64),
         }
     }
 

@@ -1009,6 +1009,19 @@ export interface DanescuOptions {
    */
   valid_marking_factor?: number;
   /**
+   * Validity with a positive `valid_marking_factor`: on how many sides (1 or 2) the support
+   * must come from points with a marking edge beside the road edge. 2 (the default): on
+   * both, each side's support counts only such points. 1 (ours): on at least one side (its
+   * share of such points, averaged over the last `valid_support_frames` frames, reaches
+   * `valid_support`), while each side's support counts any road edge as without the factor;
+   * so a lane between a painted line and a kerb without paint stays valid, and a crossing
+   * without paint on either side, where only shadow edges or kerbs remain, is not.
+   *
+   * Range: 1 to 2.
+   * @defaultValue `2`
+   */
+  valid_marking_sides?: number;
+  /**
    * Validity: the estimate's MBSAS cluster holds at least this share of the resampled
    * particles.
    *
