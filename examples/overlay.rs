@@ -3,14 +3,17 @@
 //! ego-right blue, adjacent ones yellow), thicker when the frame is valid.
 //! `cargo run --release --example overlay -- FRAMES_DIR PREDICTIONS.jsonl OUT_DIR [EVERY]`
 //! writes OUT_DIR/<frame>.png for every EVERY-th prediction (default 1); with a fifth argument,
-//! a Caltech `labels.json`, each frame's labelled lanes are drawn in green under the prediction
-//! (thick for the two ego lanes of Aly's rule). Join the frames with
+//! a Caltech `labels.json` or a CULane folder of `.lines.txt` files, each frame's labelled
+//! lanes are drawn in green under the prediction (Caltech: thick for the two ego lanes of Aly's
+//! rule, thin for the others; CULane: all thick). Join the frames with
 //! `ffmpeg -framerate 25 -pattern_type glob -i 'OUT_DIR/*.png' overlay.mp4`.
 
-use lanepf::eval::caltech::{bezier_polyline, ego_lanes, read_labels};
-use lanepf::eval::read_predictions;
+use lanepf::eval::caltech::{bezier_polyline, ego_lanes};
+use lanepf::eval::{caltech, culane, read_predictions};
 use lanepf::image::{read_rgba, write_rgba_png};
 use lanepf::lane::Role;
+use std::collections::HashMap;
+use std::path::Path;
 use std::path::PathBuf;
 
 fn plot(rgba: &mut [u8], w: usize, h: usize, x: f64, y: f64, r: usize, c: [u8; 3]) {
@@ -25,6 +28,33 @@ fn plot(rgba: &mut [u8], w: usize, h: usize, x: f64, y: f64, r: usize, c: [u8; 3
             }
         }
     }
+}
+
+/// Each frame's labelled lanes: the points, and whether the lane is drawn thick.
+type Labels = HashMap<String, Vec<(Vec<[f64; 2]>, bool)>>;
+
+/// Reads a CULane folder (or `.lines.txt` file), else a Caltech `labels.json`.
+fn read_labels(path: &Path) -> lanepf::Result<Labels> {
+    if path.is_dir() || path.to_string_lossy().ends_with(".lines.txt") {
+        let frames = culane::read_labels(path)?;
+        return Ok(frames
+            .into_iter()
+            .map(|f| (f.frame, f.lanes.into_iter().map(|l| (l, true)).collect()))
+            .collect());
+    }
+    let labels = caltech::read_labels(path)?;
+    Ok(labels
+        .frames
+        .iter()
+        .map(|f| {
+            let ego = ego_lanes(&f.lanes, labels.image_size);
+            let lanes =
+                f.lanes.iter().enumerate().map(|(i, lane)| {
+                    (bezier_polyline(&lane.bezier_xy, 30), ego.contains(&Some(i)))
+                });
+            (f.frame.clone(), lanes.collect())
+        })
+        .collect())
 }
 
 /// Draws a polyline with `plot`'s square pen of radius `r`.
@@ -43,7 +73,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     if args.len() < 4 {
         return Err(
-            "usage: overlay FRAMES_DIR PREDICTIONS.jsonl OUT_DIR [EVERY] [CALTECH_LABELS.json]"
+            "usage: overlay FRAMES_DIR PREDICTIONS.jsonl OUT_DIR [EVERY] [CALTECH_LABELS.json | \
+             CULANE_DIR]"
                 .into(),
         );
     }
@@ -59,16 +90,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for p in predictions.iter().step_by(every.max(1)) {
         let mut frame = read_rgba(&frames.join(&p.frame))?;
         let (w, h) = (frame.width, frame.height);
-        let labelled = labels
-            .as_ref()
-            .and_then(|l| l.frames.iter().find(|f| f.frame == p.frame).map(|f| (l, f)));
-        if let Some((l, f)) = labelled {
-            let ego = ego_lanes(&f.lanes, l.image_size);
-            for (i, lane) in f.lanes.iter().enumerate() {
-                let r = if ego.contains(&Some(i)) { 2 } else { 0 };
-                let points = bezier_polyline(&lane.bezier_xy, 30);
-                polyline(&mut frame.data, w, h, &points, r, [40, 220, 60]);
-            }
+        let labelled = labels.as_ref().and_then(|l| l.get(&p.frame));
+        for (points, thick) in labelled.into_iter().flatten() {
+            let r = if *thick { 2 } else { 0 };
+            polyline(&mut frame.data, w, h, points, r, [40, 220, 60]);
         }
         for b in &p.boundaries {
             let colour = match b.role {
