@@ -30,6 +30,7 @@ use super::assign::match_pairs;
 use super::{percent, ratio};
 use crate::error::{Error, Result};
 use crate::lane::LaneEstimate;
+use crate::num_text::Fixed;
 use serde::Serialize;
 use std::fmt;
 use std::path::Path;
@@ -389,6 +390,20 @@ impl CulaneScorer {
         Ok(&self.ious)
     }
 
+    /// Each of `predictions` predicted lanes' largest IoU with any label, from the last
+    /// [`CulaneScorer::ious`] (0 for a frame without labels): how near a false positive came.
+    pub fn best_ious(&self, predictions: usize) -> Vec<f64> {
+        (0..predictions)
+            .map(|j| {
+                self.ious
+                    .iter()
+                    .skip(j)
+                    .step_by(predictions)
+                    .fold(0.0, |best, &v| v.max(best))
+            })
+            .collect()
+    }
+
     /// TP, FP and FN of one frame.
     ///
     /// # Errors
@@ -439,6 +454,9 @@ pub struct CulaneFrameScore {
     /// Its counts.
     #[serde(flatten)]
     pub counts: Counts,
+    /// Each predicted lane's largest IoU with a label, in the prediction's boundary order
+    /// (empty for a frame not valid or not predicted).
+    pub best_iou: Vec<f64>,
 }
 
 impl CulaneReport {
@@ -453,15 +471,20 @@ impl CulaneReport {
         }
     }
 
-    /// One line a frame: TP, FP and FN.
+    /// One line a frame: TP, FP, FN and each predicted lane's best IoU.
     pub fn frames_table(&self) -> String {
-        let mut out = String::from("  frame                  TP  FP  FN\n");
+        let mut out =
+            String::from("  frame                  TP  FP  FN  best IoU of each predicted lane\n");
         for f in &self.frames {
             let c = f.counts;
             out.push_str(&format!(
-                "  {:<20} {:>4} {:>3} {:>3}\n",
+                "  {:<20} {:>4} {:>3} {:>3} ",
                 f.frame, c.tp, c.fp, c.fn_
             ));
+            for v in &f.best_iou {
+                out.push_str(&format!(" {}", Fixed(*v, 2)));
+            }
+            out.push('\n');
         }
         out
     }
@@ -491,12 +514,14 @@ pub fn evaluate(
             _ => Vec::new(),
         };
         let c = scorer.score_frame(&gt, &pred, size)?;
+        let best_iou = scorer.best_ious(pred.len());
         total.tp += c.tp;
         total.fp += c.fp;
         total.fn_ += c.fn_;
         frames.push(CulaneFrameScore {
             frame: frame.frame.clone(),
             counts: c,
+            best_iou,
         });
     }
     Ok(CulaneReport {
@@ -608,6 +633,30 @@ mod tests {
                 fn_: 1
             }
         );
+    }
+
+    #[test]
+    fn each_prediction_keeps_its_best_iou_with_any_label() {
+        let lane =
+            |x: f64| -> Vec<[f64; 2]> { (0..19).map(|k| [x, 590.0 - 10.0 * k as f64]).collect() };
+        let (a, b) = (lane(400.0), lane(800.0));
+        // Predictions: on b, 20 px beside a (a near miss), far from both.
+        let preds = [lane(800.0), lane(420.0), lane(1200.0)];
+        let pred: Vec<&[[f64; 2]]> = preds.iter().map(Vec::as_slice).collect();
+        let mut s = CulaneScorer::new();
+        let c = s.score_frame(&[&a, &b], &pred, CULANE_SIZE).unwrap();
+        assert_eq!((c.tp, c.fp, c.fn_), (1, 2, 1));
+        let best = s.best_ious(pred.len());
+        assert_eq!(best.len(), 3);
+        assert_eq!(best[0], 1.0);
+        // 30 px bands 20 px apart: about 11 / 51 of their union.
+        assert!(best[1] > 0.15 && best[1] < 0.3, "{best:?}");
+        assert_eq!(best[2], 0.0);
+        // No labels: every prediction's best is 0; no predictions: nothing.
+        s.score_frame(&[], &pred, CULANE_SIZE).unwrap();
+        assert_eq!(s.best_ious(pred.len()), vec![0.0; 3]);
+        s.score_frame(&[&a], &[], CULANE_SIZE).unwrap();
+        assert!(s.best_ious(0).is_empty());
     }
 
     #[test]

@@ -452,5 +452,17 @@ fn caltech_and_culane_per_frame_figures_name_the_frame_that_fails() {
         let tp: usize = c.frames.iter().map(|f| f.counts.tp).sum();
         assert_eq!(tp, c.counts.tp);
         assert_eq!(r.frames_table().lines().count(), 61);
+        // The labels as predictions: each predicted lane's best IoU is 1, and the frame left
+        // out has none.
+        for f in &c.frames {
+            let expected = if f.frame == broken { 0 } else { f.counts.tp };
+            assert_eq!(f.best_iou.len(), expected, "{}", f.frame);
+            assert!(
+                f.best_iou.iter().all(|&v| v == 1.0),
+                "{}: {:?}",
+                f.frame,
+                f.best_iou
+            );
+        }
     }
 }
