@@ -7,21 +7,28 @@ use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
 /// An unmarked crossing of the `shadows` scene: every marking gone over s = 60-90 m.
 const CROSSING: [f64; 2] = [60.0, 90.0];
 
-/// danescu-mono with `extra` options through the first 150 frames of `shadows` (seed `seed`,
-/// 320x240) with [`CROSSING`]: (frames whose next `ahead_m` metres lie in the crossing, how
-/// many of them valid; frames whose next 30 m are marked after the first second, how many of
-/// them valid).
-fn crossing_validity(seed: u64, extra: &str, ahead_m: f64) -> ((usize, usize), (usize, usize)) {
+/// danescu-mono (tracker seed 3) with `extra` options through `frames` frames of scenario
+/// `name` (scene seed `seed`, 320x240), every marking removed over `crossing` if given: each
+/// frame's distance s along the road and whether the estimate was valid.
+fn run(
+    name: &str,
+    seed: u64,
+    frames: u32,
+    extra: &str,
+    crossing: Option<[f64; 2]>,
+) -> Vec<(f64, bool)> {
     let (w, h) = (320, 240);
     let camera = default_camera(w, h).unwrap();
-    let mut config = scenario("shadows").unwrap();
-    config.frames = 150;
-    config.markings.wear.push(Wear {
-        from_s: CROSSING[0],
-        to_s: CROSSING[1],
-        boundary: None,
-        visibility: 0.0,
-    });
+    let mut config = scenario(name).unwrap();
+    config.frames = frames;
+    if let Some([from_s, to_s]) = crossing {
+        config.markings.wear.push(Wear {
+            from_s,
+            to_s,
+            boundary: None,
+            visibility: 0.0,
+        });
+    }
     let mut scene = Scene::new(config, camera.clone(), seed).unwrap();
     let cam = serde_json::to_string(&camera.to_file()).unwrap();
     let tracker_config =
@@ -29,10 +36,23 @@ fn crossing_validity(seed: u64, extra: &str, ahead_m: f64) -> ((usize, usize), (
             .unwrap();
     let mut tracker = DanescuTracker::new(&tracker_config, ID_MONO).unwrap();
     let mut rgba = vec![0; w * h * 4];
+    (0..frames)
+        .map(|f| {
+            let s = scene.render(f, Eye::Left, &mut rgba, None).unwrap().s;
+            (s, tracker.track(&rgba, w, h).unwrap().valid)
+        })
+        .collect()
+}
+
+/// [`run`] through the first 150 frames of `shadows` (seed `seed`) with [`CROSSING`]: (frames
+/// whose next `ahead_m` metres lie in the crossing, how many of them valid; frames whose next
+/// 30 m are marked after the first second, how many of them valid).
+fn crossing_validity(seed: u64, extra: &str, ahead_m: f64) -> ((usize, usize), (usize, usize)) {
     let (mut unmarked, mut marked) = ((0, 0), (0, 0));
-    for f in 0..150 {
-        let s = scene.render(f, Eye::Left, &mut rgba, None).unwrap().s;
-        let valid = tracker.track(&rgba, w, h).unwrap().valid;
+    for (f, (s, valid)) in run("shadows", seed, 150, extra, Some(CROSSING))
+        .into_iter()
+        .enumerate()
+    {
         if s >= CROSSING[0] && s + ahead_m <= CROSSING[1] {
             unmarked.0 += 1;
             unmarked.1 += usize::from(valid);
@@ -86,22 +106,9 @@ fn paint_on_one_side_ends_the_lane_at_a_crossing_and_keeps_it_beside_a_kerb() {
     // on both sides is never there; on one side it is wherever the lane is valid without the
     // rule.
     let urban_valid = |extra: &str| {
-        let (w, h) = (320, 240);
-        let camera = default_camera(w, h).unwrap();
-        let mut config = scenario("urban").unwrap();
-        config.frames = 120;
-        let mut scene = Scene::new(config, camera.clone(), 5).unwrap();
-        let cam = serde_json::to_string(&camera.to_file()).unwrap();
-        let tracker_config =
-            TrackerConfig::from_json_str(&format!(r#"{{"camera": {cam}, "seed": 3 {extra}}}"#))
-                .unwrap();
-        let mut tracker = DanescuTracker::new(&tracker_config, ID_MONO).unwrap();
-        let mut rgba = vec![0; w * h * 4];
-        (0..120)
-            .filter(|&f| {
-                scene.render(f, Eye::Left, &mut rgba, None).unwrap();
-                tracker.track(&rgba, w, h).unwrap().valid
-            })
+        run("urban", 5, 120, extra, None)
+            .iter()
+            .filter(|(_, valid)| *valid)
             .count()
     };
     let without = urban_valid(r#", "valid_support_frames": 5"#);
