@@ -62,6 +62,13 @@ pub struct LiuConfig {
     /// (sigma_x) in at least this fraction of the near rows (the paper does not define valid
     /// frames; this is ours, as for lee-cpf; a dashed line gives about 0.25).
     pub valid_fraction: f64,
+    /// Validity (ours, beyond the paper; 0: off, the default): besides the edge support, one
+    /// ego boundary at least must show paint in `valid_fraction` of the near rows: a top-view
+    /// pixel within 2 columns of its line brighter by this many grey levels than the road
+    /// 0.3 m to either side ([`super::PAINT_REACH_M`]). A tree shadow's edge along the road is
+    /// an edge of the boundary's orientation with no bright stripe, and would otherwise keep
+    /// a lane through an unmarked crossing; one side is enough, so a kerb may bound the other.
+    pub valid_paint_contrast: f64,
     /// Default lane model (Sec. IV-D): range of lane widths, metres.
     pub default_width_m: [f64; 2],
     /// Default lane model: largest heading of the straight boundaries, radians.
@@ -136,6 +143,7 @@ impl Default for LiuConfig {
             min_spacing_m: 2.4,
             max_spacing_difference_m: 0.5,
             valid_fraction: 0.15,
+            valid_paint_contrast: 0.0,
             default_width_m: [3.0, 4.0],
             default_heading_rad: 0.05,
             default_jitter_m: 0.1,

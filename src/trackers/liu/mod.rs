@@ -29,7 +29,10 @@
 //! each frame by default-model lanes on the ego pair a bottom-up line detector finds
 //! ([`super::relock`]). With a positive `reacquire_near_m` (ours, off by default) a lane once
 //! lost is valid again only when a strong edge supports one of its ego boundaries near the
-//! top view's near end ([`super::reacquire`]).
+//! top view's near end ([`super::reacquire`]). With a positive `valid_paint_contrast` (ours,
+//! off by default) a frame is valid only when one ego boundary at least also shows paint, a
+//! bright stripe in the top view, so that shadow edges do not hold a lane through an unmarked
+//! crossing.
 
 pub mod atan32;
 pub mod config;
@@ -73,6 +76,12 @@ pub const SUPPORT_GRADIENT_FACTOR: f64 = 2.0;
 pub const REACH_PIECE_M: f64 = 1.0;
 /// Share of a marking piece's rows with a supporting edge pixel.
 pub const REACH_PIECE_SHARE: f64 = 0.8;
+/// `valid_paint_contrast`: where the road beside a marking is read, metres from the pixel
+/// (beyond the half-width of a 0.15-0.3 m line).
+pub const PAINT_REACH_M: f64 = 0.3;
+/// `valid_paint_contrast`: columns either side of a boundary's line searched for the paint
+/// (the support's 1-pixel band, widened for a line a pixel or two off its paint).
+pub const PAINT_COLUMNS: i64 = 2;
 
 /// The steps of one frame after [`LiuTracker::begin`] (per-step mode).
 pub const STEP_NAMES: [&str; 7] = [
@@ -361,13 +370,20 @@ impl LiuTracker {
             (0..n).map(|k| self.model.boundary(&particle, k)).collect();
         let (support, reach): (Vec<f64>, Vec<f64>) =
             boundaries.iter().map(|b| self.support(b)).unzip();
+        let contrast = self.config.valid_paint_contrast;
         let roles = self.roles(&boundaries);
         let ego = |role: Role| roles.iter().find(|r| r.1 == role).map(|r| r.0);
         let valid = if let (Some(l), Some(r)) = (ego(Role::EgoLeft), ego(Role::EgoRight)) {
             let pair = [support[l], support[r]];
             let near = reach[l].min(reach[r]);
+            // `valid_paint_contrast`: paint on one side at least (read only when on).
+            let paint = contrast <= 0.0
+                || [l, r]
+                    .iter()
+                    .any(|&k| self.painted(&boundaries[k], contrast) >= self.config.valid_fraction);
             self.reacquire
                 .valid(pair, pair, self.config.valid_fraction, near)
+                && paint
         } else {
             self.reacquire.no_lane()
         };
@@ -421,6 +437,32 @@ impl LiuTracker {
         }
         let reach = nearest.map_or(f64::INFINITY, |y| (h - 1 - y) as f64 * s);
         (hits as f64 / (h - first).max(1) as f64, reach)
+    }
+
+    /// The share of `support`'s rows where the top view shows paint on boundary `b`'s line: a
+    /// pixel within [`PAINT_COLUMNS`] columns of it brighter by `contrast` grey levels than
+    /// both pixels [`PAINT_REACH_M`] to its sides (`valid_paint_contrast`).
+    fn painted(&self, b: &LinearParabolic, contrast: f64) -> f64 {
+        let d = &self.descriptors;
+        let top = d.top_view();
+        let (w, h) = (d.width(), d.height());
+        let first = self.config.support_first_row(h, self.model.split_row());
+        let (a, slope) = (b.a(), b.b());
+        let reach = (PAINT_REACH_M / self.config.top_view.m_per_px).ceil() as i64;
+        let mut hits = 0;
+        for y in first..h {
+            let x = (a + slope * y as f64).round() as i64;
+            let row = top.row(y);
+            let at = |x: i64| (x >= 0 && (x as usize) < w).then(|| row[x as usize] as f64);
+            let hit = (x - PAINT_COLUMNS..=x + PAINT_COLUMNS).any(|c| {
+                match (at(c), at(c - reach), at(c + reach)) {
+                    (Some(m), Some(l), Some(r)) => m - l >= contrast && m - r >= contrast,
+                    _ => false,
+                }
+            });
+            hits += usize::from(hit);
+        }
+        hits as f64 / (h - first).max(1) as f64
     }
 
     /// Lateral position y (m, left positive) of top-view boundary `b` at `x` metres ahead (the
@@ -734,6 +776,8 @@ impl Scheduled for LiuTracker {
     }
 }
 
+#[cfg(test)]
+mod paint_tests;
 #[cfg(test)]
 mod reacquire_tests;
 #[cfg(test)]

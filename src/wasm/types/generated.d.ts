@@ -1552,6 +1552,18 @@ export interface LiuOptions {
    */
   valid_fraction?: number;
   /**
+   * Validity (ours, beyond the paper; 0: off, the default): besides the edge support, one
+   * ego boundary at least must show paint in `valid_fraction` of the near rows: a top-view
+   * pixel within 2 columns of its line brighter by this many grey levels than the road
+   * 0.3 m to either side (`PAINT_REACH_M`). A tree shadow's edge along the road is
+   * an edge of the boundary's orientation with no bright stripe, and would otherwise keep
+   * a lane through an unmarked crossing; one side is enough, so a kerb may bound the other.
+   *
+   * Range: 0 to 255.
+   * @defaultValue `0`
+   */
+  valid_paint_contrast?: number;
+  /**
    * Default lane model (Sec. IV-D): range of lane widths, metres.
    *
    * Range: 0.5 to 10 (each entry).

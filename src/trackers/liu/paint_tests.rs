@@ -1,0 +1,90 @@
+//! `valid_paint_contrast` (ours, beyond the paper): tree shadows' edges do not hold liu-ppf's
+//! lane through an unmarked crossing, and a kerb without paint may still bound the lane.
+
+use super::tests::config;
+use super::LiuTracker;
+use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
+
+/// An unmarked crossing of the `shadows` scene: every marking gone over s = 60-90 m.
+const CROSSING: [f64; 2] = [60.0, 90.0];
+
+/// liu-ppf with `extra` options through `frames` frames of scenario `name` (scene seed `seed`,
+/// 320x240), every marking removed over `crossing` if given: each frame's distance s along the
+/// road and whether the estimate was valid.
+fn run(
+    name: &str,
+    seed: u64,
+    frames: u32,
+    extra: &str,
+    crossing: Option<[f64; 2]>,
+) -> Vec<(f64, bool)> {
+    let (w, h) = (320, 240);
+    let mut scenario = scenario(name).unwrap();
+    scenario.frames = frames;
+    if let Some([from_s, to_s]) = crossing {
+        scenario.markings.wear.push(Wear {
+            from_s,
+            to_s,
+            boundary: None,
+            visibility: 0.0,
+        });
+    }
+    let mut scene = Scene::new(scenario, default_camera(w, h).unwrap(), seed).unwrap();
+    let mut tracker = LiuTracker::new(&config(extra), true).unwrap();
+    let mut rgba = vec![0; w * h * 4];
+    (0..frames)
+        .map(|f| {
+            let s = scene.render(f, Eye::Left, &mut rgba, None).unwrap().s;
+            (s, tracker.track(&rgba, w, h).unwrap().valid)
+        })
+        .collect()
+}
+
+#[test]
+fn paint_on_one_side_ends_the_lane_at_a_crossing_and_keeps_it_beside_a_kerb() {
+    const PAINT: &str = r#", "valid_paint_contrast": 10"#;
+    // (frames whose next 15 m lie in the crossing, valid ones; frames whose next 30 m are
+    // marked after the first second, valid ones).
+    let crossing = |seed: u64, extra: &str| {
+        let (mut unmarked, mut marked) = ((0, 0), (0, 0));
+        let frames = run("shadows", seed, 150, extra, Some(CROSSING));
+        for (f, (s, valid)) in frames.into_iter().enumerate() {
+            if s >= CROSSING[0] && s + 15.0 <= CROSSING[1] {
+                unmarked.0 += 1;
+                unmarked.1 += usize::from(valid);
+            } else if (s + 30.0 < CROSSING[0] || s > CROSSING[1]) && f >= 30 {
+                marked.0 += 1;
+                marked.1 += usize::from(valid);
+            }
+        }
+        (unmarked, marked)
+    };
+    let mut held = 0;
+    for seed in [3, 4] {
+        let (base_unmarked, base_marked) = crossing(seed, "");
+        let (unmarked, marked) = crossing(seed, PAINT);
+        let msg = format!(
+            "seed {seed}: (frames, valid) without unmarked {base_unmarked:?} marked \
+             {base_marked:?}; with paint unmarked {unmarked:?} marked {marked:?}"
+        );
+        held += base_unmarked.1;
+        assert!(unmarked.0 == base_unmarked.0 && unmarked.1 == 0, "{msg}");
+        assert!(marked.0 >= 50 && marked.1 * 10 >= marked.0 * 9, "{msg}");
+        assert!(marked.1 + 2 >= base_marked.1, "{msg}");
+    }
+    assert!(
+        held >= 3,
+        "the scene shows the failure: {held} unmarked frames valid without"
+    );
+    // `urban`: the car's lane between the double yellow line and a kerb without paint.
+    let valid = |extra: &str| {
+        run("urban", 5, 120, extra, None)
+            .iter()
+            .filter(|(_, valid)| *valid)
+            .count()
+    };
+    let (without, with) = (valid(""), valid(PAINT));
+    let msg = format!("urban valid frames of 120: without {without}, with paint {with}");
+    assert!(without >= 60, "{msg}");
+    assert!(with * 10 >= without * 9, "{msg}");
+}
