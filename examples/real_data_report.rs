@@ -38,7 +38,7 @@ use std::path::{Path, PathBuf};
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
 /// beyond a paper is reported beside the paper's method; the table names a row by the options
 /// that differ from the defaults.
-const TRACKERS: [fn() -> TrackerOptions; 22] = [
+const TRACKERS: [fn() -> TrackerOptions; 23] = [
     || TrackerOptions::AdachiMmpf(AdachiConfig::default()),
     || {
         TrackerOptions::AdachiMmpf(AdachiConfig {
@@ -121,6 +121,15 @@ const TRACKERS: [fn() -> TrackerOptions; 22] = [
         })
     },
     || real_roads("liu-ppf"),
+    || {
+        let TrackerOptions::LiuPpf(c) = real_roads("liu-ppf") else {
+            unreachable!("liu-ppf's preset holds liu-ppf's options")
+        };
+        TrackerOptions::LiuPpf(LiuConfig {
+            valid_paint_contrast: 10.0,
+            ..c
+        })
+    },
     || TrackerOptions::LiuPpfNokernel(LiuConfig::default()),
     || {
         TrackerOptions::LiuPpfNokernel(LiuConfig {

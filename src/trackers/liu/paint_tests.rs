@@ -5,8 +5,12 @@ use super::tests::config;
 use super::LiuTracker;
 use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
 
-/// An unmarked crossing of the `shadows` scene: every marking gone over s = 60-90 m.
-const CROSSING: [f64; 2] = [60.0, 90.0];
+/// An unmarked crossing of the `shadows` scene: every marking gone over s = 60-120 m.
+const CROSSING: [f64; 2] = [60.0, 120.0];
+/// A frame counts as unmarked when this far ahead lies in the crossing: liu-ppf's support
+/// rows reach about 21 m ahead at the 320x240 test camera, and paint seen there beyond the
+/// crossing rightly supports the lane.
+const UNMARKED_AHEAD_M: f64 = 25.0;
 
 /// liu-ppf with `extra` options through `frames` frames of scenario `name` (scene seed `seed`,
 /// 320x240), every marking removed over `crossing` if given: each frame's distance s along the
@@ -43,13 +47,13 @@ fn run(
 #[test]
 fn paint_on_one_side_ends_the_lane_at_a_crossing_and_keeps_it_beside_a_kerb() {
     const PAINT: &str = r#", "valid_paint_contrast": 10"#;
-    // (frames whose next 15 m lie in the crossing, valid ones; frames whose next 30 m are
-    // marked after the first second, valid ones).
+    // (frames whose next `UNMARKED_AHEAD_M` lie in the crossing, valid ones; frames whose
+    // next 30 m are marked after the first second, valid ones).
     let crossing = |seed: u64, extra: &str| {
         let (mut unmarked, mut marked) = ((0, 0), (0, 0));
-        let frames = run("shadows", seed, 150, extra, Some(CROSSING));
+        let frames = run("shadows", seed, 220, extra, Some(CROSSING));
         for (f, (s, valid)) in frames.into_iter().enumerate() {
-            if s >= CROSSING[0] && s + 15.0 <= CROSSING[1] {
+            if s >= CROSSING[0] && s + UNMARKED_AHEAD_M <= CROSSING[1] {
                 unmarked.0 += 1;
                 unmarked.1 += usize::from(valid);
             } else if (s + 30.0 < CROSSING[0] || s > CROSSING[1]) && f >= 30 {
@@ -60,7 +64,7 @@ fn paint_on_one_side_ends_the_lane_at_a_crossing_and_keeps_it_beside_a_kerb() {
         (unmarked, marked)
     };
     let mut held = 0;
-    for seed in [3, 4] {
+    for seed in [1, 4] {
         let (base_unmarked, base_marked) = crossing(seed, "");
         let (unmarked, marked) = crossing(seed, PAINT);
         let msg = format!(
