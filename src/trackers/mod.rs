@@ -24,6 +24,8 @@ pub mod adachi;
 mod adachi_fresh_road_tests;
 pub mod adjacent_lanes;
 mod config;
+#[cfg(test)]
+pub(crate) mod crossing_scenes;
 pub mod danescu;
 mod defaults;
 mod ego_motion;

@@ -2,14 +2,15 @@
 //! with `valid_marking_sides` 1 a kerb without paint may still bound the lane.
 
 use super::*;
-use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
+use crate::synth::default_camera;
+use crate::trackers::crossing_scenes::{crossing_counts, validity_along_road, SIZE};
 
 /// An unmarked crossing of the `shadows` scene: every marking gone over s = 60-90 m.
 const CROSSING: [f64; 2] = [60.0, 90.0];
 
 /// danescu-mono (tracker seed 3) with `extra` options through `frames` frames of scenario
-/// `name` (scene seed `seed`, 320x240), every marking removed over `crossing` if given: each
-/// frame's distance s along the road and whether the estimate was valid.
+/// `name` (scene seed `seed`), every marking removed over `crossing` if given
+/// ([`validity_along_road`]).
 fn run(
     name: &str,
     seed: u64,
@@ -17,51 +18,22 @@ fn run(
     extra: &str,
     crossing: Option<[f64; 2]>,
 ) -> Vec<(f64, bool)> {
-    let (w, h) = (320, 240);
-    let camera = default_camera(w, h).unwrap();
-    let mut config = scenario(name).unwrap();
-    config.frames = frames;
-    if let Some([from_s, to_s]) = crossing {
-        config.markings.wear.push(Wear {
-            from_s,
-            to_s,
-            boundary: None,
-            visibility: 0.0,
-        });
-    }
-    let mut scene = Scene::new(config, camera.clone(), seed).unwrap();
+    let camera = default_camera(SIZE.0, SIZE.1).unwrap();
     let cam = serde_json::to_string(&camera.to_file()).unwrap();
     let tracker_config =
         TrackerConfig::from_json_str(&format!(r#"{{"camera": {cam}, "seed": 3 {extra}}}"#))
             .unwrap();
     let mut tracker = DanescuTracker::new(&tracker_config, ID_MONO).unwrap();
-    let mut rgba = vec![0; w * h * 4];
-    (0..frames)
-        .map(|f| {
-            let s = scene.render(f, Eye::Left, &mut rgba, None).unwrap().s;
-            (s, tracker.track(&rgba, w, h).unwrap().valid)
-        })
-        .collect()
+    validity_along_road(name, seed, frames, crossing, |rgba, w, h| {
+        tracker.track(rgba, w, h).unwrap().valid
+    })
 }
 
-/// [`run`] through the first 150 frames of `shadows` (seed `seed`) with [`CROSSING`]: (frames
-/// whose next `ahead_m` metres lie in the crossing, how many of them valid; frames whose next
-/// 30 m are marked after the first second, how many of them valid).
+/// [`run`] through the first 150 frames of `shadows` (seed `seed`) with [`CROSSING`], counted
+/// by [`crossing_counts`].
 fn crossing_validity(seed: u64, extra: &str, ahead_m: f64) -> ((usize, usize), (usize, usize)) {
-    let (mut unmarked, mut marked) = ((0, 0), (0, 0));
-    for (f, (s, valid)) in run("shadows", seed, 150, extra, Some(CROSSING))
-        .into_iter()
-        .enumerate()
-    {
-        if s >= CROSSING[0] && s + ahead_m <= CROSSING[1] {
-            unmarked.0 += 1;
-            unmarked.1 += usize::from(valid);
-        } else if (s + 30.0 < CROSSING[0] || s > CROSSING[1]) && f >= 30 {
-            marked.0 += 1;
-            marked.1 += usize::from(valid);
-        }
-    }
-    (unmarked, marked)
+    let frames = run("shadows", seed, 150, extra, Some(CROSSING));
+    crossing_counts(&frames, CROSSING, ahead_m)
 }
 
 #[test]

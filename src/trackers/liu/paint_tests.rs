@@ -3,7 +3,7 @@
 
 use super::tests::config;
 use super::LiuTracker;
-use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
+use crate::trackers::crossing_scenes::{crossing_counts, validity_along_road};
 
 /// An unmarked crossing of the `shadows` scene: every marking gone over s = 60-120 m.
 const CROSSING: [f64; 2] = [60.0, 120.0];
@@ -12,9 +12,8 @@ const CROSSING: [f64; 2] = [60.0, 120.0];
 /// crossing rightly supports the lane.
 const UNMARKED_AHEAD_M: f64 = 25.0;
 
-/// liu-ppf with `extra` options through `frames` frames of scenario `name` (scene seed `seed`,
-/// 320x240), every marking removed over `crossing` if given: each frame's distance s along the
-/// road and whether the estimate was valid.
+/// liu-ppf with `extra` options through `frames` frames of scenario `name` (scene seed
+/// `seed`), every marking removed over `crossing` if given ([`validity_along_road`]).
 fn run(
     name: &str,
     seed: u64,
@@ -22,26 +21,10 @@ fn run(
     extra: &str,
     crossing: Option<[f64; 2]>,
 ) -> Vec<(f64, bool)> {
-    let (w, h) = (320, 240);
-    let mut scenario = scenario(name).unwrap();
-    scenario.frames = frames;
-    if let Some([from_s, to_s]) = crossing {
-        scenario.markings.wear.push(Wear {
-            from_s,
-            to_s,
-            boundary: None,
-            visibility: 0.0,
-        });
-    }
-    let mut scene = Scene::new(scenario, default_camera(w, h).unwrap(), seed).unwrap();
     let mut tracker = LiuTracker::new(&config(extra), true).unwrap();
-    let mut rgba = vec![0; w * h * 4];
-    (0..frames)
-        .map(|f| {
-            let s = scene.render(f, Eye::Left, &mut rgba, None).unwrap().s;
-            (s, tracker.track(&rgba, w, h).unwrap().valid)
-        })
-        .collect()
+    validity_along_road(name, seed, frames, crossing, |rgba, w, h| {
+        tracker.track(rgba, w, h).unwrap().valid
+    })
 }
 
 #[test]
@@ -50,18 +33,8 @@ fn paint_on_one_side_ends_the_lane_at_a_crossing_and_keeps_it_beside_a_kerb() {
     // (frames whose next `UNMARKED_AHEAD_M` lie in the crossing, valid ones; frames whose
     // next 30 m are marked after the first second, valid ones).
     let crossing = |seed: u64, extra: &str| {
-        let (mut unmarked, mut marked) = ((0, 0), (0, 0));
         let frames = run("shadows", seed, 220, extra, Some(CROSSING));
-        for (f, (s, valid)) in frames.into_iter().enumerate() {
-            if s >= CROSSING[0] && s + UNMARKED_AHEAD_M <= CROSSING[1] {
-                unmarked.0 += 1;
-                unmarked.1 += usize::from(valid);
-            } else if (s + 30.0 < CROSSING[0] || s > CROSSING[1]) && f >= 30 {
-                marked.0 += 1;
-                marked.1 += usize::from(valid);
-            }
-        }
-        (unmarked, marked)
+        crossing_counts(&frames, CROSSING, UNMARKED_AHEAD_M)
     };
     let mut held = 0;
     for seed in [1, 4] {
