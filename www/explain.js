@@ -34,6 +34,7 @@ export const TRACKERS = {
       RELOCK,
       { path: 'top_view_resolved', label: 'top view only as far as the camera resolves it (ours, beyond the paper)', kind: /** @type {const} */ ('bool') },
       { path: 'reacquire_near_m', label: 'after a loss, valid again only with a marking this near (m beyond the top view’s near end; 0: off; ours, beyond the paper)', min: 0, max: 15, step: 0.5 },
+      SUPPORT_FRAMES,
       { path: 'mode_candidates', label: 'estimate: the heaviest mode around this many heaviest particles (1: the heaviest particle’s; ours)', min: 1, max: 64, step: 1 },
       { path: 'valid_paint_contrast', label: 'valid only with paint on one ego boundary: a stripe this many grey levels brighter than the road beside it (0: off; ours)', min: 0, max: 40, step: 1 },
     ],

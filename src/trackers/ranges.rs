@@ -122,6 +122,7 @@ pub(super) const LIU: &[&[OptionRange]] = &[&[
     r("min_spacing_m", 0.1, 10.0),
     r("max_spacing_difference_m", 0.01, 10.0),
     r("valid_fraction", 0.0, 1.0),
+    r("valid_support_frames", 1.0, 100.0),
     r("valid_paint_contrast", 0.0, 255.0),
     r("default_width_m", 0.5, 10.0),
     r("default_heading_rad", 0.0, 0.9),

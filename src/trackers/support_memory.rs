@@ -1,7 +1,7 @@
 //! Measurement support remembered over the last frames (ours, beyond the papers): the option
 //! `valid_support_frames` of the trackers whose validity counts, per boundary, the share of the
-//! estimate's points with image evidence beside them (adachi-mmpf, danescu-mono,
-//! danescu-stereo, lee-cpf).
+//! estimate's points (liu-ppf: top-view rows) with image evidence beside them (adachi-mmpf,
+//! danescu-mono, danescu-stereo, lee-cpf, liu-ppf).
 //!
 //! A dashed line shows paint along only part of the boundary in any one frame (3 m dashes every
 //! 12 m: a quarter), and which part moves as the car drives, so one frame's share swings

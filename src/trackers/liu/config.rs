@@ -62,6 +62,11 @@ pub struct LiuConfig {
     /// (sigma_x) in at least this fraction of the near rows (the paper does not define valid
     /// frames; this is ours, as for lee-cpf; a dashed line gives about 0.25).
     pub valid_fraction: f64,
+    /// Validity: a side under `valid_fraction` this frame still counts when its mean support
+    /// over the last this many frames (this one included; fewer since a reset) reaches
+    /// `valid_fraction` and the other side this frame holds at least twice it
+    /// ([`crate::trackers::support_memory`]; ours; 1: this frame's alone, the default).
+    pub valid_support_frames: usize,
     /// Validity (ours, beyond the paper; 0: off, the default): besides the edge support, one
     /// ego boundary at least must show paint in `valid_fraction` of the near rows: a top-view
     /// pixel within 2 columns of its line brighter by this many grey levels than the road
@@ -143,6 +148,7 @@ impl Default for LiuConfig {
             min_spacing_m: 2.4,
             max_spacing_difference_m: 0.5,
             valid_fraction: 0.15,
+            valid_support_frames: 1,
             valid_paint_contrast: 0.0,
             default_width_m: [3.0, 4.0],
             default_heading_rad: 0.05,

@@ -45,6 +45,7 @@ pub mod truth;
 
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
+use super::support_memory::SupportMemory;
 use super::{now, spread_indices, Hypothesis, Layer, StageTimes, Tracker, TrackerConfig};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
@@ -152,6 +153,8 @@ pub struct LiuTracker {
     detector: Option<RelockDetector>,
     /// The validity rule after a loss (`reacquire_near_m`).
     reacquire: Reacquire,
+    /// The ego pair's support over the last frames (`valid_support_frames`).
+    support_memory: SupportMemory,
     /// The particle indices the estimate's mode candidates are chosen from (all of them,
     /// allocated once).
     by_weight: Vec<usize>,
@@ -223,6 +226,7 @@ impl LiuTracker {
             id,
             camera,
             reacquire: Reacquire::new(liu.reacquire_near_m),
+            support_memory: SupportMemory::new(liu.valid_support_frames),
             by_weight: Vec::with_capacity(filter.len()),
             positions: Vec::with_capacity(filter.len()),
             config: liu,
@@ -381,8 +385,9 @@ impl LiuTracker {
                 || [l, r]
                     .iter()
                     .any(|&k| self.painted(&boundaries[k], contrast) >= self.config.valid_fraction);
+            let remembered = self.support_memory.push(pair);
             self.reacquire
-                .valid(pair, pair, self.config.valid_fraction, near)
+                .valid(pair, remembered, self.config.valid_fraction, near)
                 && paint
         } else {
             self.reacquire.no_lane()
@@ -573,6 +578,7 @@ impl Tracker for LiuTracker {
 
     fn reset(&mut self) {
         self.filter.reset(&self.initial);
+        self.support_memory.clear();
         self.reacquire.reset();
         if let Some(d) = self.detector.as_mut() {
             d.reset();

@@ -1552,6 +1552,16 @@ export interface LiuOptions {
    */
   valid_fraction?: number;
   /**
+   * Validity: a side under `valid_fraction` this frame still counts when its mean support
+   * over the last this many frames (this one included; fewer since a reset) reaches
+   * `valid_fraction` and the other side this frame holds at least twice it
+   * (`support_memory`; ours; 1: this frame's alone, the default).
+   *
+   * Range: 1 to 100.
+   * @defaultValue `1`
+   */
+  valid_support_frames?: number;
+  /**
    * Validity (ours, beyond the paper; 0: off, the default): besides the edge support, one
    * ego boundary at least must show paint in `valid_fraction` of the near rows: a top-view
    * pixel within 2 columns of its line brighter by this many grey levels than the road
