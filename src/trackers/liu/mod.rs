@@ -390,6 +390,8 @@ impl LiuTracker {
                 .valid(pair, remembered, self.config.valid_fraction, near)
                 && paint
         } else {
+            // No ego pair: a frame without support, so that the memory holds the last frames.
+            self.support_memory.push([0.0; 2]);
             self.reacquire.no_lane()
         };
         LiuEstimate {
