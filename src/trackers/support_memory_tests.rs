@@ -10,8 +10,8 @@ use crate::synth::Eye;
 
 /// The trackers with `valid_support_frames` and the options each runs with: adachi-mmpf's
 /// threshold raised from 0.08 and liu-ppf's from 0.15 (where every frame of these members is
-/// valid on one frame's support) to where a dashed line's phase matters; danescu-mono's start rounds (the paper's
-/// start leaves the first frames' cloud in clusters, not valid).
+/// valid on one frame's support) to where a dashed line's phase matters; danescu-mono's start
+/// rounds (the paper's start leaves the first frames' cloud in clusters, not valid).
 const TRACKERS: [(&str, &str); 4] = [
     ("adachi-mmpf", r#", "valid_support": 0.3"#),
     ("danescu-mono", r#", "start_iterations": 10"#),
