@@ -34,7 +34,8 @@
 //! bend, from a line through the frames' yaws against their common bend: a gentle bend that
 //! passes as straight moves the vanishing point towards its inside ([`bend_regression`]).
 //! With `tangent_yaw` each frame's yaw comes from the lane's tangent at the car instead of
-//! the straight lines' crossing ([`tangent`]: both boundaries fitted with a curvature term,
+//! the straight lines' crossing ([`tangent`]: both boundaries fitted with a curvature term
+//! from [`calibrator::TANGENT_ROW_SHARE`] of the way below the vanishing point,
 //! and on a bent frame the horizon row), and the estimate's yaw is the median over every
 //! frame that agrees on the pose: the tangent does not follow the bend, so neither the
 //! straighter half nor the yaw at zero bend applies to it.

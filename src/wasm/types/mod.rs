@@ -251,8 +251,8 @@ export interface CalibratorOptions {
   max_bend_px?: number;
   /** Each frame's yaw from the lane's tangent at the car (a fit with a curvature term) instead
    *  of the boundaries' straight crossing (default false): better on long gentle bends; on
-   *  the one real clip with a reference yaw (Caltech) 0.5 degrees off it, where the crossing
-   *  is on it. */
+   *  the one real clip with a reference yaw (Caltech) 0.1 degrees off it; off by default
+   *  until the trackers are measured with its cameras. */
   tangent_yaw?: boolean;
 }
 
