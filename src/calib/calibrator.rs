@@ -36,8 +36,10 @@ pub struct CalibratorConfig {
     /// off by default). On the simulator's long drives it takes the gentle bends' pull out of
     /// the yaw; on Caltech's frames, the only real ones with a reference yaw, it lands 0.1
     /// degrees from the labels' yaw (0.45 against 0.35; 0.5 off until its fit took the rows
-    /// from [`TANGENT_ROW_SHARE`] below the vanishing point). Off by default until the
-    /// trackers are measured with its cameras (RESULTS.md, *Auto-calibration*).
+    /// from [`TANGENT_ROW_SHARE`] below the vanishing point). Off by default: the trackers do
+    /// worse with its cameras (adachi-mmpf, whose lane is straight, 8-10 points on the
+    /// simulator's s-curves, where the crossing's yaw towards the bend's inside suits it; 1.1
+    /// on Caltech; RESULTS.md, *Auto-calibration*).
     pub tangent_yaw: bool,
 }
 

@@ -31,8 +31,8 @@ pub struct CalibrationArgs {
     #[arg(long, default_value_t = 30.0)]
     pub fps: f64,
     /// Each frame's yaw from the lane's tangent at the car instead of the boundaries' straight
-    /// crossing (better on long gentle bends; on Caltech's frames 0.1 degrees from the labels'
-    /// yaw; off by default until the trackers are measured with its cameras).
+    /// crossing (a better yaw on long gentle bends, on Caltech's frames 0.1 degrees from the
+    /// labels'; off by default: the trackers, adachi-mmpf most, do worse with its cameras).
     #[arg(long)]
     pub tangent_yaw: bool,
 }

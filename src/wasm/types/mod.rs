@@ -252,7 +252,7 @@ export interface CalibratorOptions {
   /** Each frame's yaw from the lane's tangent at the car (a fit with a curvature term) instead
    *  of the boundaries' straight crossing (default false): better on long gentle bends; on
    *  the one real clip with a reference yaw (Caltech) 0.1 degrees off it; off by default
-   *  until the trackers are measured with its cameras. */
+   *  because the trackers, adachi-mmpf most, do worse with its cameras. */
   tangent_yaw?: boolean;
 }
 
