@@ -492,7 +492,7 @@ impl Calibrator {
         self.vote_crossings(&lines, &left, &right, bottom_row);
         let vanishing_point = ego.and_then(|[l, r]| crossing(&lines[l], &lines[r]));
         if let (Some([l, r]), Some(vp)) = (ego, vanishing_point) {
-            let rows = shape_rows(vp, bottom, s);
+            let rows = rows_below(vp, bottom, s, BEND_ROW_SHARE);
             for i in [l, r] {
                 lines[i].bend = bend(&self.points, &working_line(&lines[i], s), rows) * s;
             }
@@ -859,8 +859,12 @@ impl Calibrator {
 /// the horizon and a free row would only add noise.
 pub const BENT_SHARE: f64 = 0.5;
 
+/// The boundaries' bend is measured on the rows from this share of the way down from the
+/// vanishing point to the bottom row.
+pub const BEND_ROW_SHARE: f64 = 0.15;
+
 /// `tangent_yaw` fits the boundaries' pixels from this share of the way down from the
-/// vanishing point to the bottom row (the bend is measured from 0.15 of the way): the 1 / t
+/// vanishing point to the bottom row (the bend from [`BEND_ROW_SHARE`]): the 1 / t
 /// term of the fit is fixed by the rows near the horizon, and the more of them it has the
 /// less the tangent's column follows the far pixels' noise. With 0.15 each frame's tangent
 /// yaw moved against its measured bend by 1 to 1.7 degrees a working pixel on straight road
@@ -918,15 +922,8 @@ pub(super) fn consensus(samples: Vec<&Sample>) -> Vec<&Sample> {
     }
 }
 
-/// The working-pixel rows the boundaries' bend is measured on: from 15 % of the way down
-/// from the vanishing point `vp` (full-resolution pixels) to the working row `bottom`; `s`
-/// full pixels per working pixel.
-fn shape_rows(vp: [f64; 2], bottom: usize, s: f64) -> (f64, f64) {
-    rows_below(vp, bottom, s, 0.15)
-}
-
 /// The working-pixel rows from `share` of the way down from the vanishing point `vp`
-/// (full-resolution pixels) to the working row `bottom`.
+/// (full-resolution pixels) to the working row `bottom`; `s` full pixels per working pixel.
 fn rows_below(vp: [f64; 2], bottom: usize, s: f64, share: f64) -> (f64, f64) {
     let bottom_row = bottom as f64 * s;
     ((vp[1] + share * (bottom_row - vp[1])) / s, bottom as f64)
