@@ -1,11 +1,12 @@
 //! How well auto-calibration recovers a camera, and what it costs a tracker.
 //!
 //! `cargo run --release --example calibration_eval -- [SEED_FROM SEED_TO] [FRAMES] [SCENARIOS]
-//! [--tangent-yaw] [--no-trackers] [--preset=NAME]` (defaults: seeds 101..=112, 150 frames,
-//! scenarios highway-straight,highway-curve,s-curve,shadows,worn-markings,multi-lane cycled over
-//! the seeds; `--tangent-yaw` sets the calibrator's `tangent_yaw`, `--no-trackers` skips the
+//! [--tangent-yaw | --chord-yaw] [--no-trackers] [--preset=NAME]` (defaults: seeds 101..=112,
+//! 150 frames, scenarios highway-straight,highway-curve,s-curve,shadows,worn-markings,multi-lane
+//! cycled over the seeds; `--tangent-yaw` sets the calibrator's `tangent_yaw`, `--chord-yaw`
+//! its `tangent_yaw_after` to 0 (the crossing's yaw throughout), `--no-trackers` skips the
 //! tracking, `--preset=real-roads` runs the trackers with that preset instead of the papers'
-//! defaults).
+//! defaults). The "used" column marks with "t" an estimate whose yaw is the tangent's.
 //!
 //! For each seed a camera pose is drawn (`synth::drawn_camera`: pitch -2..8 deg, yaw -3..3 deg,
 //! height 1.1..2.4 m, horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
@@ -57,9 +58,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or("paper")
         .parse()?;
     let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
+    let d = CalibratorConfig::default();
     let calibration = CalibratorConfig {
         tangent_yaw,
-        ..CalibratorConfig::default()
+        tangent_yaw_after: if flag("--chord-yaw") {
+            0
+        } else {
+            d.tangent_yaw_after
+        },
+        ..d
     };
     let from: u64 = args.get(1).map_or(Ok(101), |s| s.parse())?;
     let to: u64 = args.get(2).map_or(Ok(112), |s| s.parse())?;
@@ -158,13 +165,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ));
         }
         println!(
-            "| {seed} | {name} | {:.2} / {:.2} / {:.2} / {hfov:.0} | {dp:+.2} | {dy:+.2} | {dyl:+.2} | {:+.1} % | {:.2} | {} | {no_intr} | {} |",
+            "| {seed} | {name} | {:.2} / {:.2} / {:.2} / {hfov:.0} | {dp:+.2} | {dy:+.2} | {dyl:+.2} | {:+.1} % | {:.2} | {}{} | {no_intr} | {} |",
             truth_cam.pitch_deg,
             truth_cam.yaw_deg,
             truth_cam.height_m,
             100.0 * dh,
             est.confidence,
             est.frames_used,
+            if est.yaw_from_tangent { " t" } else { "" },
             cells.join(" | ")
         );
     }

@@ -432,6 +432,10 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
     let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert!(report["confidence"].as_f64().unwrap() > 0.0, "{stdout}");
     assert_eq!(report["frames_seen"], 40);
+    assert_eq!(
+        report["yaw_from_tangent"], false,
+        "40 frames: under the 100 that switch to the tangent"
+    );
     let est = lanepf::camera::CameraFile::read(&estimate).unwrap();
     assert!((est.pitch_deg - 3.0).abs() < 0.5, "{est:?}");
     // The vanishing point shows the camera's yaw relative to the lane: the mount's 1 degree
@@ -474,6 +478,23 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
         (by_tangent.yaw_deg - (1.0 - heading_deg)).abs() < 0.2,
         "{by_tangent:?}, heading {heading_deg}"
     );
+    // The switch from a given number of agreeing frames: the summary says which yaw it holds,
+    // and that yaw is the tangent's above.
+    let (code, stdout, err) = lanepf(&[
+        "calibrate",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--intrinsics",
+        cam.to_str().unwrap(),
+        "--tangent-yaw-after",
+        "10",
+        "--out",
+        estimate.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.contains("the lane's tangent"), "{stdout}");
+    let switched = lanepf::camera::CameraFile::read(&estimate).unwrap();
+    assert_eq!(switched.yaw_deg, by_tangent.yaw_deg);
 
     let pred = out.join("p.jsonl");
     let (code, _, err) = lanepf(&[
@@ -513,20 +534,18 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
     ]);
     assert_eq!(code, 1);
     assert!(err.contains("--intrinsics is for --camera auto"), "{err}");
-    let (code, _, err) = lanepf(&[
-        "track",
-        "--tracker",
-        "adachi-mmpf",
-        "--camera",
-        cam.to_str().unwrap(),
-        "--tangent-yaw",
-        "--frames",
-        frames.to_str().unwrap(),
-        "--out",
-        pred.to_str().unwrap(),
-    ]);
-    assert_eq!(code, 1);
-    assert!(err.contains("--tangent-yaw is for --camera auto"), "{err}");
+    // The calibration's options without --camera auto are errors too.
+    for calibration in [&["--tangent-yaw"][..], &["--tangent-yaw-after", "50"]] {
+        let mut args = vec!["track", "--tracker", "adachi-mmpf", "--camera"];
+        args.push(cam.to_str().unwrap());
+        args.extend(calibration);
+        args.extend(["--frames", frames.to_str().unwrap()]);
+        args.extend(["--out", pred.to_str().unwrap()]);
+        let (code, _, err) = lanepf(&args);
+        assert_eq!(code, 1);
+        let want = format!("{} is for --camera auto", calibration[0]);
+        assert!(err.contains(&want), "{err}");
+    }
     let blank = out.join("blank");
     std::fs::create_dir_all(&blank).unwrap();
     let grey = vec![100u8; 320 * 240 * 4];

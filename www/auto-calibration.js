@@ -143,8 +143,10 @@ export class AutoCalibration {
         ? `Auto-calibrating the camera: ${what} (until then the tracker uses the assumed camera).`
         : `Auto-calibration: ${what}.`;
     }
+    // The yaw is the boundaries' crossing until enough frames agree, then the lane's tangent.
     const summary = `${describePose(e.camera)}, confidence ${e.confidence.toFixed(2)}, `
-      + `${e.frames_used} of ${e.frames_seen} frames`;
+      + `${e.frames_used} of ${e.frames_seen} frames`
+      + (e.yaw_from_tangent ? ', yaw from the lane’s tangent' : '');
     if (this.mode === 'auto' && this.applied) {
       const why = {
         confident: `once confidence reached ${APPLY_CONFIDENCE}`,

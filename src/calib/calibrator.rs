@@ -31,16 +31,23 @@ pub struct CalibratorConfig {
     /// Largest common bend of the ego boundaries on straight road, in working pixels (0.1 to
     /// 10; see [`super::hough`]).
     pub max_bend_px: f64,
-    /// Each frame's yaw from the lane's tangent at the car (a fit of both boundaries with a
-    /// curvature term, [`super::tangent`]) instead of the straight boundaries' crossing (ours;
-    /// off by default). On the simulator's long drives it takes the gentle bends' pull out of
-    /// the yaw; on Caltech's frames, the only real ones with a reference yaw, it lands 0.1
-    /// degrees from the labels' yaw (0.45 against 0.35; 0.5 off until its fit took the rows
-    /// from [`TANGENT_ROW_SHARE`] below the vanishing point). Off by default: the trackers do
-    /// worse with its cameras (adachi-mmpf, whose lane is straight, 8-10 points on the
-    /// simulator's s-curves, where the crossing's yaw towards the bend's inside suits it; 1.1
-    /// on Caltech; RESULTS.md, *Auto-calibration*).
+    /// The yaw from the lane's tangent at the car (a fit of both boundaries with a curvature
+    /// term, [`super::tangent`]) from the first frame, instead of the straight boundaries'
+    /// crossing until `tangent_yaw_after` frames agree (ours; off by default). On the
+    /// simulator's long drives it takes the gentle bends' pull out of the yaw; on Caltech's
+    /// frames, the only real ones with a reference yaw, it lands 0.1 degrees from the labels'
+    /// yaw (0.45 against 0.35). Off by default: on short clips the trackers do worse with its
+    /// cameras (adachi-mmpf, whose lane is straight, 8-10 points on the simulator's 5 s
+    /// s-curves, where the crossing's yaw towards the bend's inside suits it; 1.1 on Caltech;
+    /// RESULTS.md, *Auto-calibration*).
     pub tangent_yaw: bool,
+    /// The estimate's yaw switches from the crossing's to the tangent's once this many frames
+    /// agree on the pose (0 to [`MAX_SAMPLES`]; 0: never, the crossing's yaw throughout; ours).
+    /// On the simulator the trackers lost nothing to the tangent's cameras on drives that used
+    /// 136 frames or more, and adachi-mmpf lost 4-10 points on those that used 33-67 (its
+    /// s-curves at 5 and 10 s), while the crossing's yaw was off by more than 0.5 degrees on 9
+    /// of 12 drives at 20 s: the crossing's yaw on short clips, the tangent's on long ones.
+    pub tangent_yaw_after: usize,
 }
 
 impl Default for CalibratorConfig {
@@ -51,11 +58,28 @@ impl Default for CalibratorConfig {
             stable_frames: 5,
             max_bend_px: 1.5,
             tangent_yaw: false,
+            tangent_yaw_after: DEFAULT_TANGENT_YAW_AFTER,
         }
     }
 }
 
+/// The default of [`CalibratorConfig::tangent_yaw_after`]: between the simulator's drives that
+/// used 67 frames, where the tangent's camera still cost adachi-mmpf 4 points, and 136, where no
+/// tracker lost more than 2 (RESULTS.md, *Auto-calibration*).
+pub const DEFAULT_TANGENT_YAW_AFTER: usize = 100;
+
 impl CalibratorConfig {
+    /// Whether frames fit the lane's tangent at the car (for `tangent_yaw` or, later,
+    /// `tangent_yaw_after`).
+    fn fits_tangent(&self) -> bool {
+        self.tangent_yaw || self.tangent_yaw_after > 0
+    }
+
+    /// Whether the estimate takes the tangent's yaw when `agreeing` frames agree on the pose.
+    pub fn yaw_from_tangent(&self, agreeing: usize) -> bool {
+        self.tangent_yaw || (self.tangent_yaw_after > 0 && agreeing >= self.tangent_yaw_after)
+    }
+
     /// Checks every option against its range.
     ///
     /// # Errors
@@ -86,6 +110,13 @@ impl CalibratorConfig {
                 "must be 1 to 120 frames",
             ));
         }
+        if self.tangent_yaw_after > MAX_SAMPLES {
+            return Err(Error::parameter(
+                "tangent_yaw_after",
+                self.tangent_yaw_after,
+                "must be 0 (never) to 2000 frames",
+            ));
+        }
         Ok(())
     }
 }
@@ -112,7 +143,11 @@ pub struct FrameObservation {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Sample {
     pub(super) pitch: f64,
+    /// The yaw of the boundaries' straight crossing.
     pub(super) yaw: f64,
+    /// The yaw of the lane's tangent at the car, when the calibrator fits it and the fit
+    /// succeeds (`tangent_yaw`, `tangent_yaw_after`).
+    pub(super) tangent_yaw: Option<f64>,
     /// Lane width seen from one metre above the road.
     pub(super) width_at_unit_height: f64,
     /// How far the boundaries bent: |common bend| + |opposite bend| / 3, working pixels.
@@ -145,6 +180,9 @@ pub struct CalibrationEstimate {
     pub vanishing_point: [f64; 2],
     /// Whether the intrinsics were given (false: focal length from `hfov_deg`).
     pub intrinsics_known: bool,
+    /// Whether the yaw is the lane's tangent at the car (`tangent_yaw`, or enough frames for
+    /// `tangent_yaw_after`) rather than the boundaries' straight crossing.
+    pub yaw_from_tangent: bool,
 }
 
 /// Least ridge contrast of a marking pixel, grey levels of the marking intensity (see
@@ -516,7 +554,7 @@ impl Calibrator {
             // The boundaries' bends in working pixels, and their common bend.
             let (bl, br) = (lines[l].bend / s, lines[r].bend / s);
             let common_bend = (bl + br) / 2.0;
-            let tangent_vp = if self.config.tangent_yaw {
+            let tangent_vp = if self.config.fits_tangent() {
                 let pair = [&working_line(&lines[l], s), &working_line(&lines[r], s)];
                 let rows = rows_below(vp, bottom, s, TANGENT_ROW_SHARE);
                 // The crossing's row is the horizon on a straight frame; a bend lifts it, and
@@ -720,10 +758,11 @@ impl Calibrator {
         // The camera (lateral 0) inside the lane, near its middle.
         let centred = (yl + yr).abs() / 2.0 <= MAX_LANE_OFFSET * width_at_unit_height;
         // The width through the crossing's pose: the lines' own geometry at the bottom row.
-        let yaw = tangent_vp.map_or(yaw, |t| pose_from_vanishing_point(&self.pinhole, t)[1]);
+        let tangent_yaw = tangent_vp.map(|t| pose_from_vanishing_point(&self.pinhole, t)[1]);
         (width_at_unit_height > 0.0 && (lo..=hi).contains(&height) && centred).then_some(Sample {
             pitch,
             yaw,
+            tangent_yaw,
             width_at_unit_height,
             bend: 0.0,
             common_bend: 0.0,
@@ -733,7 +772,7 @@ impl Calibrator {
     /// The estimate's vanishing point once [`MIN_PRIOR_AGREEING`] samples agree on the pose.
     fn agreed_vanishing_point(&self) -> Option<[f64; 2]> {
         self.estimate_angles()
-            .filter(|&(.., n)| n >= MIN_PRIOR_AGREEING)
+            .filter(|&(.., n, _)| n >= MIN_PRIOR_AGREEING)
             .map(|(pitch, yaw, ..)| vanishing_point(&self.pinhole, pitch, yaw))
     }
 
@@ -754,11 +793,12 @@ impl Calibrator {
     }
 
     /// Median pitch, yaw and width at unit height over the chosen samples, their spreads
-    /// (1.4826 MAD) and the number of samples; the yaw at zero bend instead of the median when
-    /// the samples that agree on the pose fix it ([`super::bend_regression`]); with
-    /// `tangent_yaw` the yaw's median and spread over every sample that agrees on the pose (the
-    /// count stays the chosen samples', so the confidence errs low there).
-    fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3], usize)> {
+    /// (1.4826 MAD), the number of samples and whether the yaw is the tangent's; the yaw at
+    /// zero bend instead of the median when the samples that agree on the pose fix it
+    /// ([`super::bend_regression`]); the tangent's ([`CalibratorConfig::yaw_from_tangent`]) is
+    /// the median and spread of the tangent's yaw over every sample that agrees on the pose
+    /// (the count stays the chosen samples', so the confidence errs low there).
+    fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3], usize, bool)> {
         if self.samples.is_empty() {
             return None;
         }
@@ -771,11 +811,13 @@ impl Calibrator {
             (m, 1.4826 * median(&dev))
         };
         let (pitch, sp) = column(&chosen, |s| s.pitch);
-        let (yaw, sy) = if self.config.tangent_yaw {
+        let from_tangent = self.config.yaw_from_tangent(agreeing.len());
+        let (yaw, sy) = if from_tangent {
             // The tangent's yaw does not follow the bend: the median over every frame that
             // agrees on the pose. Choosing the straighter frames would choose those whose
             // pixels happen to bend less, and with them a tangent pulled towards the chord.
-            column(&agreeing, |s| s.yaw)
+            // A frame whose tangent did not fit counts with its crossing's yaw.
+            column(&agreeing, |s| s.tangent_yaw.unwrap_or(s.yaw))
         } else {
             let (median_yaw, sy) = column(&chosen, |s| s.yaw);
             // The yaw of a frame that does not bend, over every frame that agrees on the pose.
@@ -783,7 +825,7 @@ impl Calibrator {
             (at_zero_bend.unwrap_or(median_yaw), sy)
         };
         let (w1, sw) = column(&chosen, |s| s.width_at_unit_height);
-        Some((pitch, yaw, w1, [sp, sy, sw], chosen.len()))
+        Some((pitch, yaw, w1, [sp, sy, sw], chosen.len(), from_tangent))
     }
 
     /// Adds a measured sample as a frame would (for the tests of the prior).
@@ -809,7 +851,7 @@ impl Calibrator {
     /// standard error of each median: it nears 1 when the estimate is well inside the goal
     /// (0.5 degrees, 10 % of the height).
     pub fn estimate(&self) -> Option<CalibrationEstimate> {
-        let (pitch, yaw, w1, [sp, sy, sw], n) = self.estimate_angles()?;
+        let (pitch, yaw, w1, [sp, sy, sw], n, yaw_from_tangent) = self.estimate_angles()?;
         let n = n as f64;
         let height_m = self.config.lane_width_m / w1;
         let height_sd_m = height_m * sw / w1;
@@ -849,6 +891,7 @@ impl Calibrator {
             height_sd_m,
             vanishing_point: vanishing_point(&k, pitch, yaw),
             intrinsics_known: self.intrinsics_known,
+            yaw_from_tangent,
         })
     }
 }

@@ -29,7 +29,11 @@ impl RelockDetector {
             camera.width(),
             camera.height(),
             Some(&camera.to_file()),
-            CalibratorConfig::default(),
+            // Only its lines are used: no frame fits the lane's tangent.
+            CalibratorConfig {
+                tangent_yaw_after: 0,
+                ..CalibratorConfig::default()
+            },
         )?;
         calibrator.set_known_vanishing_point(vanishing_point(camera))?;
         Ok(Self {

@@ -28,6 +28,8 @@ struct Options {
     max_bend_px: Option<f64>,
     #[serde(default)]
     tangent_yaw: Option<bool>,
+    #[serde(default)]
+    tangent_yaw_after: Option<usize>,
 }
 
 impl Options {
@@ -39,6 +41,7 @@ impl Options {
             stable_frames: self.stable_frames.unwrap_or(d.stable_frames),
             max_bend_px: self.max_bend_px.unwrap_or(d.max_bend_px),
             tangent_yaw: self.tangent_yaw.unwrap_or(d.tangent_yaw),
+            tangent_yaw_after: self.tangent_yaw_after.unwrap_or(d.tangent_yaw_after),
         }
     }
 }
@@ -68,7 +71,7 @@ pub struct JsCalibrator {
 #[wasm_bindgen(js_class = Calibrator)]
 impl JsCalibrator {
     /// `new Calibrator({ width, height, intrinsics?, lane_width_m?, hfov_deg?, stable_frames?,
-    /// max_bend_px?, tangent_yaw? })`: a calibrator for `width` x `height` frames.
+    /// max_bend_px?, tangent_yaw?, tangent_yaw_after? })`: a calibrator for `width` x `height` frames.
     /// `intrinsics` (a camera object of the same size; its pose is ignored) gives the focal
     /// length, principal point and lens; without it the focal length comes from `hfov_deg` (60)
     /// and the principal point is the image centre. Throws an `Error` naming a bad or unknown
@@ -104,7 +107,7 @@ impl JsCalibrator {
     }
 
     /// The options in effect: `{ lane_width_m, hfov_deg, stable_frames, max_bend_px,
-    /// tangent_yaw }`.
+    /// tangent_yaw, tangent_yaw_after }`.
     #[wasm_bindgen(
         unchecked_return_type = "Required<Omit<CalibratorOptions, 'width' | 'height' | 'intrinsics'>>"
     )]
@@ -151,7 +154,7 @@ impl JsCalibrator {
 
     /// The current estimate, or `null` before any frame measured the camera: `{ camera,
     /// confidence, frames_used, frames_seen, pitch_sd_deg, yaw_sd_deg, height_sd_m,
-    /// vanishing_point, intrinsics_known }`; `camera` goes straight into `new Tracker(id, {
+    /// vanishing_point, intrinsics_known, yaw_from_tangent }`; `camera` goes straight into `new Tracker(id, {
     /// camera })`.
     #[wasm_bindgen(unchecked_return_type = "CalibrationEstimate | null")]
     pub fn estimate(&self) -> Result<JsValue, Thrown> {

@@ -46,6 +46,10 @@ test('policy: applied once confident or after a few seconds, re-applied when a c
   assert.equal(auto.update({ status: status(30), estimate: estimate(0.95, cam(3.3, 1.2, 1.45)) }), null);
   assert.equal(auto.update({ status: status(31), estimate: estimate(0.5, cam(4, 1, 1.4)) }), null);
   assert.equal(auto.update({ status: status(32), estimate: estimate(0.9, cam(4, 1, 1.4)) }), 'moved');
+  // Once enough frames agree the yaw is the lane's tangent's, and the line says so.
+  assert.doesNotMatch(auto.text(), /tangent/);
+  auto.update({ status: status(33), estimate: { ...estimate(0.9, cam(4, 1, 1.4)), yaw_from_tangent: true } });
+  assert.match(auto.text(), /40 of 60 frames, yaw from the lane’s tangent\./);
 
   const late = new AutoCalibration();
   late.start('auto');
@@ -85,6 +89,7 @@ test('Calibrator in Node: the scene camera within 0.5 degrees and 10 %, accepted
   assert.ok(e.confidence > 0.5 && e.confidence <= 1);
   assert.equal(e.frames_seen, 300);
   assert.equal(e.intrinsics_known, false);
+  assert.equal(typeof e.yaw_from_tangent, 'boolean');
   const tracker = new Tracker('lee-cpf', { camera: e.camera });
   assert.equal(typeof tracker.step(scene.render(0), 320, 240).valid, 'boolean');
   const o = calibrator.observation();
@@ -93,6 +98,25 @@ test('Calibrator in Node: the scene camera within 0.5 degrees and 10 %, accepted
   tracker.free();
   scene.free();
   calibrator.free();
+});
+
+test('Calibrator in Node: the yaw is the crossing\'s until tangent_yaw_after frames agree, then the tangent\'s', () => {
+  const f = 160 / Math.tan(Math.PI / 6);
+  const truth = { width: 320, height: 240, fx: f, fy: f, cx: 159.5, cy: 119.5, height_m: 1.4, pitch_deg: 3, yaw_deg: 1 };
+  const scene = new Scene('highway-curve', { camera: truth, seed: 2 });
+  const options = [0, 1, 2000].map((after) => ({ width: 320, height: 240, intrinsics: truth, tangent_yaw_after: after }));
+  const calibrators = options.map((o) => new Calibrator(o));
+  for (let k = 0; k < 60; k++) {
+    const frame = scene.render(k);
+    for (const c of calibrators) c.feed(frame, 320, 240);
+  }
+  const [never, first, late] = calibrators.map((c) => c.estimate());
+  assert.deepEqual([never.yaw_from_tangent, first.yaw_from_tangent, late.yaw_from_tangent], [false, true, false]);
+  assert.equal(late.camera.yaw_deg, never.camera.yaw_deg, 'not yet 2000 frames: the crossing\'s yaw');
+  assert.notEqual(first.camera.yaw_deg, never.camera.yaw_deg);
+  assert.equal(first.camera.pitch_deg, never.camera.pitch_deg, 'the pitch is the crossing\'s in both');
+  for (const c of calibrators) c.free();
+  scene.free();
 });
 
 test('Calibrator in Node: bad options and frames throw Errors that say what to do; the instance carries on', () => {
@@ -105,6 +129,8 @@ test('Calibrator in Node: bad options and frames throw Errors that say what to d
   throws(() => new Calibrator({ width: 640, height: 480, lane_width_m: 9 }), /lane_width_m.*2\.5 to 5/);
   throws(() => new Calibrator({ width: 640, height: 480, stable_frames: 2.5 }), /stable_frames/);
   throws(() => new Calibrator({ width: 640, height: 480, tangent_yaw: 'yes' }), /tangent_yaw/);
+  throws(() => new Calibrator({ width: 640, height: 480, tangent_yaw_after: 5000 }), /tangent_yaw_after.*0 \(never\) to 2000/);
+  throws(() => new Calibrator({ width: 640, height: 480, tangent_yaw_after: -1 }), /tangent_yaw_after/);
   throws(() => new Calibrator({ width: 0, height: 480 }), /0x480/);
   throws(() => new Calibrator({ width: 1e5, height: 480 }), /at most/);
   throws(() => new Calibrator({ width: 640, height: 480, intrinsics: { ...cam(3, 0, 1.4), width: 320 } }), /intrinsics are for 320x480 frames, not 640x480/);
@@ -118,7 +144,7 @@ test('Calibrator in Node: bad options and frames throw Errors that say what to d
   throws(() => c.feed(new Float32Array(64 * 48 * 4), 64, 48), /not a Float32Array/);
   throws(() => c.feed(null, 64, 48), /not null/);
   assert.equal(c.feed(frame, 64, 48).frames_seen, 1, 'the failed calls counted nothing');
-  assert.deepEqual(c.options(), { lane_width_m: 3.6, hfov_deg: 60, stable_frames: 5, max_bend_px: 1.5, tangent_yaw: false });
+  assert.deepEqual(c.options(), { lane_width_m: 3.6, hfov_deg: 60, stable_frames: 5, max_bend_px: 1.5, tangent_yaw: false, tangent_yaw_after: 100 });
   c.reset();
   assert.equal(c.feed(frame, 64, 48).frames_seen, 1);
   c.free();

@@ -30,11 +30,16 @@ pub struct CalibrationArgs {
     /// Frame rate of the folder, for --seconds.
     #[arg(long, default_value_t = 30.0)]
     pub fps: f64,
-    /// Each frame's yaw from the lane's tangent at the car instead of the boundaries' straight
-    /// crossing (a better yaw on long gentle bends, on Caltech's frames 0.1 degrees from the
-    /// labels'; off by default: the trackers, adachi-mmpf most, do worse with its cameras).
+    /// The yaw from the lane's tangent at the car from the first frame, instead of the
+    /// boundaries' straight crossing until --tangent-yaw-after frames agree (a better yaw on
+    /// long gentle bends, on Caltech's frames 0.1 degrees from the labels'; off by default:
+    /// on short clips the trackers, adachi-mmpf most, do worse with its cameras).
     #[arg(long)]
     pub tangent_yaw: bool,
+    /// The yaw switches from the boundaries' straight crossing to the lane's tangent at the
+    /// car once this many frames agree on the pose (0: never) [default: 100].
+    #[arg(long)]
+    pub tangent_yaw_after: Option<usize>,
 }
 
 /// Options of `lanepf calibrate`.
@@ -71,12 +76,17 @@ pub fn run(args: Args) -> Result<()> {
 pub fn summary(e: &CalibrationEstimate) -> String {
     let c = &e.camera;
     format!(
-        "pitch {:.2} deg (sd {:.2}), yaw {:.2} deg (sd {:.2}), height {:.2} m (sd {:.2}), \
+        "pitch {:.2} deg (sd {:.2}), yaw {:.2} deg (sd {:.2}, {}), height {:.2} m (sd {:.2}), \
          confidence {:.2}, {} of {} frames used, focal length {:.1} px ({})",
         c.pitch_deg,
         e.pitch_sd_deg,
         c.yaw_deg,
         e.yaw_sd_deg,
+        if e.yaw_from_tangent {
+            "the lane's tangent"
+        } else {
+            "the boundaries' crossing"
+        },
         c.height_m,
         e.height_sd_m,
         e.confidence,
@@ -110,6 +120,9 @@ pub fn calibrate(files: &[PathBuf], args: &CalibrationArgs) -> Result<Calibratio
             CalibratorConfig::default().stable_frames
         },
         tangent_yaw: args.tangent_yaw,
+        tangent_yaw_after: args
+            .tangent_yaw_after
+            .unwrap_or(CalibratorConfig::default().tangent_yaw_after),
         ..CalibratorConfig::default()
     };
     let limit = match args.seconds {

@@ -67,6 +67,12 @@ pub fn run(args: Args) -> Result<()> {
             "--tangent-yaw is for --camera auto; with a camera file nothing is calibrated".into(),
         ));
     }
+    if args.camera != "auto" && args.calibration.tangent_yaw_after.is_some() {
+        return Err(Error::Config(
+            "--tangent-yaw-after is for --camera auto; with a camera file nothing is calibrated"
+                .into(),
+        ));
+    }
     let camera = if args.camera == "auto" {
         let files = frames::list(&args.frames)?;
         let estimate = super::calibrate::calibrate(&files, &args.calibration)?;

@@ -249,11 +249,15 @@ export interface CalibratorOptions {
   /** Largest common bend of the ego boundaries on straight road, working pixels (0.1 to 10;
    *  default 1.5). */
   max_bend_px?: number;
-  /** Each frame's yaw from the lane's tangent at the car (a fit with a curvature term) instead
-   *  of the boundaries' straight crossing (default false): better on long gentle bends; on
-   *  the one real clip with a reference yaw (Caltech) 0.1 degrees off it; off by default
-   *  because the trackers, adachi-mmpf most, do worse with its cameras. */
+  /** The yaw from the lane's tangent at the car (a fit with a curvature term) from the first
+   *  frame, instead of the boundaries' straight crossing until `tangent_yaw_after` frames
+   *  agree (default false): better on long gentle bends; on the one real clip with a
+   *  reference yaw (Caltech) 0.1 degrees off it; off by default because on short clips the
+   *  trackers, adachi-mmpf most, do worse with its cameras. */
   tangent_yaw?: boolean;
+  /** The yaw switches from the crossing's to the tangent's once this many frames agree on the
+   *  pose (0 to 2000; default 100; 0: never). */
+  tangent_yaw_after?: number;
 }
 
 /** What `Calibrator.feed` says about one frame. */
@@ -294,6 +298,9 @@ export interface CalibrationEstimate {
   vanishing_point: [number, number];
   /** Whether intrinsics were given (false: focal length from `hfov_deg`). */
   intrinsics_known: boolean;
+  /** Whether the yaw is the lane's tangent at the car (`tangent_yaw`, or `tangent_yaw_after`
+   *  frames agree) rather than the boundaries' straight crossing. */
+  yaw_from_tangent: boolean;
 }
 
 /** A straight line through marking pixels: x = x_ref + slope (y - y_ref), undistorted pixels. */
