@@ -1,12 +1,14 @@
 //! How well auto-calibration recovers a camera, and what it costs a tracker.
 //!
 //! `cargo run --release --example calibration_eval -- [SEED_FROM SEED_TO] [FRAMES] [SCENARIOS]
-//! [--tangent-yaw | --chord-yaw] [--no-trackers] [--preset=NAME]` (defaults: seeds 101..=112,
+//! [--tangent-yaw | --chord-yaw] [--no-trackers] [--preset=NAME] [--tracker-seeds=N]`
+//! (defaults: seeds 101..=112,
 //! 150 frames, scenarios highway-straight,highway-curve,s-curve,shadows,worn-markings,multi-lane
 //! cycled over the seeds; `--tangent-yaw` sets the calibrator's `tangent_yaw`, `--chord-yaw`
 //! its `tangent_yaw_after` to 0 (the crossing's yaw throughout), `--no-trackers` skips the
 //! tracking, `--preset=real-roads` runs the trackers with that preset instead of the papers'
-//! defaults). The "used" column marks with "t" an estimate whose yaw is the tangent's.
+//! defaults, `--tracker-seeds=N` averages each tracker's accuracy over its seeds 1..=N, 1 by
+//! default). The "used" column marks with "t" an estimate whose yaw is the tangent's.
 //!
 //! For each seed a camera pose is drawn (`synth::drawn_camera`: pitch -2..8 deg, yaw -3..3 deg,
 //! height 1.1..2.4 m, horizontal field of view 50..90 deg at 640x480) and the scenario rendered through it. The
@@ -33,11 +35,12 @@ fn track(
     camera: &CameraFile,
     frames: &[Vec<u8>],
     preset: Preset,
+    seed: u64,
 ) -> Result<Vec<LaneEstimate>, Box<dyn std::error::Error>> {
     let config = TrackerConfig {
         camera: camera.clone(),
         particles: None,
-        seed: 1,
+        seed,
         options: TrackerOptions::preset(id, preset)?.into(),
     };
     let mut tracker = trackers::create(id, &config)?;
@@ -57,6 +60,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .find_map(|a| a.strip_prefix("--preset="))
         .unwrap_or("paper")
         .parse()?;
+    let tracker_seeds: u64 = all
+        .iter()
+        .find_map(|a| a.strip_prefix("--tracker-seeds="))
+        .unwrap_or("1")
+        .parse()?;
+    if tracker_seeds == 0 {
+        return Err("--tracker-seeds must be at least 1".into());
+    }
     let args: Vec<&String> = all.iter().filter(|a| !a.starts_with("--")).collect();
     let d = CalibratorConfig::default();
     let calibration = CalibratorConfig {
@@ -157,8 +168,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     100.0 * r.params.detection_rate.unwrap_or(0.0),
                 ))
             };
-            let (a_true, d_true) = score(&track(id, &truth_cam, &frames, preset)?)?;
-            let (a_auto, d_auto) = score(&track(id, c, &frames, preset)?)?;
+            // Accuracy and detection rate averaged over the tracker's seeds.
+            let mean_score =
+                |camera: &CameraFile| -> Result<(f64, f64), Box<dyn std::error::Error>> {
+                    let (mut a, mut d) = (0.0, 0.0);
+                    for tracker_seed in 1..=tracker_seeds {
+                        let (ai, di) = score(&track(id, camera, &frames, preset, tracker_seed)?)?;
+                        (a, d) = (a + ai, d + di);
+                    }
+                    let n = tracker_seeds.max(1) as f64;
+                    Ok((a / n, d / n))
+                };
+            let (a_true, d_true) = mean_score(&truth_cam)?;
+            let (a_auto, d_auto) = mean_score(c)?;
             losses[k].push(a_true - a_auto);
             cells.push(format!(
                 "{a_true:.1} / {a_auto:.1} (det {d_true:.0} / {d_auto:.0})"
