@@ -55,6 +55,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let all: Vec<String> = std::env::args().collect();
     let flag = |name: &str| all.iter().any(|a| a == name);
     let (tangent_yaw, with_trackers) = (flag("--tangent-yaw"), !flag("--no-trackers"));
+    if tangent_yaw && flag("--chord-yaw") {
+        return Err("--tangent-yaw and --chord-yaw exclude each other".into());
+    }
     let preset: Preset = all
         .iter()
         .find_map(|a| a.strip_prefix("--preset="))

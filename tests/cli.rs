@@ -495,6 +495,22 @@ fn calibrate_recovers_the_synthetic_camera_and_track_runs_with_camera_auto() {
     assert!(stdout.contains("the lane's tangent"), "{stdout}");
     let switched = lanepf::camera::CameraFile::read(&estimate).unwrap();
     assert_eq!(switched.yaw_deg, by_tangent.yaw_deg);
+    // The help's default is the library's; the two yaw options exclude each other.
+    let (_, help, _) = lanepf(&["calibrate", "--help"]);
+    let default = lanepf::calib::CalibratorConfig::default().tangent_yaw_after;
+    assert!(help.contains(&format!("[default: {default}]")), "{help}");
+    let (code, _, err) = lanepf(&[
+        "calibrate",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--tangent-yaw",
+        "--tangent-yaw-after",
+        "10",
+        "--out",
+        estimate.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("cannot be used with"), "{err}");
 
     let pred = out.join("p.jsonl");
     let (code, _, err) = lanepf(&[

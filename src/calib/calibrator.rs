@@ -33,7 +33,7 @@ pub struct CalibratorConfig {
     pub max_bend_px: f64,
     /// The yaw from the lane's tangent at the car (a fit of both boundaries with a curvature
     /// term, [`super::tangent`]) from the first frame, instead of the straight boundaries'
-    /// crossing until `tangent_yaw_after` frames agree (ours; off by default). On the
+    /// crossing until `tangent_yaw_after` frames have one (ours; off by default). On the
     /// simulator's long drives it takes the gentle bends' pull out of the yaw; on Caltech's
     /// frames, the only real ones with a reference yaw, it lands 0.1 degrees from the labels'
     /// yaw (0.45 against 0.35). Off by default: on short clips the trackers do worse with its
@@ -42,9 +42,10 @@ pub struct CalibratorConfig {
     /// RESULTS.md, *Auto-calibration*).
     pub tangent_yaw: bool,
     /// The estimate's yaw switches from the crossing's to the tangent's once this many frames
-    /// agree on the pose (0 to [`MAX_SAMPLES`]; 0: never, the crossing's yaw throughout; ours).
-    /// On the simulator the trackers lost nothing to the tangent's cameras on drives that used
-    /// 136 frames or more, and adachi-mmpf lost 4-10 points on those that used 33-67 (its
+    /// that agree on the pose have a tangent (0 to [`MAX_SAMPLES`]; 0: never, the crossing's
+    /// yaw throughout; ours), and stays the tangent's until [`Calibrator::reset`]. On the
+    /// simulator no tracker lost more than 2 points to the tangent's cameras on drives that
+    /// used 136 frames or more, and adachi-mmpf lost 4-10 points on those that used 33-67 (its
     /// s-curves at 5 and 10 s), while the crossing's yaw was off by more than 0.5 degrees on 9
     /// of 12 drives at 20 s: the crossing's yaw on short clips, the tangent's on long ones.
     pub tangent_yaw_after: usize,
@@ -73,11 +74,6 @@ impl CalibratorConfig {
     /// `tangent_yaw_after`).
     fn fits_tangent(&self) -> bool {
         self.tangent_yaw || self.tangent_yaw_after > 0
-    }
-
-    /// Whether the estimate takes the tangent's yaw when `agreeing` frames agree on the pose.
-    pub fn yaw_from_tangent(&self, agreeing: usize) -> bool {
-        self.tangent_yaw || (self.tangent_yaw_after > 0 && agreeing >= self.tangent_yaw_after)
     }
 
     /// Checks every option against its range.
@@ -245,6 +241,10 @@ pub struct Calibrator {
     /// Where the road vanishes when the camera is known (see
     /// [`Calibrator::set_known_vanishing_point`]).
     known_vanishing_point: Option<[f64; 2]>,
+    /// `tangent_yaw_after` frames that agree on the pose have had a tangent since the last
+    /// reset: the yaw is the tangent's from then on, so a consensus that later shrinks does
+    /// not switch it back.
+    tangent_switched: bool,
 }
 
 impl Calibrator {
@@ -317,6 +317,7 @@ impl Calibrator {
             samples: VecDeque::with_capacity(MAX_SAMPLES),
             frames_seen: 0,
             last: FrameObservation::default(),
+            tangent_switched: false,
             known_vanishing_point: None,
         };
         if !distortion.is_none() {
@@ -418,6 +419,7 @@ impl Calibrator {
         self.votes.clear();
         self.frames_seen = 0;
         self.last = FrameObservation::default();
+        self.tangent_switched = false;
     }
 
     /// Feeds one RGBA frame; returns what it showed.
@@ -581,10 +583,7 @@ impl Calibrator {
             {
                 sample.bend = common_bend.abs() + (bl - br).abs() / 6.0;
                 sample.common_bend = common_bend;
-                if self.samples.len() == MAX_SAMPLES {
-                    self.samples.pop_front();
-                }
-                self.samples.push_back(sample);
+                self.add_sample(sample);
                 used = true;
             }
         }
@@ -795,9 +794,10 @@ impl Calibrator {
     /// Median pitch, yaw and width at unit height over the chosen samples, their spreads
     /// (1.4826 MAD), the number of samples and whether the yaw is the tangent's; the yaw at
     /// zero bend instead of the median when the samples that agree on the pose fix it
-    /// ([`super::bend_regression`]); the tangent's ([`CalibratorConfig::yaw_from_tangent`]) is
-    /// the median and spread of the tangent's yaw over every sample that agrees on the pose
-    /// (the count stays the chosen samples', so the confidence errs low there).
+    /// ([`super::bend_regression`]); the tangent's (with `tangent_yaw`, or once
+    /// `tangent_yaw_after` frames had one) is the median and spread of the tangent's yaw over
+    /// every sample that agrees on the pose and has one (the count stays the chosen samples',
+    /// so the confidence errs low there).
     fn estimate_angles(&self) -> Option<(f64, f64, f64, [f64; 3], usize, bool)> {
         if self.samples.is_empty() {
             return None;
@@ -811,13 +811,18 @@ impl Calibrator {
             (m, 1.4826 * median(&dev))
         };
         let (pitch, sp) = column(&chosen, |s| s.pitch);
-        let from_tangent = self.config.yaw_from_tangent(agreeing.len());
+        // The tangent's yaw does not follow the bend: the median over every frame that agrees
+        // on the pose and has a tangent. Choosing the straighter frames would choose those
+        // whose pixels happen to bend less, and with them a tangent pulled towards the chord.
+        let tangents: Vec<&Sample> = agreeing
+            .iter()
+            .copied()
+            .filter(|s| s.tangent_yaw.is_some())
+            .collect();
+        let from_tangent =
+            (self.config.tangent_yaw || self.tangent_switched) && !tangents.is_empty();
         let (yaw, sy) = if from_tangent {
-            // The tangent's yaw does not follow the bend: the median over every frame that
-            // agrees on the pose. Choosing the straighter frames would choose those whose
-            // pixels happen to bend less, and with them a tangent pulled towards the chord.
-            // A frame whose tangent did not fit counts with its crossing's yaw.
-            column(&agreeing, |s| s.tangent_yaw.unwrap_or(s.yaw))
+            column(&tangents, |s| s.tangent_yaw.unwrap_or(s.yaw))
         } else {
             let (median_yaw, sy) = column(&chosen, |s| s.yaw);
             // The yaw of a frame that does not bend, over every frame that agrees on the pose.
@@ -828,10 +833,25 @@ impl Calibrator {
         Some((pitch, yaw, w1, [sp, sy, sw], chosen.len(), from_tangent))
     }
 
-    /// Adds a measured sample as a frame would (for the tests of the prior).
+    /// Keeps a frame's sample (the oldest goes beyond [`MAX_SAMPLES`]) and notes when
+    /// `tangent_yaw_after` frames that agree on the pose have a tangent.
+    fn add_sample(&mut self, sample: Sample) {
+        if self.samples.len() == MAX_SAMPLES {
+            self.samples.pop_front();
+        }
+        self.samples.push_back(sample);
+        let after = self.config.tangent_yaw_after;
+        if after > 0 && !self.config.tangent_yaw && !self.tangent_switched {
+            let agreeing = consensus(self.samples.iter().collect());
+            self.tangent_switched =
+                agreeing.iter().filter(|s| s.tangent_yaw.is_some()).count() >= after;
+        }
+    }
+
+    /// Adds a measured sample as a frame would (for the tests of the prior and the switch).
     #[cfg(test)]
     pub(super) fn push_sample(&mut self, sample: Sample) {
-        self.samples.push_back(sample);
+        self.add_sample(sample);
     }
 
     /// The median yaw over the samples the estimate chooses, radians: the estimate's yaw

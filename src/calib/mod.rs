@@ -33,8 +33,8 @@
 //! [`Calibrator::estimate`]); but the yaw, from ten frames on, is that of a frame that does not
 //! bend, from a line through the frames' yaws against their common bend: a gentle bend that
 //! passes as straight moves the vanishing point towards its inside ([`bend_regression`]).
-//! Once `tangent_yaw_after` frames (100 by default) agree on the pose, or from the first frame
-//! with `tangent_yaw`, the yaw comes from the lane's tangent at the car instead of
+//! Once `tangent_yaw_after` frames (100 by default) that agree on the pose have a tangent
+//! (and from then until a reset), or from the first frame with `tangent_yaw`, the yaw comes from the lane's tangent at the car instead of
 //! the straight lines' crossing ([`tangent`]: both boundaries fitted with a curvature term
 //! from [`calibrator::TANGENT_ROW_SHARE`] of the way below the vanishing point,
 //! and on a bent frame the horizon row), and the estimate's yaw is the median over every

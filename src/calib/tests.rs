@@ -399,11 +399,11 @@ fn on_bends_the_tangent_yaw_beats_the_chord() {
 }
 
 /// By default the estimate's yaw is the crossing's until
-/// [`super::calibrator::DEFAULT_TANGENT_YAW_AFTER`] frames agree on the pose, the tangent's from
-/// then on; the pitch and height do not change with it. On highway-curve 102 (the long bend
-/// above) 60 frames give the crossing's yaw and 300 frames (174 agreeing) the tangent's,
-/// within 0.2 degrees of the mount's where the crossing's is 0.7 off (measured 2026-11-30:
-/// -0.73 and -0.03).
+/// [`super::calibrator::DEFAULT_TANGENT_YAW_AFTER`] frames that agree on the pose have a
+/// tangent, the tangent's from then on; the pitch and height do not change with it. On
+/// highway-curve 102 (the long bend above) 60 frames (49 used) give the crossing's yaw and 300
+/// frames (174 used) the tangent's, within 0.2 degrees of the mount's where the crossing's is
+/// 0.7 off (measured 2026-11-30: -0.73 and -0.03).
 #[test]
 fn by_default_the_yaw_is_the_tangents_once_enough_frames_agree() {
     let truth = drawn_camera(102);
@@ -415,14 +415,14 @@ fn by_default_the_yaw_is_the_tangents_once_enough_frames_agree() {
             [CalibratorConfig::default(), chord_yaw(), tangent_yaw()],
         );
         let [default, chord, tangent] = [default, chord, tangent].map(|c| c.estimate().unwrap());
-        let agreeing = default.frames_used;
-        assert_eq!(default.yaw_from_tangent, switched, "{agreeing} frames");
+        let used = default.frames_used;
+        assert_eq!(default.yaw_from_tangent, switched, "{used} frames used");
         assert!(!chord.yaw_from_tangent && tangent.yaw_from_tangent);
         let like = if switched { &tangent } else { &chord };
         assert_eq!(default.camera, like.camera, "{frames} frames");
         let error = |e: &CalibrationEstimate| e.camera.yaw_deg - truth.yaw_deg;
         println!(
-            "{frames} frames, {agreeing} used: crossing {:+.2}, tangent {:+.2}, default {:+.2}",
+            "{frames} frames, {used} used: crossing {:+.2}, tangent {:+.2}, default {:+.2}",
             error(&chord),
             error(&tangent),
             error(&default)
@@ -431,4 +431,58 @@ fn by_default_the_yaw_is_the_tangents_once_enough_frames_agree() {
             assert!(error(&default).abs() < 0.2 && error(&chord).abs() > 0.5);
         }
     }
+}
+
+/// The switch to the tangent's yaw counts only the agreeing frames whose tangent was fitted,
+/// happens at exactly `tangent_yaw_after` of them, takes the median of their tangents alone,
+/// stays when a new consensus holds fewer, and ends with a reset.
+#[test]
+fn the_switch_counts_fitted_tangents_and_holds_until_reset() {
+    let truth = drawn_camera(101);
+    let config = CalibratorConfig {
+        tangent_yaw_after: 4,
+        ..CalibratorConfig::default()
+    };
+    let mut cal = Calibrator::new(640, 480, Some(&truth), config).unwrap();
+    let with_tangent = |yaw_deg: f64| Sample {
+        tangent_yaw: Some((yaw_deg + 0.5).to_radians()),
+        ..sample(2.0, yaw_deg)
+    };
+    let yaw = |cal: &Calibrator| {
+        let e = cal.estimate().unwrap();
+        (e.camera.yaw_deg, e.yaw_from_tangent)
+    };
+    // Three fitted and three not: six agreeing frames, three tangents.
+    for y in [1.0, 1.1, 0.9] {
+        cal.push_sample(with_tangent(y));
+        cal.push_sample(sample(2.0, y));
+    }
+    let (crossing, switched) = yaw(&cal);
+    assert!(!switched && (crossing - 1.0).abs() < 1e-9, "{crossing}");
+    // The fourth tangent: the median of the four tangents (1.45 deg), not of a mix with the
+    // crossing's yaws.
+    cal.push_sample(with_tangent(1.0));
+    let (tangent, switched) = yaw(&cal);
+    assert!(switched && (tangent - 1.5).abs() < 1e-9, "{tangent}");
+    // Frames from elsewhere, more than the consensus held and one of them with a tangent, take
+    // the consensus: under four tangents agree now, yet the yaw stays the tangent's.
+    cal.push_sample(Sample {
+        tangent_yaw: Some((-3.5f64).to_radians()),
+        ..sample(8.0, -4.0)
+    });
+    for _ in 0..8 {
+        cal.push_sample(sample(8.0, -4.0));
+    }
+    let e = cal.estimate().unwrap();
+    assert!((e.camera.pitch_deg - 8.0).abs() < 1e-9, "{e:?}");
+    assert!(
+        e.yaw_from_tangent && (e.camera.yaw_deg + 3.5).abs() < 1e-9,
+        "{e:?}"
+    );
+    cal.reset();
+    cal.push_sample(with_tangent(1.0));
+    assert!(
+        !cal.estimate().unwrap().yaw_from_tangent,
+        "a reset starts over"
+    );
 }

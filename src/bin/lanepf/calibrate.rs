@@ -37,8 +37,9 @@ pub struct CalibrationArgs {
     #[arg(long)]
     pub tangent_yaw: bool,
     /// The yaw switches from the boundaries' straight crossing to the lane's tangent at the
-    /// car once this many frames agree on the pose (0: never) [default: 100].
-    #[arg(long)]
+    /// car once this many frames that agree on the pose have a tangent (0 to 2000; 0: never)
+    /// [default: 100].
+    #[arg(long, conflicts_with = "tangent_yaw")]
     pub tangent_yaw_after: Option<usize>,
 }
 

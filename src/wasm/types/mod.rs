@@ -255,8 +255,9 @@ export interface CalibratorOptions {
    *  reference yaw (Caltech) 0.1 degrees off it; off by default because on short clips the
    *  trackers, adachi-mmpf most, do worse with its cameras. */
   tangent_yaw?: boolean;
-  /** The yaw switches from the crossing's to the tangent's once this many frames agree on the
-   *  pose (0 to 2000; default 100; 0: never). */
+  /** The yaw switches from the crossing's to the tangent's once this many frames that agree
+   *  on the pose have a tangent (0 to 2000; default 100; 0: never), and stays the tangent's
+   *  until `reset()`. */
   tangent_yaw_after?: number;
 }
 
