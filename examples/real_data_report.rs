@@ -1,5 +1,6 @@
 //! The real-data regression report: every mono tracker on every labelled real dataset in
-//! `../shared/data`, and on the Udacity videos by eye, as one tracker x dataset table.
+//! `../shared/data`, and on the Udacity videos by eye, as one tracker x dataset table; its last
+//! row is the classical pipeline the trackers are compared with ([`ClassicalBaseline`]).
 //!
 //! `cargo run --release --example real_data_report -- [DATA_DIR] [OUT_DIR] [UDACITY_FRAMES]`
 //! (defaults `../shared/data`, `target/real-data`, 300 frames of each Udacity video). Writes
@@ -23,8 +24,9 @@
 //! - Udacity project_video and challenge_video (1280x720), the chessboard intrinsics with the
 //!   demo's pose and auto: valid rate, and the sheets.
 
+use lanepf::baseline::ClassicalBaseline;
 use lanepf::calib::{Calibrator, CalibratorConfig};
-use lanepf::camera::CameraFile;
+use lanepf::camera::{Camera, CameraFile};
 use lanepf::eval::{evaluate_with, EvalOptions, Format, Metrics};
 use lanepf::image::{read_rgba, write_rgba_png, RgbaFrame};
 use lanepf::lane::{LaneEstimate, Role};
@@ -32,7 +34,7 @@ use lanepf::trackers::adachi::config::{AdachiConfig, EdgeResponse, LaneShape};
 use lanepf::trackers::danescu::config::DanescuConfig;
 use lanepf::trackers::lee::config::LeeConfig;
 use lanepf::trackers::liu::config::LiuConfig;
-use lanepf::trackers::{self, Preset, TrackerConfig, TrackerOptions};
+use lanepf::trackers::{self, Preset, Tracker, TrackerConfig, TrackerOptions};
 use std::path::{Path, PathBuf};
 
 /// Each row: the options a tracker runs with (which name the tracker), so that a named option
@@ -149,6 +151,44 @@ fn adachi_real_roads() -> AdachiConfig {
     match real_roads("adachi-mmpf") {
         TrackerOptions::AdachiMmpf(c) => c,
         _ => unreachable!("adachi-mmpf's preset holds adachi-mmpf's options"),
+    }
+}
+
+/// A row of the table: a tracker with its options, or the classical baseline.
+enum Row {
+    Tracker(Box<TrackerOptions>),
+    Baseline,
+}
+
+/// The baseline row's name.
+const BASELINE_ROW: &str =
+    "classical baseline (ridges, Hough lines, Kalman; `lanepf::baseline`, not a particle filter)";
+
+/// Every row: the trackers, then the baseline.
+fn rows() -> Vec<Row> {
+    let mut rows: Vec<Row> = TRACKERS
+        .iter()
+        .map(|r| Row::Tracker(Box::new(r())))
+        .collect();
+    rows.push(Row::Baseline);
+    rows
+}
+
+impl Row {
+    fn name(&self) -> Res<String> {
+        match self {
+            Row::Tracker(options) => row_name(options),
+            Row::Baseline => Ok(BASELINE_ROW.into()),
+        }
+    }
+
+    fn build(&self, camera: &CameraFile) -> Res<Box<dyn Tracker>> {
+        Ok(match self {
+            Row::Tracker(options) => {
+                trackers::build(&TrackerConfig::new(camera.clone(), (**options).clone()))?
+            }
+            Row::Baseline => Box::new(ClassicalBaseline::new(&Camera::from_file(camera)?)?),
+        })
     }
 }
 
@@ -317,14 +357,11 @@ fn camera_from_labels(dir: &Path, width: usize, height: usize) -> Res<CameraFile
 }
 
 fn track(
-    options: TrackerOptions,
-    camera: &CameraFile,
+    mut tracker: Box<dyn Tracker>,
     frames: &[RgbaFrame],
     names: &[String],
     still: bool,
 ) -> Res<Vec<LaneEstimate>> {
-    let config = TrackerConfig::new(camera.clone(), options);
-    let mut tracker = trackers::build(&config)?;
     let mut out = Vec::new();
     for (f, name) in frames.iter().zip(names) {
         let mut e = if still {
@@ -545,13 +582,14 @@ fn main() -> Res<()> {
         table += &format!(" {} |", r.label);
     }
     table += &format!("\n|---|{}\n", "---|".repeat(runs.len()));
-    let mut rows: Vec<Vec<String>> = vec![Vec::new(); TRACKERS.len()];
+    let all_rows = rows();
+    let mut rows: Vec<Vec<String>> = vec![Vec::new(); all_rows.len()];
     let mut notes = Vec::new();
     let only = std::env::var("REAL_DATA_ROWS").ok();
-    let selected: Vec<bool> = TRACKERS
+    let selected: Vec<bool> = all_rows
         .iter()
         .map(|row| {
-            let name = row_name(&row())?;
+            let name = row.name()?;
             Ok(only.as_ref().is_none_or(|o| name.contains(o.as_str())))
         })
         .collect::<Res<_>>()?;
@@ -580,11 +618,11 @@ fn main() -> Res<()> {
         let mut all = Vec::new();
         let per_frame = out.join("per-frame");
         std::fs::create_dir_all(&per_frame)?;
-        for (k, row) in TRACKERS.iter().enumerate() {
+        for (k, row) in all_rows.iter().enumerate() {
             if !selected[k] {
                 continue;
             }
-            let preds = track(row(), &cam, &frames, &names, run.still)?;
+            let preds = track(row.build(&cam)?, &frames, &names, run.still)?;
             let valid = preds.iter().filter(|p| p.valid).count();
             let cell = match &run.eval {
                 Some((format, gt)) => {
@@ -594,7 +632,7 @@ fn main() -> Res<()> {
                     };
                     let report = evaluate_with(*format, &preds, gt, &options)?;
                     // Which frames fail, for this row and dataset.
-                    let file = format!("{} -- {}.txt", row_name(&row())?, run.label).replace(
+                    let file = format!("{} -- {}.txt", row.name()?, run.label).replace(
                         |c: char| !c.is_ascii_alphanumeric() && c != '-' && c != '.',
                         "_",
                     );
@@ -606,7 +644,7 @@ fn main() -> Res<()> {
                     100.0 * valid as f64 / preds.len().max(1) as f64
                 ),
             };
-            eprintln!("{} / {}: {cell}", run.label, row_name(&row())?);
+            eprintln!("{} / {}: {cell}", run.label, row.name()?);
             rows[k].push(cell);
             all.push(preds);
         }
@@ -615,11 +653,11 @@ fn main() -> Res<()> {
             sheet(&out.join(name), &frames, &all, &samples, 4)?;
         }
     }
-    for (k, options) in TRACKERS.iter().enumerate() {
+    for (k, row) in all_rows.iter().enumerate() {
         if !selected[k] {
             continue;
         }
-        let name = row_name(&options())?;
+        let name = row.name()?;
         table += &format!("| {name} | {} |\n", rows[k].join(" | "));
     }
     let report = format!("{table}\nCameras:\n{}\n", notes.join("\n"));
