@@ -9,7 +9,9 @@
 //
 // Usage (after `make pkg`; `make bench-browser` does both):
 //   node scripts/bench-browser.mjs [FRAMES=60] [WIDTH=640] [HEIGHT=480] [SCENARIO=highway-curve] [--no-native] [--json]
-//        [--browser=chromium|firefox|webkit] [--trackers=ID,ID]
+//        [--browser=chromium|firefox|webkit] [--trackers=ID,ID] [--preset=paper|real-roads]
+// --preset=real-roads times our options beyond the papers (what the demo runs on real footage)
+// in both, instead of each paper's filter.
 // --browser=firefox and --browser=webkit run the page in Debian's Firefox ESR or in WebKitGTK
 // (Safari's engine) through the cross-browser suite's drivers (tests/e2e/drivers/).
 import { spawnSync } from 'node:child_process';
@@ -17,16 +19,19 @@ import { fileURLToPath } from 'node:url';
 import { start, open } from '../tests/e2e/browser.mjs';
 
 const WARMUP = 5;
-const USAGE = 'usage: node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO] [--no-native] [--json] [--browser=chromium|firefox|webkit] [--trackers=ID,ID]';
+const USAGE = 'usage: node scripts/bench-browser.mjs [FRAMES] [WIDTH] [HEIGHT] [SCENARIO] [--no-native] [--json] [--browser=chromium|firefox|webkit] [--trackers=ID,ID] [--preset=paper|real-roads]';
 const flags = process.argv.slice(2).filter((a) => a.startsWith('--'));
 const positional = process.argv.slice(2).filter((a) => !a.startsWith('--'));
 let browserName = 'chromium';
 let trackers = null;
+let preset = 'paper';
 for (const f of flags) {
   const m = /^--browser=(chromium|firefox|webkit)$/.exec(f);
   const t = /^--trackers=([a-z0-9,-]+)$/.exec(f);
+  const p = /^--preset=(paper|real-roads)$/.exec(f);
   if (m) browserName = m[1];
   else if (t) trackers = t[1];
+  else if (p) preset = p[1];
   else if (!['--no-native', '--json'].includes(f)) {
     console.error(`unknown option ${f}; ${USAGE}`);
     process.exit(2);
@@ -67,7 +72,7 @@ async function driverBench(query) {
 
 /** The browser figures: window.lanepfBench of www/bench.html. */
 async function browserBench() {
-  const query = new URLSearchParams({ frames, width, height, scenario, seed: 1, warmup: WARMUP });
+  const query = new URLSearchParams({ frames, width, height, scenario, seed: 1, warmup: WARMUP, preset });
   if (trackers) query.set('trackers', trackers);
   if (browserName !== 'chromium') return driverBench(query);
   const env = await start();
@@ -97,15 +102,17 @@ function nativeBench() {
   }
   const repo = fileURLToPath(new URL('..', import.meta.url));
   const args = ['run', '--release', '--quiet', '--bin', 'lanepf', '--', 'bench', '--frames', String(frames),
-    '--warmup', String(WARMUP), '--motion', '--width', String(width), '--height', String(height), '--json'];
+    '--warmup', String(WARMUP), '--motion', '--width', String(width), '--height', String(height), '--preset', preset,
+    '--json'];
   console.error(`[bench-browser] native: cargo ${args.join(' ')}`);
   const r = spawnSync('cargo', args, { cwd: repo, encoding: 'utf8', stdio: ['ignore', 'pipe', 'inherit'],
     maxBuffer: 64 << 20 });
   if (r.status !== 0) throw new Error(`the native bench failed (exit ${r.status ?? r.signal})`);
-  return { rows: JSON.parse(r.stdout), note: `native: lanepf bench --warmup ${WARMUP} --motion (release build)` };
+  return { rows: JSON.parse(r.stdout),
+    note: `native: lanepf bench --warmup ${WARMUP} --motion --preset ${preset} (release build)` };
 }
 
-console.error(`[bench-browser] ${browserLabel}: ${scenario} ${width}x${height}, ${frames} frames, first ${WARMUP} not timed`);
+console.error(`[bench-browser] ${browserLabel}: ${scenario} ${width}x${height}, ${frames} frames, first ${WARMUP} not timed, preset ${preset}`);
 const browser = await browserBench();
 const native = nativeBench();
 const byId = new Map((native.rows ?? []).map((r) => [r.tracker, r]));
@@ -122,11 +129,11 @@ const rows = browser.rows.map((b) => {
 });
 
 if (flags.includes('--json')) {
-  console.log(JSON.stringify({ browser: browser.engine, scenario, width, height, frames, warmup: WARMUP, render_ms: browser.render_ms,
+  console.log(JSON.stringify({ browser: browser.engine, scenario, preset, width, height, frames, warmup: WARMUP, render_ms: browser.render_ms,
     note: native.note, rows }, null, 2));
 } else {
   const f = (v, w) => (v === null ? '-' : v.toFixed(2)).padStart(w);
-  console.log(`${scenario} ${width}x${height}, seed 1, ${frames} frames (first ${WARMUP} not timed); `
+  console.log(`${scenario} ${width}x${height}, seed 1, ${frames} frames (first ${WARMUP} not timed), preset ${preset}; `
     + `${browser.engine}${browser.version ? `, lanepf ${browser.version}` : ''}, in a Web Worker`);
   console.log(native.note);
   console.log('tracker            wasm median  wasm p95  native median  native p95  wasm/native');

@@ -190,6 +190,36 @@ fn bench_leaves_warmup_frames_untimed_and_takes_the_motion() {
 }
 
 #[test]
+fn bench_runs_the_named_preset() {
+    let run = |preset: &str| {
+        let (code, out, err) = lanepf(&[
+            "bench",
+            "--tracker",
+            "lee-cpf",
+            "--frames",
+            "2",
+            "--width",
+            "160",
+            "--height",
+            "120",
+            "--preset",
+            preset,
+            "--json",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let rows: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(rows[0]["preset"], preset, "{out}");
+        rows[0]["options"].clone()
+    };
+    // lee-cpf's real-roads preset turns the re-lock proposal on; the paper's filter has it off.
+    assert_eq!(run("paper")["relock_share"], 0.0);
+    assert_eq!(run("real-roads")["relock_share"], 0.05);
+    let (code, _, err) = lanepf(&["bench", "--frames", "2", "--preset", "fast"]);
+    assert_eq!(code, 1);
+    assert!(err.contains("unknown preset `fast`"), "{err}");
+}
+
+#[test]
 fn eval_scores_ground_truth_as_perfect_and_a_shifted_copy_lower() {
     let out = temp("eval");
     let o = out.to_str().unwrap();

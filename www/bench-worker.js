@@ -2,10 +2,10 @@
 // The benchmark's worker: renders the frames of a scenario with the simulator's Scene (its own
 // module, lanepf/sim), then steps
 // each tracker over them as the demo does (the right frame for a stereo tracker, the car's
-// motion from the ground truth for all, both in step's options) and times each step with
-// performance.now().
+// motion from the ground truth for all, both in step's options; the named preset's options)
+// and times each step with performance.now().
 // Message in: the page's params; out: { type: 'progress' | 'version' | 'done' | 'error', ... }.
-import init, { version, trackerIds, Tracker } from '../pkg/web/lanepf.js';
+import init, { version, trackerIds, trackerPreset, Tracker } from '../pkg/web/lanepf.js';
 import initSim, { Scene } from '../pkg/sim/lanepf_sim.js';
 
 /** @typedef {import('../pkg/web/lanepf.js').StepOptions} StepOptions */
@@ -14,7 +14,8 @@ import initSim, { Scene } from '../pkg/sim/lanepf_sim.js';
  * The page's settings (bench.js `readParams`; names as the query string gave them: the Scene
  * and Tracker constructors refuse unknown ones).
  * @typedef {{ frames: number, width: number, height: number, scenario: import('../pkg/web/lanepf.js').ScenarioName,
- *   seed: number, warmup: number, trackers: import('../pkg/web/lanepf.js').TrackerId[] | null }} BenchParams
+ *   seed: number, warmup: number, trackers: import('../pkg/web/lanepf.js').TrackerId[] | null,
+ *   preset: import('../pkg/web/lanepf.js').TrackerPreset }} BenchParams
  */
 
 /**
@@ -25,7 +26,7 @@ import initSim, { Scene } from '../pkg/sim/lanepf_sim.js';
 const quantile = (sorted, p) => sorted[Math.round((sorted.length - 1) * p)];
 
 /** @param {BenchParams} params */
-async function bench({ frames, width, height, scenario, seed, warmup, trackers }) {
+async function bench({ frames, width, height, scenario, seed, warmup, trackers, preset }) {
   await Promise.all([init(), initSim()]);
   self.postMessage({ type: 'version', version: version() });
   const ids = trackers ?? trackerIds();
@@ -45,7 +46,9 @@ async function bench({ frames, width, height, scenario, seed, warmup, trackers }
   const rows = [];
   for (const id of ids) {
     self.postMessage({ type: 'progress', text: `running ${id}` });
-    const tracker = new Tracker(id, { camera, seed });
+    // The preset's options (the paper's are the defaults), as the demo passes them.
+    const options = trackerPreset(id, preset);
+    const tracker = new Tracker(id, { ...options, camera, seed });
     if (tracker.isStereo && right.length === 0) {
       for (let f = 0; f < frames; f++) right.push(scene.renderRight(f));
     }
@@ -53,17 +56,17 @@ async function bench({ frames, width, height, scenario, seed, warmup, trackers }
     for (let f = 0; f < frames; f++) {
       const frame = { data: left[f], width, height };
       /** @type {StepOptions} */
-      const options = { motion: motion[f] };
-      if (tracker.isStereo) options.right = { data: right[f], width, height };
+      const stepOptions = { motion: motion[f] };
+      if (tracker.isStereo) stepOptions.right = { data: right[f], width, height };
       const t = performance.now();
-      tracker.step(frame, options);
+      tracker.step(frame, stepOptions);
       const dt = performance.now() - t;
       if (f >= warmup) ms.push(dt);
     }
     tracker.free();
     const mean = ms.reduce((a, b) => a + b, 0) / ms.length;
     ms.sort((a, b) => a - b);
-    rows.push({ tracker: id, width, height, frames: ms.length, median_ms: quantile(ms, 0.5),
+    rows.push({ tracker: id, preset, options, width, height, frames: ms.length, median_ms: quantile(ms, 0.5),
       p95_ms: quantile(ms, 0.95), mean_ms: mean });
   }
   scene.free();

@@ -6,6 +6,8 @@
 import { byId } from './dom.js';
 
 const DEFAULTS = { frames: 60, width: 640, height: 480, scenario: 'highway-curve', seed: 1, warmup: 5 };
+/** The named option sets of `trackerPreset`: each paper's filter, or ours for real footage. */
+const PRESETS = ['paper', 'real-roads'];
 
 /**
  * The settings from the query string; throws an Error naming a bad value.
@@ -13,8 +15,8 @@ const DEFAULTS = { frames: 60, width: 640, height: 480, scenario: 'highway-curve
  */
 export function readParams(search) {
   const q = new URLSearchParams(search);
-  /** @type {typeof DEFAULTS & { trackers: string[] | null }} */
-  const params = { ...DEFAULTS, trackers: null };
+  /** @type {typeof DEFAULTS & { trackers: string[] | null, preset: string }} */
+  const params = { ...DEFAULTS, trackers: null, preset: 'paper' };
   for (const key of /** @type {const} */ (['frames', 'width', 'height', 'seed', 'warmup'])) {
     if (!q.has(key)) continue;
     const n = Number(q.get(key));
@@ -25,6 +27,11 @@ export function readParams(search) {
   if (scenario !== null) params.scenario = scenario;
   const trackers = q.get('trackers');
   if (trackers !== null) params.trackers = trackers.split(',').filter(Boolean);
+  const preset = q.get('preset');
+  if (preset !== null) {
+    if (!PRESETS.includes(preset)) throw new Error(`preset=${preset}: use one of ${PRESETS.join(', ')}`);
+    params.preset = preset;
+  }
   if (params.frames <= params.warmup) {
     throw new Error(`frames=${params.frames} must exceed warmup=${params.warmup} (untimed frames)`);
   }
@@ -42,7 +49,8 @@ const fail = (message) => {
 };
 
 /**
- * @param {{ params: object, version: string, render_ms: number, rows: { tracker: string, width: number,
+ * @param {{ params: object, version: string, render_ms: number, rows: { tracker: string, preset: string,
+ *   options: Record<string, unknown>, width: number,
  *   height: number, frames: number, median_ms: number, p95_ms: number, mean_ms: number }[] }} bench
  */
 function show(bench) {
@@ -74,7 +82,7 @@ if (params) {
   window.lanepfBench = { done: false, params };
   byId('setup', HTMLElement).textContent = `${params.scenario}, ${params.width}x${params.height}, `
     + `seed ${params.seed}: ${params.frames} frames rendered first, then every tracker stepped over `
-    + `them (the first ${params.warmup} not timed), in a Web Worker.`;
+    + `them (the first ${params.warmup} not timed), in a Web Worker, with the ${params.preset} preset.`;
   const worker = new Worker(new URL('./bench-worker.js', import.meta.url), { type: 'module' });
   worker.onmessage = ({ data }) => {
     if (data.type === 'progress') status.textContent = data.text;

@@ -500,6 +500,23 @@ for (const driver of DRIVERS) {
       assert.match(bench.error, /frames=3 must exceed warmup=5/);
       assert.equal(await page.eval(() => document.body.dataset.state), 'error');
       await page.close();
+      const unknown = await b.open(`${b.base}/bench.html?preset=fast`);
+      await unknown.waitFor(() => window.lanepfBench?.done);
+      assert.match((await unknown.eval(() => window.lanepfBench)).error, /preset=fast: use one of paper, real-roads/);
+      await unknown.close();
+    });
+
+    test(`${N}: bench.html times a tracker with the real-roads preset's options`, async () => {
+      const page = await b.open(`${b.base}/bench.html?frames=7&width=320&height=240&trackers=lee-cpf&preset=real-roads`);
+      await page.waitFor(() => window.lanepfBench?.done, { timeout: 110_000 });
+      const bench = await page.eval(() => window.lanepfBench);
+      assert.equal(bench.error, undefined, bench.error);
+      assert.deepEqual(bench.rows.map((r) => [r.tracker, r.preset]), [['lee-cpf', 'real-roads']]);
+      // The tracker ran with the preset's options: lee-cpf's re-lock proposal is on in it.
+      assert.equal(bench.rows[0].options.relock_share, 0.05);
+      assert.ok(Number.isFinite(bench.rows[0].median_ms) && bench.rows[0].median_ms > 0);
+      assert.deepEqual(await page.errors(), []);
+      await page.close();
     });
 
     test(`${N}: the keyboard plays, pauses, steps a frame and steps a stage`, async () => {

@@ -4,10 +4,14 @@
 //! also shown on its own; rendering the right frame is not timed, handing it over is).
 //! `--warmup N --motion` runs the sequence as the browser bench (`www/bench.html`) does: the
 //! first N frames stepped but not timed, and every tracker given the car's motion from the
-//! ground truth before each frame.
+//! ground truth before each frame. `--preset real-roads` times our options beyond the papers
+//! (what the demo runs on real footage: the re-lock detector, the neighbouring lanes, ...)
+//! instead of each paper's filter.
 
 use lanepf::synth::{default_camera, scenario, Eye, Scene};
-use lanepf::trackers::{self, EgoMotion, StageTimes, TrackerConfig, TrackerOptions, TRACKER_IDS};
+use lanepf::trackers::{
+    self, EgoMotion, Preset, StageTimes, TrackerConfig, TrackerOptions, TRACKER_IDS,
+};
 use lanepf::{Error, Result};
 use std::time::Instant;
 
@@ -33,6 +37,10 @@ pub struct Args {
     /// Only this height.
     #[arg(long, requires = "width")]
     height: Option<usize>,
+    /// Named option set each tracker runs with: `paper` (each paper's filter) or `real-roads`
+    /// (our options beyond the papers, as the demo runs on real footage).
+    #[arg(long, default_value = "paper")]
+    preset: String,
     /// Print JSON instead of a table.
     #[arg(long)]
     json: bool,
@@ -42,6 +50,9 @@ pub struct Args {
 #[derive(serde::Serialize)]
 struct Row {
     tracker: String,
+    preset: String,
+    /// Every option the tracker ran with (the preset's).
+    options: TrackerOptions,
     width: usize,
     height: usize,
     frames: u32,
@@ -71,6 +82,7 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
+    let preset: Preset = args.preset.parse()?;
     if args.frames == 0 {
         return Err(Error::parameter("--frames", 0, "must be at least 1"));
     }
@@ -92,7 +104,8 @@ pub fn run(args: Args) -> Result<()> {
         let mut frame = vec![0u8; w * h * 4];
         let mut right = vec![0u8; w * h * 4];
         for id in &ids {
-            let config = TrackerConfig::new(camera.to_file(), TrackerOptions::defaults(id)?);
+            let options = TrackerOptions::preset(id, preset)?;
+            let config = TrackerConfig::new(camera.to_file(), options.clone());
             let mut tracker = trackers::build(&config)?;
             let mut times = Vec::with_capacity(args.frames as usize);
             let mut stages = StageTimes::default();
@@ -132,6 +145,8 @@ pub fn run(args: Args) -> Result<()> {
             times.sort_by(f64::total_cmp);
             rows.push(Row {
                 tracker: id.clone(),
+                preset: args.preset.clone(),
+                options,
                 width: w,
                 height: h,
                 frames: args.frames,

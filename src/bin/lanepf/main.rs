@@ -9,7 +9,8 @@
 //! lanepf calibrate --frames DIR [--intrinsics FILE | --hfov DEG] [--lane-width M] [--stills]
 //!              [--seconds N [--fps F]] [--json] --out camera.json
 //! lanepf eval --pred FILE.jsonl --gt PATH --format synthetic|caltech|tusimple|culane|kitti-road [--json]
-//! lanepf bench [--tracker ID|all] [--frames N] [--width W --height H] [--json]
+//! lanepf bench [--tracker ID|all] [--frames N] [--warmup N] [--motion] [--width W --height H]
+//!              [--preset paper|real-roads] [--json]
 //! lanepf eval-suite --tracker ID|all --seeds A..B [--scenarios a,b,...] [--width W --height H]
 //!              [--frames N] [--tracker-seed N] --out DIR
 //! ```
