@@ -10,7 +10,7 @@ use super::tangent::{tangent_column, NearestPixel, HORIZON_SEARCH_PX};
 use super::vp_votes::VpVotes;
 use crate::camera::{Camera, CameraFile, Distortion};
 use crate::error::{require_within, Error, Result};
-use crate::image::{check_dimensions, Image};
+use crate::image::{check_dimensions, check_rgba, Image};
 use crate::math;
 use serde::Serialize;
 use std::collections::VecDeque;
@@ -180,6 +180,11 @@ pub struct CalibrationEstimate {
     /// `tangent_yaw_after`) rather than the boundaries' straight crossing.
     pub yaw_from_tangent: bool,
 }
+
+/// Share of the frame height above the horizon (or the principal point's row, when higher)
+/// from which the marking image is computed once a horizon is known
+/// ([`Calibrator::first_working_row`]): room for a camera's roll and a lens's bend.
+pub const ROAD_TOP_MARGIN: f64 = 0.05;
 
 /// Least ridge contrast of a marking pixel, grey levels of the marking intensity (see
 /// [`super::ridges`]).
@@ -439,18 +444,44 @@ impl Calibrator {
                 self.width, self.height
             )));
         }
-        marking_intensity(
+        check_rgba(rgba, width, height)?;
+        self.frames_seen += 1;
+        // Where the road vanishes as known before this frame: it sets the rows computed and
+        // searched and picks the ego pair.
+        let prior = self.prior_vanishing_point();
+        let first_row = self.first_working_row(prior);
+        if let Err(e) = marking_intensity(
             rgba,
             width,
             height,
             self.scale,
+            first_row,
             &mut self.sums,
             &mut self.work,
             &mut self.saturation,
-        )?;
-        self.frames_seen += 1;
-        self.observe();
+        ) {
+            self.frames_seen -= 1;
+            return Err(e);
+        }
+        self.observe(prior);
         Ok(&self.last)
+    }
+
+    /// The first working row of the marking image a frame needs: [`ROAD_TOP_MARGIN`] of the
+    /// height above the higher of the prior horizon row and the principal point's (a lens
+    /// bends the horizon towards the centre row, and the road lies below it); 0, every row,
+    /// without a prior. The rows searched for markings start below the horizon, and the
+    /// trackers' neighbouring-lane probes ([`crate::trackers::adjacent_lanes`]) look at road
+    /// points, below it too; the sky above is not computed.
+    fn first_working_row(&self, prior: Option<[f64; 2]>) -> usize {
+        let Some(vp) = prior else {
+            return 0;
+        };
+        let top = vp[1].min(self.pinhole.cy) - ROAD_TOP_MARGIN * self.height as f64;
+        if !top.is_finite() || top <= 0.0 {
+            return 0;
+        }
+        (top / self.scale as f64) as usize
     }
 
     /// Rows (working pixels) searched for markings: from just below the `prior` horizon (or
@@ -468,10 +499,7 @@ impl Calibrator {
         (top, bottom.max(top + 1))
     }
 
-    fn observe(&mut self) {
-        // Where the road vanishes as known before this frame: it sets the rows searched and
-        // picks the ego pair.
-        let prior = self.prior_vanishing_point();
+    fn observe(&mut self, prior: Option<[f64; 2]>) {
         let (top, bottom) = self.search_rows(prior);
         self.ridges.clear();
         find_ridges(

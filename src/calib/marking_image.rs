@@ -18,7 +18,9 @@
 //! sky and car paint (see [`super::road_colour`]). Both images are then box-averaged over
 //! s x s blocks, with s the smallest integer that brings the width to at most
 //! [`MAX_WORK_WIDTH`]: the calibrator needs line directions, not fine detail, and this keeps
-//! its cost independent of the video's resolution.
+//! the later steps' cost independent of the video's resolution. This pass reads every pixel
+//! and is most of the calibrator's time, so the rows above the road (the sky, once the
+//! calibrator knows the horizon) are skipped.
 
 use crate::error::Result;
 use crate::image::{check_rgba, luma, Image};
@@ -49,15 +51,18 @@ fn saturation(px: &[u8]) -> u32 {
 
 /// Writes the s x s block means of the marking intensity of `rgba` into `out` and those of its
 /// saturation into `sat`, both resized to (width / s) x (height / s) (the last partial block of
-/// a row or column is dropped).
+/// a row or column is dropped), for the working rows from `first_row` down; the rows above it
+/// (the sky, when the caller knows where the road ends) are zero in both.
 ///
 /// # Errors
 /// As [`check_rgba`]; [`crate::Error::Dimensions`] when the frame is smaller than one block.
+#[allow(clippy::too_many_arguments)]
 pub fn marking_intensity(
     rgba: &[u8],
     width: usize,
     height: usize,
     s: usize,
+    first_row: usize,
     sums: &mut Vec<[u32; 2]>,
     out: &mut Image<u8>,
     sat: &mut Image<u8>,
@@ -69,10 +74,16 @@ pub fn marking_intensity(
             image.resize(w, h)?;
         }
     }
+    let first_row = first_row.min(h);
+    for image in [&mut *out, &mut *sat] {
+        for y in 0..first_row {
+            image.row_mut(y).fill(0);
+        }
+    }
     sums.clear();
     sums.resize(w, [0, 0]);
     let area = (s * s) as u32;
-    for y in 0..h {
+    for y in first_row..h {
         sums.iter_mut().for_each(|v| *v = [0, 0]);
         for row in 0..s {
             let start = ((y * s + row) * width) * 4;
@@ -114,7 +125,7 @@ mod tests {
             rgba.extend_from_slice(&yellow);
         }
         let (mut out, mut sat) = (Image::new(1, 1).unwrap(), Image::new(1, 1).unwrap());
-        marking_intensity(&rgba, 4, 2, 2, &mut Vec::new(), &mut out, &mut sat).unwrap();
+        marking_intensity(&rgba, 4, 2, 2, 0, &mut Vec::new(), &mut out, &mut sat).unwrap();
         assert_eq!((out.width(), out.height()), (2, 1));
         assert_eq!((sat.width(), sat.height()), (2, 1));
         assert_eq!(out.get(0, 0), 170);
@@ -122,6 +133,6 @@ mod tests {
         assert_eq!(sat.get(0, 0), 0, "concrete is grey");
         // 255 (220 - 50) / 220 = 197.
         assert_eq!(sat.get(1, 0), 197);
-        assert!(marking_intensity(&rgba, 4, 3, 2, &mut Vec::new(), &mut out, &mut sat).is_err());
+        assert!(marking_intensity(&rgba, 4, 3, 2, 0, &mut Vec::new(), &mut out, &mut sat).is_err());
     }
 }

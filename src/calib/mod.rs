@@ -7,7 +7,8 @@
 //! Prior" (arXiv 2008.03722). Per frame:
 //!
 //! 1. the marking intensity (white in luma, yellow where blue is low) and the saturation are
-//!    box-averaged to at most 480 columns ([`marking_image`]);
+//!    box-averaged to at most 480 columns ([`marking_image`]), once a horizon is known only
+//!    from 5 % of the height above it down (the sky is not needed);
 //! 2. marking pixels are the centres of narrow bright ridges along rows ([`ridges`]), taken
 //!    from just below the horizon (once it is known: the mode of the recent lines' crossings,
 //!    else the estimate once three frames agree on it) to near the bottom, kept where grey road

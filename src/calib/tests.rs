@@ -486,3 +486,63 @@ fn the_switch_counts_fitted_tangents_and_holds_until_reset() {
         "a reset starts over"
     );
 }
+
+/// With a horizon known, the marking image is computed from [`ROAD_TOP_MARGIN`] of the height
+/// above it (or above the principal point's row, when higher) down, exactly as a whole frame's
+/// is there, and is zero above; without one, every row is computed.
+#[test]
+fn the_sky_above_a_known_horizon_is_not_computed() {
+    use super::calibrator::ROAD_TOP_MARGIN;
+    use super::marking_image::marking_intensity;
+    use crate::image::Image;
+    let truth = drawn_camera(21);
+    let camera = Camera::from_file(&truth).unwrap();
+    let mut scene = Scene::new(scenario("highway-straight").unwrap(), camera, 21).unwrap();
+    let mut rgba = vec![0u8; 640 * 480 * 4];
+    scene.render(3, Eye::Left, &mut rgba, None).unwrap();
+    let (mut full, mut full_sat) = (Image::new(1, 1).unwrap(), Image::new(1, 1).unwrap());
+    marking_intensity(
+        &rgba,
+        640,
+        480,
+        2,
+        0,
+        &mut Vec::new(),
+        &mut full,
+        &mut full_sat,
+    )
+    .unwrap();
+    let vp_row = 200.0;
+    let mut cal = Calibrator::new(640, 480, Some(&truth), CalibratorConfig::default()).unwrap();
+    cal.set_known_vanishing_point([320.0, vp_row]).unwrap();
+    cal.feed_rgba(&rgba, 640, 480).unwrap();
+    let (work, sat, scale) = cal.working_images();
+    assert_eq!(scale, 2);
+    let first = ((vp_row.min(truth.cy) - ROAD_TOP_MARGIN * 480.0) / 2.0) as usize;
+    assert!(
+        first > 50,
+        "the test's horizon leaves rows above it: {first}"
+    );
+    for y in 0..work.height() {
+        if y < first {
+            assert!(
+                work.row(y).iter().chain(sat.row(y)).all(|&v| v == 0),
+                "row {y}"
+            );
+        } else {
+            assert_eq!(work.row(y), full.row(y), "row {y}");
+            assert_eq!(sat.row(y), full_sat.row(y), "row {y}");
+        }
+    }
+    assert!(
+        full.row(first / 2).iter().any(|&v| v > 0),
+        "the sky has intensity to skip"
+    );
+    let mut fresh = Calibrator::new(640, 480, Some(&truth), CalibratorConfig::default()).unwrap();
+    fresh.feed_rgba(&rgba, 640, 480).unwrap();
+    assert_eq!(
+        fresh.working_images().0.row(0),
+        full.row(0),
+        "no prior: every row"
+    );
+}
