@@ -468,11 +468,14 @@ impl Calibrator {
     }
 
     /// The first working row of the marking image a frame needs: [`ROAD_TOP_MARGIN`] of the
-    /// height above the higher of the prior horizon row and the principal point's (a lens
-    /// bends the horizon towards the centre row, and the road lies below it); 0, every row,
-    /// without a prior. The rows searched for markings start below the horizon, and the
-    /// trackers' neighbouring-lane probes ([`crate::trackers::adjacent_lanes`]) look at road
-    /// points, below it too; the sky above is not computed.
+    /// height above the higher of the prior horizon row and the principal point's (a barrel
+    /// lens, a dash-cam's, bends the horizon towards the centre row, and the road lies below
+    /// it); 0, every row, without a prior. The rows searched for markings start below the
+    /// horizon, and the trackers' neighbouring-lane probes ([`crate::trackers::adjacent_lanes`])
+    /// look at road points, below it too; the sky above is not computed. The margin covers a
+    /// roll of a few degrees; a pincushion lens or a camera rolled far more would leave the
+    /// probes' farthest points in zeroed rows, where they find no paint (a neighbouring lane
+    /// found over a shorter range), never a wrong one.
     fn first_working_row(&self, prior: Option<[f64; 2]>) -> usize {
         let Some(vp) = prior else {
             return 0;
@@ -481,7 +484,8 @@ impl Calibrator {
         if !top.is_finite() || top <= 0.0 {
             return 0;
         }
-        (top / self.scale as f64) as usize
+        // Never below the first row searched (a principal point far down the frame).
+        ((top / self.scale as f64) as usize).min(self.search_rows(prior).0)
     }
 
     /// Rows (working pixels) searched for markings: from just below the `prior` horizon (or
@@ -501,6 +505,10 @@ impl Calibrator {
 
     fn observe(&mut self, prior: Option<[f64; 2]>) {
         let (top, bottom) = self.search_rows(prior);
+        debug_assert!(
+            top >= self.first_working_row(prior),
+            "the rows searched lie in the marking image's computed rows"
+        );
         self.ridges.clear();
         find_ridges(
             &self.work,
