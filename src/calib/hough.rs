@@ -133,22 +133,14 @@ impl Hough {
         }
     }
 
-    /// The largest count of angle `k`'s row and the last cell holding it.
+    /// The largest count of angle `k`'s row and the last cell holding it (the maximum first,
+    /// a loop the compiler vectorises, then its last position from the end).
     fn scan_row(&self, k: usize) -> (u32, usize) {
         let start = k * self.a_bins;
-        self.acc[start..start + self.a_bins]
-            .iter()
-            .enumerate()
-            .fold(
-                (0, start),
-                |best, (j, &v)| {
-                    if v >= best.0 {
-                        (v, start + j)
-                    } else {
-                        best
-                    }
-                },
-            )
+        let row = &self.acc[start..start + self.a_bins];
+        let max = row.iter().copied().max().unwrap_or(0);
+        let last = row.iter().rposition(|&v| v == max).unwrap_or(0);
+        (max, start + last)
     }
 
     /// The accumulator's largest cell (the last one on a tie) and its count, rescanning the
