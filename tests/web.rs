@@ -757,3 +757,30 @@ fn calibrator_rejects_bad_frames_and_keeps_working() {
     assert_eq!(num(&options, "lane_width_m"), 3.6);
     assert_eq!(num(&options, "stable_frames"), 5.0);
 }
+
+/// The calibrator's per-pixel pass runs four pixels per `simd128` operation in WebAssembly
+/// (`lanepf::calib::marking_pixels`); over every colour it gives the bytes of the per-pixel
+/// formulas.
+#[wasm_bindgen_test]
+fn the_simd_marking_pixels_match_the_formulas_for_every_colour() {
+    use lanepf::calib::marking_pixels::{marking_pixel, marking_pixels};
+    let mut rgba = Vec::with_capacity(256 * 256 * 4);
+    let (mut m, mut s) = (vec![0; 256 * 256], vec![0; 256 * 256]);
+    for r in 0..=255u8 {
+        rgba.clear();
+        for g in 0..=255u8 {
+            for b in 0..=255u8 {
+                rgba.extend_from_slice(&[r, g, b, 255]);
+            }
+        }
+        marking_pixels(&rgba, &mut m, &mut s);
+        for (i, p) in rgba.chunks_exact(4).enumerate() {
+            assert_eq!(
+                (m[i], s[i]),
+                marking_pixel(p[0], p[1], p[2]),
+                "rgb {:?}",
+                &p[..3]
+            );
+        }
+    }
+}

@@ -2,7 +2,7 @@
 
 use super::bend_regression::yaw_at_zero_bend;
 use super::hough::{bend, Hough, HoughParams, LineFit, BEND_BAND_PX};
-use super::marking_image::{marking_intensity, working_scale};
+use super::marking_image::{marking_intensity, working_scale, MarkingScratch};
 use super::pose::{lateral_at_unit_height, pose_from_vanishing_point, vanishing_point, Pinhole};
 use super::ridges::{find_ridges, keep_continuous, RidgePixel};
 use super::road_colour::keep_on_grey_road;
@@ -230,7 +230,7 @@ pub struct Calibrator {
     work: Image<u8>,
     /// Saturation of the working image (see [`super::road_colour`]).
     saturation: Image<u8>,
-    sums: Vec<[u32; 2]>,
+    marking_scratch: MarkingScratch,
     ridge_scratch: Vec<i32>,
     ridges: Vec<RidgePixel>,
     points: Vec<[f32; 2]>,
@@ -310,7 +310,7 @@ impl Calibrator {
             undistort: None,
             work: Image::new(width / scale, height / scale)?,
             saturation: Image::new(width / scale, height / scale)?,
-            sums: Vec::new(),
+            marking_scratch: MarkingScratch::default(),
             ridge_scratch: Vec::new(),
             ridges: Vec::new(),
             points: Vec::new(),
@@ -456,7 +456,7 @@ impl Calibrator {
             height,
             self.scale,
             first_row,
-            &mut self.sums,
+            &mut self.marking_scratch,
             &mut self.work,
             &mut self.saturation,
         ) {

@@ -22,8 +22,9 @@
 //! and is most of the calibrator's time, so the rows above the road (the sky, once the
 //! calibrator knows the horizon) are skipped.
 
+use super::marking_pixels::marking_pixels;
 use crate::error::Result;
-use crate::image::{check_rgba, luma, Image};
+use crate::image::{check_rgba, Image};
 
 /// Widest working image, pixels.
 pub const MAX_WORK_WIDTH: usize = 480;
@@ -33,20 +34,13 @@ pub fn working_scale(width: usize) -> usize {
     width.div_ceil(MAX_WORK_WIDTH).max(1)
 }
 
-/// Marking intensity of one RGBA pixel.
-#[inline]
-fn intensity(px: &[u8]) -> u32 {
-    let (r, g, b) = (px[0] as i32, px[1] as i32, px[2] as i32);
-    let yellow = (r + g - 2 * b).clamp(0, 255) as u32;
-    (luma(px[0], px[1], px[2]) as u32).max(yellow)
-}
-
-/// Saturation of one RGBA pixel (see the module docs).
-#[inline]
-fn saturation(px: &[u8]) -> u32 {
-    let max = px[0].max(px[1]).max(px[2]) as u32;
-    let min = px[0].min(px[1]).min(px[2]) as u32;
-    255 * (max - min) / max.max(40)
+/// Scratch of [`marking_intensity`], kept by its caller so that frames allocate nothing: the
+/// block sums of one working row and one source row's per-pixel values.
+#[derive(Debug, Clone, Default)]
+pub struct MarkingScratch {
+    sums: Vec<[u32; 2]>,
+    intensity: Vec<u8>,
+    saturation: Vec<u8>,
 }
 
 /// Writes the s x s block means of the marking intensity of `rgba` into `out` and those of its
@@ -63,7 +57,7 @@ pub fn marking_intensity(
     height: usize,
     s: usize,
     first_row: usize,
-    sums: &mut Vec<[u32; 2]>,
+    scratch: &mut MarkingScratch,
     out: &mut Image<u8>,
     sat: &mut Image<u8>,
 ) -> Result<()> {
@@ -80,19 +74,28 @@ pub fn marking_intensity(
             image.row_mut(y).fill(0);
         }
     }
+    let MarkingScratch {
+        sums,
+        intensity,
+        saturation,
+    } = scratch;
     sums.clear();
     sums.resize(w, [0, 0]);
+    intensity.resize(w * s, 0);
+    saturation.resize(w * s, 0);
     let area = (s * s) as u32;
     for y in first_row..h {
         sums.iter_mut().for_each(|v| *v = [0, 0]);
         for row in 0..s {
             let start = ((y * s + row) * width) * 4;
-            let line = &rgba[start..start + w * s * 4];
-            for (x, block) in line.chunks_exact(s * 4).enumerate() {
-                for px in block.chunks_exact(4) {
-                    sums[x][0] += intensity(px);
-                    sums[x][1] += saturation(px);
-                }
+            marking_pixels(&rgba[start..start + w * s * 4], intensity, saturation);
+            for ((sum, block_m), block_s) in sums
+                .iter_mut()
+                .zip(intensity.chunks_exact(s))
+                .zip(saturation.chunks_exact(s))
+            {
+                sum[0] += block_m.iter().map(|&v| u32::from(v)).sum::<u32>();
+                sum[1] += block_s.iter().map(|&v| u32::from(v)).sum::<u32>();
             }
         }
         for (k, image) in [&mut *out, &mut *sat].into_iter().enumerate() {
@@ -125,7 +128,17 @@ mod tests {
             rgba.extend_from_slice(&yellow);
         }
         let (mut out, mut sat) = (Image::new(1, 1).unwrap(), Image::new(1, 1).unwrap());
-        marking_intensity(&rgba, 4, 2, 2, 0, &mut Vec::new(), &mut out, &mut sat).unwrap();
+        marking_intensity(
+            &rgba,
+            4,
+            2,
+            2,
+            0,
+            &mut MarkingScratch::default(),
+            &mut out,
+            &mut sat,
+        )
+        .unwrap();
         assert_eq!((out.width(), out.height()), (2, 1));
         assert_eq!((sat.width(), sat.height()), (2, 1));
         assert_eq!(out.get(0, 0), 170);
@@ -133,6 +146,16 @@ mod tests {
         assert_eq!(sat.get(0, 0), 0, "concrete is grey");
         // 255 (220 - 50) / 220 = 197.
         assert_eq!(sat.get(1, 0), 197);
-        assert!(marking_intensity(&rgba, 4, 3, 2, 0, &mut Vec::new(), &mut out, &mut sat).is_err());
+        assert!(marking_intensity(
+            &rgba,
+            4,
+            3,
+            2,
+            0,
+            &mut MarkingScratch::default(),
+            &mut out,
+            &mut sat
+        )
+        .is_err());
     }
 }

@@ -64,6 +64,7 @@ pub mod calibrator;
 pub mod ego_on_road;
 pub mod hough;
 pub mod marking_image;
+pub mod marking_pixels;
 pub mod pose;
 pub mod ridges;
 pub mod road_colour;

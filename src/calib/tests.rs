@@ -493,7 +493,7 @@ fn the_switch_counts_fitted_tangents_and_holds_until_reset() {
 #[test]
 fn the_sky_above_a_known_horizon_is_not_computed() {
     use super::calibrator::ROAD_TOP_MARGIN;
-    use super::marking_image::marking_intensity;
+    use super::marking_image::{marking_intensity, MarkingScratch};
     use crate::image::Image;
     let truth = drawn_camera(21);
     let camera = Camera::from_file(&truth).unwrap();
@@ -507,7 +507,7 @@ fn the_sky_above_a_known_horizon_is_not_computed() {
         480,
         2,
         0,
-        &mut Vec::new(),
+        &mut MarkingScratch::default(),
         &mut full,
         &mut full_sat,
     )
