@@ -19,8 +19,9 @@
 //! s x s blocks, with s the smallest integer that brings the width to at most
 //! [`MAX_WORK_WIDTH`]: the calibrator needs line directions, not fine detail, and this keeps
 //! the later steps' cost independent of the video's resolution. This pass reads every pixel
-//! and is most of the calibrator's time, so the rows above the road (the sky, once the
-//! calibrator knows the horizon) are skipped.
+//! (four at a time, [`super::marking_pixels`]) and is the largest part of the calibrator's
+//! time, so the rows above the road (the sky, once the calibrator knows the horizon) are
+//! skipped.
 
 use super::marking_pixels::marking_pixels;
 use crate::error::Result;
