@@ -764,13 +764,17 @@ fn calibrator_rejects_bad_frames_and_keeps_working() {
 #[wasm_bindgen_test]
 fn the_simd_marking_pixels_match_the_formulas_for_every_colour() {
     use lanepf::calib::marking_pixels::{marking_pixel, marking_pixels};
+    assert!(
+        cfg!(target_feature = "simd128"),
+        "the wasm build runs the simd128 path (.cargo/config.toml)"
+    );
     let mut rgba = Vec::with_capacity(256 * 256 * 4);
     let (mut m, mut s) = (vec![0; 256 * 256], vec![0; 256 * 256]);
     for r in 0..=255u8 {
         rgba.clear();
         for g in 0..=255u8 {
             for b in 0..=255u8 {
-                rgba.extend_from_slice(&[r, g, b, 255]);
+                rgba.extend_from_slice(&[r, g, b, g ^ b]);
             }
         }
         marking_pixels(&rgba, &mut m, &mut s);

@@ -133,6 +133,12 @@ impl Hough {
         }
     }
 
+    /// Sets cell `i` to zero (a peak that withdrew no point, so that it cannot come back).
+    fn clear_cell(&mut self, i: usize) {
+        self.lowering(i / self.a_bins, i);
+        self.acc[i] = 0;
+    }
+
     /// The largest count of angle `k`'s row and the last cell holding it (the maximum first,
     /// a loop the compiler vectorises, then its last position from the end).
     fn scan_row(&self, k: usize) -> (u32, usize) {
@@ -235,8 +241,7 @@ impl Hough {
                 }
             }
             if withdrawn == 0 {
-                self.lowering(k, peak);
-                self.acc[peak] = 0;
+                self.clear_cell(peak);
             }
             let Some(fit) = fit else { continue };
             if fit.support >= params.min_support && fit.y_bottom - fit.y_top >= params.min_extent {
@@ -404,8 +409,7 @@ mod tests {
                 assert_eq!(hough.peak(), full, "round {round}, step {step}");
                 if step % 7 == 3 {
                     let (i, _) = full.unwrap();
-                    hough.lowering(i / hough.a_bins, i);
-                    hough.acc[i] = 0;
+                    hough.clear_cell(i);
                 } else {
                     hough.vote(points[step], u32::from(weights[step]), p.y_ref, false);
                 }
