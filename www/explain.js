@@ -7,6 +7,7 @@ const PARTICLES = { path: 'particles', label: 'particles N', min: 20, max: 2000,
 /** Options beyond the papers (ours), for real roads: each paper's filter is the default (off). */
 const RELOCK = { path: 'relock_share', label: 're-lock share: particles drawn around a line detector’s ego pair (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 };
 const SUPPORT_FRAMES = { path: 'valid_support_frames', label: 'frames a dashed boundary’s support is remembered (ours; 1: this frame only)', min: 1, max: 15, step: 1 };
+const SNAP = { path: 'snap_to_paint', label: 'snap to paint: move each drawn boundary onto the centre of the marking it lies on (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
 const ADJACENT = { path: 'adjacent_lanes', label: 'adjacent lanes: report the marked lanes beside the ego lane (ours, beyond the paper)', kind: /** @type {const} */ ('bool') };
 
 /**
@@ -37,6 +38,7 @@ export const TRACKERS = {
       SUPPORT_FRAMES,
       { path: 'mode_candidates', label: 'estimate: the heaviest mode around this many heaviest particles (1: the heaviest particle’s; ours)', min: 1, max: 64, step: 1 },
       { path: 'valid_paint_contrast', label: 'valid only with paint on one ego boundary: a stripe this many grey levels brighter than the road beside it (0: off; ours)', min: 0, max: 40, step: 1 },
+      SNAP,
     ],
   },
   'lee-cpf': {
@@ -61,6 +63,7 @@ export const TRACKERS = {
       SUPPORT_FRAMES,
       { path: 'reacquire_near_m', label: 'after a loss, valid again only with a marking this near (m beyond the nearest measured; 0: off; ours, beyond the paper)', min: 0, max: 15, step: 0.5 },
       ADJACENT,
+      SNAP,
     ],
   },
   'adachi-mmpf': {
@@ -84,6 +87,7 @@ export const TRACKERS = {
       { path: 'paired_edges', label: 'paired edges: only a bright stripe’s two edges vote, not a seam, kerb or shadow (ours, beyond the paper)', kind: /** @type {const} */ ('bool') },
       SUPPORT_FRAMES,
       ADJACENT,
+      SNAP,
     ],
   },
   'danescu-stereo': {
@@ -109,6 +113,7 @@ export const TRACKERS = {
       { path: 'valid_marking_sides', label: 'sides that need that marking support: 2 both, 1 at least one (ours)', min: 1, max: 2, step: 1 },
       RELOCK,
       ADJACENT,
+      SNAP,
     ],
   },
 };

@@ -36,9 +36,10 @@
 //! frame is searched on its own (no memory), so an adjacent boundary comes and goes with the
 //! paint; it is only added to a valid estimate.
 
+use super::flat_boundary::FlatBoundary;
 use crate::camera::Camera;
 use crate::image::Image;
-use crate::lane::{sample_road_curve, Boundary, Role};
+use crate::lane::{Boundary, Role};
 
 /// Nearest distance probed, metres.
 pub const NEAR_M: f64 = 5.0;
@@ -99,72 +100,10 @@ pub fn adjacent_boundaries(
     ] {
         let Some(flat) = flat else { continue };
         if let Some(d) = best_width(camera, images, flat, side, ego_width) {
-            out.extend(flat.shifted(camera, side * d, role));
+            out.extend(flat.offset(camera, |_| side * d, role));
         }
     }
     out
-}
-
-/// An ego boundary on the flat road of the camera: (x, y) points, x increasing.
-struct FlatBoundary {
-    points: Vec<[f64; 2]>,
-}
-
-impl FlatBoundary {
-    /// The boundary's image points on the flat road; `None` with fewer than two.
-    fn new(camera: &Camera, boundary: &Boundary) -> Option<Self> {
-        let mut points: Vec<[f64; 2]> = Vec::with_capacity(boundary.points.len());
-        for p in &boundary.points {
-            let Ok(q) = camera.pixel_to_road(p[0], p[1]) else {
-                break;
-            };
-            // The polyline runs up the image: distances grow; a point that does not is past
-            // a fold (a lens at its rim) and ends it.
-            if points.last().is_some_and(|l| q[0] <= l[0]) {
-                break;
-            }
-            points.push(q);
-        }
-        (points.len() >= 2).then_some(Self { points })
-    }
-
-    /// Nearest and farthest distance, metres.
-    fn range(&self) -> (f64, f64) {
-        (self.points[0][0], self.points[self.points.len() - 1][0])
-    }
-
-    /// Lateral position at distance `x`, held constant beyond the ends.
-    fn y_at(&self, x: f64) -> f64 {
-        let p = &self.points;
-        let i = p.partition_point(|q| q[0] < x);
-        if i == 0 {
-            return p[0][1];
-        }
-        if i == p.len() {
-            return p[p.len() - 1][1];
-        }
-        let ([x0, y0], [x1, y1]) = (p[i - 1], p[i]);
-        y0 + (y1 - y0) * (x - x0) / (x1 - x0)
-    }
-
-    /// The boundary moved sideways by `dy` metres, as image and road polylines with `role`;
-    /// `None` when none of it is in view.
-    fn shifted(&self, camera: &Camera, dy: f64, role: Role) -> Option<Boundary> {
-        let (near, far) = self.range();
-        let (points, road_points) = sample_road_curve(
-            |x| self.y_at(x) + dy,
-            |x, y| camera.road_to_pixel(x, y),
-            near,
-            far,
-            camera.width(),
-            camera.height(),
-        );
-        (points.len() >= 2).then_some(Boundary {
-            role,
-            points,
-            road_points,
-        })
-    }
 }
 
 /// The lane width at which paint runs beside `flat` on `side` (+1 left, -1 right), if the

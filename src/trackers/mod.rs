@@ -29,6 +29,7 @@ pub(crate) mod crossing_scenes;
 pub mod danescu;
 mod defaults;
 mod ego_motion;
+pub(crate) mod flat_boundary;
 #[cfg(test)]
 pub(crate) mod fresh_roads;
 mod hypothesis;
@@ -39,6 +40,9 @@ pub mod liu;
 #[cfg(test)]
 mod option_fuzz;
 mod options;
+pub mod paint_snap;
+#[cfg(test)]
+mod paint_snap_tests;
 mod presets;
 mod ranges;
 pub mod reacquire;

@@ -146,6 +146,11 @@ pub struct AdachiConfig {
     /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, whose neighbours come
     /// from r alone; off by default).
     pub adjacent_lanes: bool,
+    /// Move each reported boundary onto the centre of the paint it lies on: a straight
+    /// sideways correction fitted to the marking centres the bottom-up detector's marking
+    /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
+    /// paper; output only: the filter and the validity are unchanged; off by default).
+    pub snap_to_paint: bool,
 }
 
 /// The image width [`AdachiConfig::width_scaled_threshold`] takes `edge_threshold` for, pixels.
@@ -192,6 +197,7 @@ impl Default for AdachiConfig {
             paired_edges: false,
             width_scaled_threshold: false,
             adjacent_lanes: false,
+            snap_to_paint: false,
         }
     }
 }

@@ -64,6 +64,7 @@ pub mod votes;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::EgoLane;
+use super::paint_snap::{move_lane_figures, snap_to_paint};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
@@ -214,7 +215,8 @@ impl AdachiTracker {
             config.seed,
             &initial,
         )?;
-        let detector = if adachi.relock_share > 0.0 || adachi.adjacent_lanes {
+        let detector = if adachi.relock_share > 0.0 || adachi.adjacent_lanes || adachi.snap_to_paint
+        {
             Some(RelockDetector::new(&camera)?)
         } else {
             None
@@ -504,6 +506,13 @@ impl AdachiTracker {
     /// The estimate as the shared output type.
     pub fn to_lane_estimate(&self, e: &AdachiEstimate) -> LaneEstimate {
         let mut boundaries = self.boundaries(e.r, e.q, e.w, e.shape);
+        let snap = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.snap_to_paint);
+        let moved = snap.map_or([0.0; 2], |d| {
+            snap_to_paint(&self.camera, &mut boundaries, d.working_images())
+        });
         if let Some(d) = self
             .detector
             .as_ref()
@@ -512,6 +521,9 @@ impl AdachiTracker {
             // Only the sides model r leaves out: the paper's own neighbours stay.
             let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
             adjacent.retain(|a| boundaries.iter().all(|b| b.role != a.role));
+            if snap.is_some() {
+                let _ = snap_to_paint(&self.camera, &mut adjacent, d.working_images());
+            }
             boundaries.extend(adjacent);
         }
         let state = [
@@ -531,7 +543,7 @@ impl AdachiTracker {
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
         .collect();
-        LaneEstimate {
+        let mut estimate = LaneEstimate {
             frame: String::new(),
             valid: e.valid,
             ms: 0.0,
@@ -542,7 +554,9 @@ impl AdachiTracker {
             lane_width_m: e.w,
             delimiters: Vec::new(),
             state,
-        }
+        };
+        move_lane_figures(&mut estimate, moved);
+        estimate
     }
 }
 

@@ -165,6 +165,11 @@ pub struct DanescuConfig {
     /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, which follows the ego lane
     /// only; off by default).
     pub adjacent_lanes: bool,
+    /// Move each reported boundary onto the centre of the paint it lies on: a straight
+    /// sideways correction fitted to the marking centres the bottom-up detector's marking
+    /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
+    /// paper; output only: the filter and the validity are unchanged; off by default).
+    pub snap_to_paint: bool,
 }
 
 impl Default for DanescuConfig {
@@ -228,6 +233,7 @@ impl Default for DanescuConfig {
             relock_share: 0.0,
             start_iterations: 0,
             adjacent_lanes: false,
+            snap_to_paint: false,
         }
     }
 }

@@ -63,6 +63,7 @@ pub mod truth;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
+use super::paint_snap::{move_lane_figures, snap_to_paint};
 use super::relock::RelockDetector;
 use super::support_memory::{self, SupportMemory};
 use super::{
@@ -206,11 +207,12 @@ impl DanescuTracker {
         let camera = config.validate()?;
         let danescu = DanescuConfig::from_options(&config.options, id)?;
         let cues = ImageCues::new(&camera, &danescu)?;
-        let detector = if danescu.relock_share > 0.0 || danescu.adjacent_lanes {
-            Some(RelockDetector::new(&camera)?)
-        } else {
-            None
-        };
+        let detector =
+            if danescu.relock_share > 0.0 || danescu.adjacent_lanes || danescu.snap_to_paint {
+                Some(RelockDetector::new(&camera)?)
+            } else {
+                None
+            };
         let is_stereo = id == ID_STEREO;
         let n_pixels = camera.width() * camera.height();
         let stereo = if is_stereo {
@@ -489,12 +491,22 @@ impl DanescuTracker {
     pub fn to_lane_estimate(&self, e: &DanescuEstimate) -> LaneEstimate {
         let lane = &e.lane;
         let mut boundaries = self.boundaries(lane);
+        let snap = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.snap_to_paint);
+        let moved = snap.map_or([0.0; 2], |d| {
+            snap_to_paint(&self.camera, &mut boundaries, d.working_images())
+        });
         if let Some(d) = self
             .detector
             .as_ref()
             .filter(|_| e.valid && self.config.adjacent_lanes)
         {
-            let adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            if snap.is_some() {
+                let _ = snap_to_paint(&self.camera, &mut adjacent, d.working_images());
+            }
             boundaries.extend(adjacent);
         }
         // Inserted, not collected: `collect` into a map sorts its pairs first, one more
@@ -528,7 +540,7 @@ impl DanescuTracker {
             );
             state.insert("danescu.road_points".into(), stereo.road_points() as f64);
         }
-        LaneEstimate {
+        let mut estimate = LaneEstimate {
             frame: String::new(),
             valid: e.valid,
             ms: 0.0,
@@ -539,7 +551,9 @@ impl DanescuTracker {
             lane_width_m: lane.w0 + (lane.wl_mark + lane.wr_mark) / 2.0,
             state,
             delimiters: self.delimiters(lane),
-        }
+        };
+        move_lane_figures(&mut estimate, moved);
+        estimate
     }
 
     /// The particles with their weights and cluster labels (`usize::MAX` for none: an

@@ -159,13 +159,18 @@ pub struct LeeConfig {
     /// Markings that begin only further ahead, past an unmarked crossing, are not yet the
     /// car's lane.
     pub reacquire_near_m: f64,
+    /// Move each reported boundary onto the centre of the paint it lies on: a straight
+    /// sideways correction fitted to the marking centres the bottom-up detector's marking
+    /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
+    /// paper; output only: the filter and the validity are unchanged; off by default).
+    pub snap_to_paint: bool,
 }
 
 impl LeeConfig {
     /// Whether an option needs the line detector on every frame (`relock_share`,
-    /// `adjacent_lanes`), not only on first frames (`start_pair_share`).
+    /// `adjacent_lanes`, `snap_to_paint`), not only on first frames (`start_pair_share`).
     pub fn detector_every_frame(&self) -> bool {
-        self.relock_share > 0.0 || self.adjacent_lanes
+        self.relock_share > 0.0 || self.adjacent_lanes || self.snap_to_paint
     }
 }
 
@@ -215,6 +220,7 @@ impl Default for LeeConfig {
             side_search_share: 0.0,
             curvature_prior_sd: 0.0,
             adjacent_lanes: false,
+            snap_to_paint: false,
             kalman: true,
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],

@@ -71,6 +71,7 @@ pub mod truth;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
+use super::paint_snap::{move_lane_figures, snap_to_paint};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
@@ -630,12 +631,22 @@ impl LeeTracker {
         let s = e.state;
         let curve = Curve::new(s.c, s.delta, self.config.spiral_length_m);
         let mut boundaries = self.boundaries(&s);
+        let snap = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.snap_to_paint);
+        let moved = snap.map_or([0.0; 2], |d| {
+            snap_to_paint(&self.camera, &mut boundaries, d.working_images())
+        });
         if let Some(d) = self
             .detector
             .as_ref()
             .filter(|_| e.valid && self.config.adjacent_lanes)
         {
-            let adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
+            if snap.is_some() {
+                let _ = snap_to_paint(&self.camera, &mut adjacent, d.working_images());
+            }
             boundaries.extend(adjacent);
         }
         let r = e.raw;
@@ -662,7 +673,7 @@ impl LeeTracker {
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
         .collect();
-        LaneEstimate {
+        let mut estimate = LaneEstimate {
             frame: String::new(),
             valid: e.valid,
             ms: 0.0,
@@ -673,7 +684,9 @@ impl LeeTracker {
             lane_width_m: s.w,
             delimiters: Vec::new(),
             state,
-        }
+        };
+        move_lane_figures(&mut estimate, moved);
+        estimate
     }
 }
 

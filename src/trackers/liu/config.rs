@@ -86,6 +86,11 @@ pub struct LiuConfig {
     /// data-driven proposal beside the paper's N' default-model particles (ours, beyond the
     /// paper; 0: off; see [`crate::trackers::relock`]).
     pub relock_share: f64,
+    /// Move each reported boundary onto the centre of the paint it lies on: a straight
+    /// sideways correction fitted to the marking centres the bottom-up detector's marking
+    /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
+    /// paper; output only: the filter and the validity are unchanged; off by default).
+    pub snap_to_paint: bool,
     /// Ends the top view where the camera still resolves it (ours, beyond the paper, which
     /// names no range): its far end at most [`LiuConfig::resolved_distance_m`], where one
     /// top-view pixel spans [`MIN_COLUMNS_PER_TOP_VIEW_PIXEL`] image columns, but at least
@@ -154,6 +159,7 @@ impl Default for LiuConfig {
             default_heading_rad: 0.05,
             default_jitter_m: 0.1,
             relock_share: 0.0,
+            snap_to_paint: false,
             top_view_resolved: false,
             reacquire_near_m: 0.0,
             mode_candidates: 1,

@@ -43,6 +43,7 @@ pub mod model;
 pub mod neg_exp;
 pub mod truth;
 
+use super::paint_snap::{move_lane_figures, snap_to_paint};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::support_memory::SupportMemory;
@@ -217,7 +218,7 @@ impl LiuTracker {
             config.seed,
             &initial,
         )?;
-        let detector = if liu.relock_share > 0.0 {
+        let detector = if liu.relock_share > 0.0 || liu.snap_to_paint {
             Some(RelockDetector::new(&camera)?)
         } else {
             None
@@ -548,12 +549,19 @@ impl LiuTracker {
             width = (at_car[l] - at_car[r]) * math::cos(heading);
             curvature = -(bl.e() + br.e()) / s;
         }
+        let snap = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.snap_to_paint);
+        let moved = snap.map_or([0.0; 2], |d| {
+            snap_to_paint(&self.camera, &mut boundaries, d.working_images())
+        });
         state.insert(
             "liu.mask_pixels".to_string(),
             self.descriptors.count() as f64,
         );
         state.insert("liu.ess".to_string(), e.ess);
-        LaneEstimate {
+        let mut estimate = LaneEstimate {
             frame: String::new(),
             valid: e.valid,
             ms: 0.0,
@@ -564,7 +572,9 @@ impl LiuTracker {
             lane_width_m: width,
             delimiters: Vec::new(),
             state,
-        }
+        };
+        move_lane_figures(&mut estimate, moved);
+        estimate
     }
 }
 

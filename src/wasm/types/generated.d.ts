@@ -668,6 +668,15 @@ export interface AdachiOptions {
    * @defaultValue `false`
    */
   adjacent_lanes?: boolean;
+  /**
+   * Move each reported boundary onto the centre of the paint it lies on: a straight
+   * sideways correction fitted to the marking centres the bottom-up detector's marking
+   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * paper; output only: the filter and the validity are unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_to_paint?: boolean;
 }
 
 /**
@@ -1060,6 +1069,15 @@ export interface DanescuOptions {
    * @defaultValue `false`
    */
   adjacent_lanes?: boolean;
+  /**
+   * Move each reported boundary onto the centre of the paint it lies on: a straight
+   * sideways correction fitted to the marking centres the bottom-up detector's marking
+   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * paper; output only: the filter and the validity are unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_to_paint?: boolean;
 }
 
 /**
@@ -1418,6 +1436,15 @@ export interface LeeOptions {
    * @defaultValue `0`
    */
   reacquire_near_m?: number;
+  /**
+   * Move each reported boundary onto the centre of the paint it lies on: a straight
+   * sideways correction fitted to the marking centres the bottom-up detector's marking
+   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * paper; output only: the filter and the validity are unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_to_paint?: boolean;
 }
 
 /**
@@ -1605,6 +1632,15 @@ export interface LiuOptions {
    * @defaultValue `0`
    */
   relock_share?: number;
+  /**
+   * Move each reported boundary onto the centre of the paint it lies on: a straight
+   * sideways correction fitted to the marking centres the bottom-up detector's marking
+   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * paper; output only: the filter and the validity are unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_to_paint?: boolean;
   /**
    * Ends the top view where the camera still resolves it (ours, beyond the paper, which
    * names no range): its far end at most `resolved_distance_m`, where one

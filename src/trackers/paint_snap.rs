@@ -1,0 +1,283 @@
+//! Each output boundary moved onto the centre of the paint it was drawn on (option
+//! `snap_to_paint`, ours, beyond the papers).
+//!
+//! A particle filter's estimate is a weighted mean (or mode) of particles spread by process
+//! noise: on a still, or right after a jump, it lies some centimetres off the marking's centre,
+//! which near the car of a 1640-pixel frame is 10-15 pixels, half of CULane's 30-pixel line.
+//! After the estimate, each boundary y_b(x) (on the flat road of the camera,
+//! [`super::flat_boundary`]) is moved by a straight correction fitted to the paint across it,
+//!
+//!   y(x) = y_b(x) + a + b (x - x̄),
+//!
+//! which keeps the estimate's curvature:
+//!
+//! 1. At distances x every [`PROBE_STEP_M`] from [`NEAR_M`] to [`FAR_M`] (within the
+//!    boundary's range) the marking intensity of the auto-calibration's working image
+//!    ([`crate::calib`]; bilinear between its blocks) is sampled across the boundary, at road
+//!    points y_b(x) + δ every [`STEP_M`].
+//! 2. The brightest sample δ* within [`SEARCH_M`] is paint when it exceeds by
+//!    [`MIN_CONTRAST`] the road [`BESIDE_M`] to either side of it, one of the two grey (the
+//!    test of [`super::adjacent_lanes`]). The paint's centre c(x) is the middle of the span,
+//!    within [`PAIR_M`] of δ*, where the intensity stays above half way from the brighter
+//!    side's road to the peak (its ends interpolated between samples): the two strokes of a
+//!    double line are one marking (a strip wider than about 2 [`BESIDE_M`], a gutter or a
+//!    car's side, fails the test against the road beside it).
+//! 3. a and b by least squares over the centres, then again without those more than
+//!    [`OUTLIER_M`] off the last fit, three times with a tighter tolerance each time; b = 0 when the centres span less than [`MIN_SPAN_M`];
+//!    nothing moves with fewer than [`MIN_CENTRES`] centres, and |b| is at most
+//!    [`MAX_SLOPE`].
+//!
+//! Only the output moves: the filter's particles and validity are the tracker's own.
+
+use super::adjacent_lanes::WorkingImages;
+use super::flat_boundary::FlatBoundary;
+use crate::camera::Camera;
+use crate::image::Image;
+use crate::lane::{Boundary, LaneEstimate, Role};
+
+/// Nearest distance probed, metres.
+pub const NEAR_M: f64 = 4.0;
+/// Farthest distance probed, metres.
+pub const FAR_M: f64 = 40.0;
+/// Spacing of the probes along the boundary, metres.
+pub const PROBE_STEP_M: f64 = 0.5;
+/// How far either side of the boundary the paint's peak is looked for, metres.
+pub const SEARCH_M: f64 = 0.3;
+/// Spacing of the samples across the boundary, metres.
+pub const STEP_M: f64 = 0.02;
+/// How far either side of the peak the paint's span may reach, metres.
+pub const PAIR_M: f64 = 0.2;
+/// Where the road beside the peak is sampled, metres either side of it.
+pub const BESIDE_M: f64 = super::adjacent_lanes::BESIDE_M;
+/// Smallest excess of the peak over the road beside it (grey levels).
+pub const MIN_CONTRAST: f64 = super::adjacent_lanes::MIN_CONTRAST as f64;
+/// Largest saturation of grey road.
+pub const MAX_ROAD_SATURATION: f64 = super::adjacent_lanes::MAX_ROAD_SATURATION as f64;
+/// Residuals beyond which the centres are left out of the next fit, round by round, metres.
+pub const OUTLIER_M: [f64; 3] = [0.12, 0.06, 0.04];
+/// Fewest centres that move a boundary.
+pub const MIN_CENTRES: usize = 6;
+/// Smallest spread of the centres' distances for a slope, metres.
+pub const MIN_SPAN_M: f64 = 8.0;
+/// Largest slope b of the correction (radians, about 1.1 deg).
+pub const MAX_SLOPE: f64 = 0.02;
+
+/// Probes along a boundary, at most.
+const PROBES: usize = ((FAR_M - NEAR_M) / PROBE_STEP_M) as usize + 1;
+/// Samples across a boundary at one distance: δ from -(SEARCH + PAIR) to +(SEARCH + PAIR).
+const HALF: usize = ((SEARCH_M + PAIR_M) / STEP_M + 0.5) as usize;
+const SAMPLES: usize = 2 * HALF + 1;
+/// Samples between two projected knots; the knots span the samples exactly.
+const KNOT: usize = 5;
+const KNOTS: usize = (SAMPLES - 1) / KNOT + 1;
+const _: () = assert!((SAMPLES - 1) % KNOT == 0);
+
+/// Moves every boundary of `boundaries` onto the paint beside it (the module docs); a boundary
+/// without enough paint stays as it is. Returns how far the ego-left and ego-right boundaries
+/// moved at the car (x = 0, metres, positive left; 0 for one not moved), for
+/// [`move_lane_figures`].
+pub fn snap_to_paint(
+    camera: &Camera,
+    boundaries: &mut [Boundary],
+    images: WorkingImages<'_>,
+) -> [f64; 2] {
+    let mut moved_at_car = [0.0; 2];
+    for b in boundaries.iter_mut() {
+        let Some(flat) = FlatBoundary::new(camera, b) else {
+            continue;
+        };
+        let Some(c) = correction(camera, images, &flat) else {
+            continue;
+        };
+        if let Some(moved) = flat.offset(camera, |x| c.at(x), b.role) {
+            match b.role {
+                Role::EgoLeft => moved_at_car[0] = c.at(0.0),
+                Role::EgoRight => moved_at_car[1] = c.at(0.0),
+                _ => {}
+            }
+            *b = moved;
+        }
+    }
+    moved_at_car
+}
+
+/// Keeps an estimate's lateral offset and lane width those of its drawn ego boundaries after
+/// they moved by `moved_at_car` ([`snap_to_paint`]): the lane's centre moved by the mean of the
+/// two, its width by their difference. The heading and curvature stay the filter's.
+pub fn move_lane_figures(estimate: &mut LaneEstimate, moved_at_car: [f64; 2]) {
+    let [left, right] = moved_at_car;
+    estimate.lateral_offset_m -= (left + right) / 2.0;
+    estimate.lane_width_m += left - right;
+}
+
+/// The correction a + b (x - x̄), held at its ends beyond the distances of the centres it was
+/// fitted to.
+#[derive(Debug, Clone, Copy)]
+struct Correction {
+    a: f64,
+    b: f64,
+    mid: f64,
+    near: f64,
+    far: f64,
+}
+
+impl Correction {
+    /// The lateral move at distance `x`, metres.
+    fn at(&self, x: f64) -> f64 {
+        self.a + self.b * (x.clamp(self.near, self.far) - self.mid)
+    }
+}
+
+/// The correction for `flat` (steps 1-3 of the module docs).
+fn correction(
+    camera: &Camera,
+    images: WorkingImages<'_>,
+    flat: &FlatBoundary,
+) -> Option<Correction> {
+    let (near, far) = flat.range();
+    let (from, to) = (near.max(NEAR_M), far.min(FAR_M));
+    // The centres found, [x, c], on the stack: a frame allocates nothing here.
+    let mut centres = [[0.0f64; 2]; PROBES];
+    let mut n = 0;
+    for k in 0..PROBES {
+        let x = from + k as f64 * PROBE_STEP_M;
+        if x > to {
+            break;
+        }
+        if let Some(c) = paint_centre(camera, images, x, flat.y_at(x)) {
+            centres[n] = [x, c];
+            n += 1;
+        }
+    }
+    // Each round drops the centres off the last fit by more than its tolerance.
+    let mut fit = line_fit(&centres[..n])?;
+    for tolerance in OUTLIER_M {
+        let (a, b, mid) = fit;
+        let mut kept = 0;
+        for k in 0..n {
+            let [x, c] = centres[k];
+            if (c - a - b * (x - mid)).abs() <= tolerance {
+                centres[kept] = centres[k];
+                kept += 1;
+            }
+        }
+        n = kept;
+        fit = line_fit(&centres[..n])?;
+    }
+    let (a, b, mid) = fit;
+    Some(Correction {
+        a,
+        b: b.clamp(-MAX_SLOPE, MAX_SLOPE),
+        mid,
+        near: centres[0][0],
+        far: centres[n - 1][0],
+    })
+}
+
+/// Least-squares a + b (x - x̄) through `points` ([x, c]): (a, b, x̄); b = 0 when they span
+/// less than [`MIN_SPAN_M`]; `None` with fewer than [`MIN_CENTRES`].
+fn line_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
+    if points.len() < MIN_CENTRES {
+        return None;
+    }
+    let n = points.len() as f64;
+    let mid = points.iter().map(|p| p[0]).sum::<f64>() / n;
+    let a = points.iter().map(|p| p[1]).sum::<f64>() / n;
+    let span = points[points.len() - 1][0] - points[0][0];
+    let (sxx, sxc) = points.iter().fold((0.0, 0.0), |(sxx, sxc), &[x, c]| {
+        (sxx + (x - mid) * (x - mid), sxc + (x - mid) * (c - a))
+    });
+    let b = if span >= MIN_SPAN_M && sxx > 0.0 {
+        sxc / sxx
+    } else {
+        0.0
+    };
+    Some((a, b, mid))
+}
+
+/// The centre of the paint across road point (x, y), as an offset from y (step 2 of the
+/// module docs); `None` without paint or out of view.
+fn paint_centre(camera: &Camera, images: WorkingImages<'_>, x: f64, y: f64) -> Option<f64> {
+    let (m, saturation, scale) = images;
+    let at = |image: &Image<u8>, d: f64| -> Option<f64> {
+        let [u, v] = camera.road_to_pixel(x, y + d)?;
+        bilinear(image, scale, u, v)
+    };
+    // The samples' pixels interpolated between projected knots every KNOT samples: across
+    // 10 cm of road the image of the lateral line is straight to well under a pixel.
+    let mut knots = [[0.0f64; 2]; KNOTS];
+    for (k, p) in knots.iter_mut().enumerate() {
+        *p = camera.road_to_pixel(x, y + ((k * KNOT) as f64 - HALF as f64) * STEP_M)?;
+    }
+    let mut profile = [0.0f64; SAMPLES];
+    for (k, p) in profile.iter_mut().enumerate() {
+        let (i, t) = ((k / KNOT).min(KNOTS - 2), (k % KNOT) as f64 / KNOT as f64);
+        let t = if k == SAMPLES - 1 { 1.0 } else { t };
+        let ([u0, v0], [u1, v1]) = (knots[i], knots[i + 1]);
+        *p = bilinear(m, scale, u0 + t * (u1 - u0), v0 + t * (v1 - v0))?;
+    }
+    let reach = (SEARCH_M / STEP_M).round() as usize;
+    let (peak, &top) = profile[HALF - reach..=HALF + reach]
+        .iter()
+        .enumerate()
+        .max_by(|a, b| a.1.total_cmp(b.1))?;
+    let peak = peak + HALF - reach;
+    let delta = (peak as f64 - HALF as f64) * STEP_M;
+    let mut road = f64::MIN;
+    let mut grey = false;
+    for side in [-BESIDE_M, BESIDE_M] {
+        let level = at(m, delta + side)?;
+        if top - level < MIN_CONTRAST {
+            return None;
+        }
+        road = road.max(level);
+        grey |= at(saturation, delta + side)? <= MAX_ROAD_SATURATION;
+    }
+    if !grey {
+        return None;
+    }
+    let half = (top + road) / 2.0;
+    let pair = (PAIR_M / STEP_M).round() as usize;
+    let (lo, hi) = (peak.saturating_sub(pair), (peak + pair).min(SAMPLES - 1));
+    let first = (lo..=peak).find(|&k| profile[k] >= half)?;
+    let last = (peak..=hi).rev().find(|&k| profile[k] >= half)?;
+    // The crossings of the half level, interpolated between the samples either side.
+    let crossing = |inside: usize, outside: usize| -> f64 {
+        let (vi, vo) = (profile[inside], profile[outside]);
+        let t = if vi > vo {
+            (vi - half) / (vi - vo)
+        } else {
+            0.0
+        };
+        inside as f64 + t.clamp(0.0, 1.0) * (outside as f64 - inside as f64)
+    };
+    let left = if first > 0 {
+        crossing(first, first - 1)
+    } else {
+        first as f64
+    };
+    let right = if last + 1 < SAMPLES {
+        crossing(last, last + 1)
+    } else {
+        last as f64
+    };
+    Some(((left + right) / 2.0 - HALF as f64) * STEP_M)
+}
+
+/// The working image `image` (blocks of `scale` pixels) at full-resolution pixel (u, v),
+/// bilinear between block centres; `None` outside them.
+fn bilinear(image: &Image<u8>, scale: usize, u: f64, v: f64) -> Option<f64> {
+    let s = scale as f64;
+    let (i, j) = ((u - (s - 1.0) / 2.0) / s, (v - (s - 1.0) / 2.0) / s);
+    let (w, h) = (image.width(), image.height());
+    if !(i >= 0.0 && j >= 0.0 && i <= (w - 1) as f64 && j <= (h - 1) as f64) {
+        return None;
+    }
+    let (i0, j0) = (i.floor() as usize, j.floor() as usize);
+    let (i1, j1) = ((i0 + 1).min(w - 1), (j0 + 1).min(h - 1));
+    let (ti, tj) = (i - i0 as f64, j - j0 as f64);
+    let g = |i: usize, j: usize| f64::from(image.get(i, j));
+    let top = g(i0, j0) * (1.0 - ti) + g(i1, j0) * ti;
+    let bottom = g(i0, j1) * (1.0 - ti) + g(i1, j1) * ti;
+    Some(top * (1.0 - tj) + bottom * tj)
+}
