@@ -7,8 +7,8 @@
 //! OUT_DIR/report.md (the table, also printed) and OUT_DIR/sheet-<video>-<camera>.png: one
 //! row of sampled frames per tracker with its boundaries drawn (ego-left red, ego-right blue,
 //! others yellow; thin when the frame is not valid), for judging the Udacity videos by eye,
-//! and OUT_DIR/per-frame/<row> -- <dataset>.txt, each labelled frame's figures with the
-//! failing ones marked (`lanepf eval --per-frame`).
+//! and OUT_DIR/per-frame/row<NN> -- <dataset>.txt, each labelled frame's figures with the
+//! failing ones marked (`lanepf eval --per-frame`; the rows' names in per-frame/rows.txt).
 //! The Udacity frames are cut once with ffmpeg into OUT_DIR/frames/. With the environment
 //! variable `REAL_DATA_ROWS` set, only the rows whose name contains it run (e.g.
 //! `REAL_DATA_ROWS=adachi`); with `REAL_DATA_RUNS` set, only the datasets (columns) whose
@@ -618,6 +618,11 @@ fn main() -> Res<()> {
         let mut all = Vec::new();
         let per_frame = out.join("per-frame");
         std::fs::create_dir_all(&per_frame)?;
+        let mut index = String::new();
+        for (k, row) in all_rows.iter().enumerate() {
+            index.push_str(&format!("row{k:02}: {}\n", row.name()?));
+        }
+        std::fs::write(per_frame.join("rows.txt"), index)?;
         for (k, row) in all_rows.iter().enumerate() {
             if !selected[k] {
                 continue;
@@ -631,8 +636,10 @@ fn main() -> Res<()> {
                         ..EvalOptions::default()
                     };
                     let report = evaluate_with(*format, &preds, gt, &options)?;
-                    // Which frames fail, for this row and dataset.
-                    let file = format!("{} -- {}.txt", row.name()?, run.label).replace(
+                    // Which frames fail, for this row and dataset: named by the row's number
+                    // (its full name in per-frame/rows.txt; a name with every option is longer
+                    // than a file name may be).
+                    let file = format!("row{k:02} -- {}.txt", run.label).replace(
                         |c: char| !c.is_ascii_alphanumeric() && c != '-' && c != '.',
                         "_",
                     );

@@ -124,7 +124,7 @@ struct Correction {
 impl Correction {
     /// The lateral move at distance `x`, metres.
     fn at(&self, x: f64) -> f64 {
-        self.a + self.b * (x.clamp(self.near, self.far) - self.mid)
+        self.a + self.b * (crate::math::clamp(x, self.near, self.far) - self.mid)
     }
 }
 
