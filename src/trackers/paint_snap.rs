@@ -31,6 +31,7 @@
 
 use super::adjacent_lanes::WorkingImages;
 use super::flat_boundary::FlatBoundary;
+use super::relock::RelockDetector;
 use crate::camera::Camera;
 use crate::image::Image;
 use crate::lane::{Boundary, LaneEstimate, Role};
@@ -99,6 +100,18 @@ pub fn snap_to_paint(
         }
     }
     moved_at_car
+}
+
+/// [`snap_to_paint`] in the marking image of `detector` (a tracker's line detector, `None` when
+/// the option is off or the frame not valid: nothing moves).
+pub fn snap_with(
+    camera: &Camera,
+    boundaries: &mut [Boundary],
+    detector: Option<&RelockDetector>,
+) -> [f64; 2] {
+    detector.map_or([0.0; 2], |d| {
+        snap_to_paint(camera, boundaries, d.working_images())
+    })
 }
 
 /// Keeps an estimate's lateral offset and lane width those of its drawn ego boundaries after

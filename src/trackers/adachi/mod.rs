@@ -64,7 +64,7 @@ pub mod votes;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::EgoLane;
-use super::paint_snap::{move_lane_figures, snap_to_paint};
+use super::paint_snap::{move_lane_figures, snap_with};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
@@ -510,9 +510,7 @@ impl AdachiTracker {
             .detector
             .as_ref()
             .filter(|_| e.valid && self.config.snap_to_paint);
-        let moved = snap.map_or([0.0; 2], |d| {
-            snap_to_paint(&self.camera, &mut boundaries, d.working_images())
-        });
+        let moved = snap_with(&self.camera, &mut boundaries, snap);
         if let Some(d) = self
             .detector
             .as_ref()
@@ -521,9 +519,7 @@ impl AdachiTracker {
             // Only the sides model r leaves out: the paper's own neighbours stay.
             let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
             adjacent.retain(|a| boundaries.iter().all(|b| b.role != a.role));
-            if snap.is_some() {
-                let _ = snap_to_paint(&self.camera, &mut adjacent, d.working_images());
-            }
+            snap_with(&self.camera, &mut adjacent, snap);
             boundaries.extend(adjacent);
         }
         let state = [

@@ -71,7 +71,7 @@ pub mod truth;
 
 use super::adjacent_lanes::adjacent_boundaries;
 use super::lane_change::{self, EgoLane};
-use super::paint_snap::{move_lane_figures, snap_to_paint};
+use super::paint_snap::{move_lane_figures, snap_with};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
@@ -635,18 +635,14 @@ impl LeeTracker {
             .detector
             .as_ref()
             .filter(|_| e.valid && self.config.snap_to_paint);
-        let moved = snap.map_or([0.0; 2], |d| {
-            snap_to_paint(&self.camera, &mut boundaries, d.working_images())
-        });
+        let moved = snap_with(&self.camera, &mut boundaries, snap);
         if let Some(d) = self
             .detector
             .as_ref()
             .filter(|_| e.valid && self.config.adjacent_lanes)
         {
             let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
-            if snap.is_some() {
-                let _ = snap_to_paint(&self.camera, &mut adjacent, d.working_images());
-            }
+            snap_with(&self.camera, &mut adjacent, snap);
             boundaries.extend(adjacent);
         }
         let r = e.raw;

@@ -43,7 +43,7 @@ pub mod model;
 pub mod neg_exp;
 pub mod truth;
 
-use super::paint_snap::{move_lane_figures, snap_to_paint};
+use super::paint_snap::{move_lane_figures, snap_with};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::support_memory::SupportMemory;
@@ -553,9 +553,7 @@ impl LiuTracker {
             .detector
             .as_ref()
             .filter(|_| e.valid && self.config.snap_to_paint);
-        let moved = snap.map_or([0.0; 2], |d| {
-            snap_to_paint(&self.camera, &mut boundaries, d.working_images())
-        });
+        let moved = snap_with(&self.camera, &mut boundaries, snap);
         state.insert(
             "liu.mask_pixels".to_string(),
             self.descriptors.count() as f64,
