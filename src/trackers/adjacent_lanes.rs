@@ -100,7 +100,7 @@ pub fn adjacent_boundaries(
     ] {
         let Some(flat) = flat else { continue };
         if let Some(d) = best_width(camera, images, flat, side, ego_width) {
-            out.extend(flat.offset(camera, |_| side * d, role));
+            out.extend(flat.offset(camera, &|_| side * d, role));
         }
     }
     out

@@ -55,7 +55,7 @@ impl FlatBoundary {
 
     /// The boundary moved sideways by `dy(x)` metres at distance x, as image and road
     /// polylines with `role`; `None` when fewer than two of its points are in view.
-    pub fn offset(&self, camera: &Camera, dy: impl Fn(f64) -> f64, role: Role) -> Option<Boundary> {
+    pub fn offset(&self, camera: &Camera, dy: &dyn Fn(f64) -> f64, role: Role) -> Option<Boundary> {
         let (near, far) = self.range();
         let (points, road_points) = sample_road_curve(
             |x| self.y_at(x) + dy(x),

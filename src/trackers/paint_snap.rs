@@ -90,7 +90,7 @@ pub fn snap_to_paint(
         let Some(c) = correction(camera, images, &flat) else {
             continue;
         };
-        if let Some(moved) = flat.offset(camera, |x| c.at(x), b.role) {
+        if let Some(moved) = flat.offset(camera, &|x| c.at(x), b.role) {
             match b.role {
                 Role::EgoLeft => moved_at_car[0] = c.at(0.0),
                 Role::EgoRight => moved_at_car[1] = c.at(0.0),
