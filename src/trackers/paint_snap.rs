@@ -2,8 +2,9 @@
 //! `snap_to_paint`, ours, beyond the papers).
 //!
 //! A particle filter's estimate is a weighted mean (or mode) of particles spread by process
-//! noise: on a still, or right after a jump, it lies some centimetres off the marking's centre,
-//! which near the car of a 1640-pixel frame is 10-15 pixels, half of CULane's 30-pixel line.
+//! noise: on a still, or right after a jump, it lies some centimetres off the marking's centre:
+//! on CULane's 1640-pixel stills a median 7-14 pixels from the labels near the car, up to half
+//! of the 30-pixel line the benchmark scores.
 //! After the estimate, each boundary y_b(x) (on the flat road of the camera,
 //! [`super::flat_boundary`]) is moved by a straight correction fitted to the paint across it,
 //!
@@ -20,12 +21,16 @@
 //!    test of [`super::adjacent_lanes`]). The paint's centre c(x) is the middle of the span,
 //!    within [`PAIR_M`] of δ*, where the intensity stays above half way from the brighter
 //!    side's road to the peak (its ends interpolated between samples): the two strokes of a
-//!    double line are one marking (a strip wider than about 2 [`BESIDE_M`], a gutter or a
-//!    car's side, fails the test against the road beside it).
+//!    double line up to about 0.3 m across are one marking (a strip wider than about 2
+//!    [`BESIDE_M`], a gutter or a car's side, fails the test against the road beside it).
+//!    Known limit: the span reaches [`PAIR_M`] from the peak only, and the road is tested
+//!    [`BESIDE_M`] from the peak, so a wider marking's centre is biased towards the stroke
+//!    holding the peak (a 30 cm line by about 2 cm; a 15 / 15 / 15 cm double line by 6-12 cm,
+//!    found at few distances).
 //! 3. a and b by least squares over the centres, then again without those more than
-//!    [`OUTLIER_M`] off the last fit, three times with a tighter tolerance each time; b = 0 when the centres span less than [`MIN_SPAN_M`];
-//!    nothing moves with fewer than [`MIN_CENTRES`] centres, and |b| is at most
-//!    [`MAX_SLOPE`].
+//!    [`OUTLIER_M`] off the last fit, three times with a tighter tolerance each time; b = 0
+//!    when the centres span less than [`MIN_SPAN_M`]; nothing moves with fewer than
+//!    [`MIN_CENTRES`] centres, and |b| is at most [`MAX_SLOPE`].
 //!
 //! Only the output moves: the filter's particles and validity are the tracker's own.
 
@@ -118,6 +123,11 @@ pub fn snap_with(
 /// they moved by `moved_at_car` ([`snap_to_paint`]): the lane's centre moved by the mean of the
 /// two, its width by their difference. The heading and curvature stay the filter's.
 pub fn move_lane_figures(estimate: &mut LaneEstimate, moved_at_car: [f64; 2]) {
+    let has = |role: Role| estimate.boundaries.iter().any(|b| b.role == role);
+    // Without the pair the figures are not the pair's (liu-ppf then reports zeros).
+    if !(has(Role::EgoLeft) && has(Role::EgoRight)) {
+        return;
+    }
     let [left, right] = moved_at_car;
     estimate.lateral_offset_m -= (left + right) / 2.0;
     estimate.lane_width_m += left - right;

@@ -101,15 +101,62 @@ fn a_heading_error_is_taken_out_too() {
 #[test]
 fn a_double_line_counts_as_one_marking() {
     let camera = default_camera(640, 480).unwrap();
-    // Two 10 cm strokes 10 cm apart, centred at 1.8 m.
-    let images = working_images(&camera, |_, y| {
-        let d = (y - 1.8).abs();
-        (0.05..=0.15).contains(&d)
-    });
-    let (_, at) = snapped(&camera, boundary(&camera, |_| 1.95), &images);
-    for y in at {
-        assert!((y - 1.8).abs() < 0.03, "{at:?}");
+    // Strokes and the gap between them, metres: 10 / 10 / 10 cm centred at 1.8 m, and one
+    // wide line (30 cm across as two 15 cm halves; the module docs' known limit beyond).
+    for (stroke, gap) in [(0.1, 0.1), (0.15, 0.0)] {
+        let images = working_images(&camera, |_, y| {
+            let d = (y - 1.8).abs();
+            (gap / 2.0..=gap / 2.0 + stroke).contains(&d)
+        });
+        for start in [1.8, 1.95, 1.65] {
+            let (_, at) = snapped(&camera, boundary(&camera, |_| start), &images);
+            for y in at {
+                assert!(
+                    (y - 1.8).abs() < 0.03,
+                    "strokes {stroke}, gap {gap}, from {start}: {at:?}"
+                );
+            }
+        }
     }
+}
+
+#[test]
+fn a_right_boundary_moves_onto_its_line_too() {
+    let camera = default_camera(640, 480).unwrap();
+    let images = working_images(&camera, |_, y| (y + 1.7).abs() <= 0.075);
+    let mut b = boundary(&camera, |_| -1.85);
+    b.role = Role::EgoRight;
+    let (_, at) = snapped(&camera, b, &images);
+    for y in at {
+        assert!((y + 1.7).abs() < 0.02, "{at:?}");
+    }
+}
+
+#[test]
+fn beyond_its_centres_the_correction_is_held_not_extrapolated() {
+    let camera = default_camera(640, 480).unwrap();
+    // Paint from the car to 20 m only; the boundary 0.15 m off at 10 m and turning away by
+    // 0.01 rad: within the paint the slope is taken out, beyond it the move stays the one
+    // at 20 m (the boundary's own heading carries on).
+    let images = working_images(&camera, |x, y| x <= 20.0 && (y - 1.8).abs() <= 0.075);
+    let start = |x: f64| 1.95 + 0.01 * (x - 10.0);
+    let mut out = [boundary(&camera, start)];
+    snap_to_paint(&camera, &mut out, (&images.0, &images.1, SCALE));
+    let flat = FlatBoundary::new(&camera, &out[0]).unwrap();
+    for x in [8.0, 15.0] {
+        assert!(
+            (flat.y_at(x) - 1.8).abs() < 0.02,
+            "at {x} m: {}",
+            flat.y_at(x)
+        );
+    }
+    // At 30 m: start(30) less the move at 20 m, start(20) - 1.8.
+    let held = start(30.0) - (start(20.0) - 1.8);
+    assert!(
+        (flat.y_at(30.0) - held).abs() < 0.03,
+        "at 30 m: {} against {held}",
+        flat.y_at(30.0)
+    );
 }
 
 #[test]
@@ -146,9 +193,15 @@ fn a_stretch_of_other_paint_does_not_pull_the_boundary() {
 
 #[test]
 fn moving_the_ego_pair_moves_the_lane_figures_with_it() {
+    let side = |role| Boundary {
+        role,
+        points: Vec::new(),
+        road_points: Vec::new(),
+    };
     let mut e = crate::lane::LaneEstimate {
         lateral_offset_m: 0.3,
         lane_width_m: 3.5,
+        boundaries: vec![side(Role::EgoLeft), side(Role::EgoRight)],
         ..Default::default()
     };
     // The left boundary 0.1 m further left, the right one 0.05 m further left: the centre
@@ -160,6 +213,14 @@ fn moving_the_ego_pair_moves_the_lane_figures_with_it() {
         e.lateral_offset_m
     );
     assert!((e.lane_width_m - 3.55).abs() < 1e-12, "{}", e.lane_width_m);
+    // Without both ego boundaries (liu-ppf's figures are then zeros) nothing moves.
+    e.boundaries.pop();
+    super::paint_snap::move_lane_figures(&mut e, [0.1, 0.05]);
+    assert!(
+        (e.lateral_offset_m - 0.225).abs() < 1e-12,
+        "{}",
+        e.lateral_offset_m
+    );
 }
 
 /// Mean |lateral error| of `estimate`'s ego boundaries against `truth`'s at 8, 12, 16 and 20 m

@@ -135,8 +135,9 @@ const ADACHI_SIDE_SEARCH_SHARE: f64 = 0.2;
 /// The mono trackers' `snap_to_paint` (RESULTS.md, *Options beyond the papers*, 2026-11-30
 /// session 33, on `real-roads`, adachi-mmpf / danescu-mono / lee-cpf / liu-ppf): CULane F1
 /// (auto camera, stills, tracker seed 1) 0.38 -> 0.42, 0.19 -> 0.24, 0.21 -> 0.24, 0.41 ->
-/// 0.56 (adachi-mmpf with `edge_response: "gradient"` 0.45 -> 0.53): the estimates lay 10-15
-/// pixels off the paint's centre near the car, half of the scored line's 30; `option_compare`:
+/// 0.56 (adachi-mmpf with `edge_response: "gradient"` 0.45 -> 0.53): the estimates lay a
+/// median 7-14 pixels off the labels near the car, up to half of the scored line's 30;
+/// `option_compare`:
 /// TuSimple 91.3 -> 92.1, 90.7 -> 90.0, 88.6 -> 93.0, 72.9 -> 82.4; Caltech tracker seeds 1-5
 /// ego lanes 96.2 / 1.9 -> 95.5 / 2.6, 89.7 / 1.9 -> 89.7 / 1.9, 98.5 / 0.7 -> 97.9 / 1.2,
 /// 97.5 / 2.4 -> 97.9 / 2.0 % (adachi-mmpf and lee-cpf lose a boundary of frame 123 on every

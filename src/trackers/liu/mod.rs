@@ -218,8 +218,11 @@ impl LiuTracker {
             config.seed,
             &initial,
         )?;
-        let detector = if liu.relock_share > 0.0 || liu.snap_to_paint {
+        let detector = if liu.relock_share > 0.0 {
             Some(RelockDetector::new(&camera)?)
+        } else if liu.snap_to_paint {
+            // Output only: frames too small for the detector (under 32x16) go unsnapped.
+            RelockDetector::new(&camera).ok()
         } else {
             None
         };
