@@ -438,6 +438,43 @@ impl Calibrator {
         width: usize,
         height: usize,
     ) -> Result<&FrameObservation> {
+        // Where the road vanishes as known before this frame: it sets the rows computed and
+        // searched and picks the ego pair.
+        let prior = self.prior_vanishing_point();
+        self.compute_working_images(rgba, width, height, prior)?;
+        self.frames_seen += 1;
+        self.observe(prior);
+        Ok(&self.last)
+    }
+
+    /// Computes the working images of one RGBA frame ([`Self::working_images`]) and nothing
+    /// else: no lines are found, and what the calibrator has learnt, its frame count and its
+    /// last observation stay as they were. For a tracker that needs the marking image only
+    /// (its `snap_to_paint` or `adjacent_lanes` without `relock_share`); with a known
+    /// vanishing point ([`Self::set_known_vanishing_point`]) the images are those
+    /// [`Self::feed_rgba`] computes, at a fraction of its cost.
+    ///
+    /// # Errors
+    /// As [`Self::feed_rgba`].
+    pub fn feed_rgba_markings_only(
+        &mut self,
+        rgba: &[u8],
+        width: usize,
+        height: usize,
+    ) -> Result<()> {
+        let prior = self.prior_vanishing_point();
+        self.compute_working_images(rgba, width, height, prior)
+    }
+
+    /// The working images of a frame checked to be `width` x `height` RGBA, from the first row
+    /// the `prior` vanishing point needs.
+    fn compute_working_images(
+        &mut self,
+        rgba: &[u8],
+        width: usize,
+        height: usize,
+        prior: Option<[f64; 2]>,
+    ) -> Result<()> {
         if (width, height) != (self.width, self.height) {
             return Err(Error::Dimensions(format!(
                 "{width}x{height}: this calibrator takes {}x{} frames",
@@ -445,12 +482,8 @@ impl Calibrator {
             )));
         }
         check_rgba(rgba, width, height)?;
-        self.frames_seen += 1;
-        // Where the road vanishes as known before this frame: it sets the rows computed and
-        // searched and picks the ego pair.
-        let prior = self.prior_vanishing_point();
         let first_row = self.first_working_row(prior);
-        if let Err(e) = marking_intensity(
+        marking_intensity(
             rgba,
             width,
             height,
@@ -459,12 +492,7 @@ impl Calibrator {
             &mut self.marking_scratch,
             &mut self.work,
             &mut self.saturation,
-        ) {
-            self.frames_seen -= 1;
-            return Err(e);
-        }
-        self.observe(prior);
-        Ok(&self.last)
+        )
     }
 
     /// The first working row of the marking image a frame needs: [`ROAD_TOP_MARGIN`] of the

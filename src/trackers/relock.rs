@@ -58,6 +58,38 @@ impl RelockDetector {
         Ok(())
     }
 
+    /// Computes the marking image of a frame (already checked against the camera) and no
+    /// lines: for a tracker that needs [`Self::working_images`] only, at a fraction of the
+    /// cost of [`Self::feed`]. The images are those [`Self::feed`] computes; there is no
+    /// [`Self::detection`] afterwards.
+    ///
+    /// # Errors
+    /// As [`Calibrator::feed_rgba_markings_only`].
+    pub fn feed_markings_only(&mut self, rgba: &[u8], width: usize, height: usize) -> Result<()> {
+        self.detection = None;
+        self.calibrator.feed_rgba_markings_only(rgba, width, height)
+    }
+
+    /// [`Self::feed`] when the tracker needs this frame's ego pair (`lines`: its
+    /// `relock_share`, or a start on the detected pair), else [`Self::feed_markings_only`].
+    ///
+    /// # Errors
+    /// As [`Self::feed`].
+    pub fn feed_as_needed(
+        &mut self,
+        camera: &Camera,
+        rgba: &[u8],
+        width: usize,
+        height: usize,
+        lines: bool,
+    ) -> Result<()> {
+        if lines {
+            self.feed(camera, rgba, width, height)
+        } else {
+            self.feed_markings_only(rgba, width, height)
+        }
+    }
+
     /// The ego pair on the road of the last frame fed, if one was found.
     pub fn detection(&self) -> Option<EgoOnRoad> {
         self.detection
@@ -135,6 +167,46 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The marking-image-only feed computes exactly the working images of the full one (the
+    /// snap and the neighbouring-lane probes of a tracker without `relock_share` read them),
+    /// finds no ego pair, and leaves the full feed's detections as they would have been.
+    #[test]
+    fn the_markings_only_feed_gives_the_full_feeds_images() {
+        let camera = default_camera(320, 240).unwrap();
+        let mut rgba = vec![0u8; 320 * 240 * 4];
+        let mut scene = Scene::new(scenario("highway-curve").unwrap(), camera.clone(), 3).unwrap();
+        let (mut full, mut markings, mut mixed) = (
+            RelockDetector::new(&camera).unwrap(),
+            RelockDetector::new(&camera).unwrap(),
+            RelockDetector::new(&camera).unwrap(),
+        );
+        for f in 0..6 {
+            scene.render(f * 7, Eye::Left, &mut rgba, None).unwrap();
+            full.feed(&camera, &rgba, 320, 240).unwrap();
+            markings.feed_markings_only(&rgba, 320, 240).unwrap();
+            assert_eq!(
+                full.working_images(),
+                markings.working_images(),
+                "frame {f}"
+            );
+            assert!(
+                full.detection().is_some(),
+                "frame {f}: the full feed finds the lane"
+            );
+            assert!(markings.detection().is_none(), "frame {f}");
+            // A markings-only frame between two full ones changes no detection.
+            if f % 2 == 0 {
+                mixed.feed_markings_only(&rgba, 320, 240).unwrap();
+            }
+            mixed.feed(&camera, &rgba, 320, 240).unwrap();
+            assert_eq!(mixed.detection(), full.detection(), "frame {f}");
+        }
+        let err = markings.feed_markings_only(&rgba[4..], 320, 240);
+        assert!(err.is_err(), "a short buffer is refused");
+        markings.feed_markings_only(&rgba, 320, 240).unwrap();
+        assert_eq!(full.working_images(), markings.working_images());
     }
 
     /// `occlusion` blacks the camera out for 1 s (frames 150-179). Measured (2026-11-25,

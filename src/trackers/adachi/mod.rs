@@ -390,7 +390,8 @@ impl AdachiTracker {
         let t0 = now();
         self.frame_votes = self.votes.vote(rgba);
         if let Some(d) = self.detector.as_mut() {
-            d.feed(&self.camera, rgba, width, height)?;
+            let lines = self.config.relock_share > 0.0;
+            d.feed_as_needed(&self.camera, rgba, width, height, lines)?;
         }
         self.votes_ready(t0);
         Ok(())

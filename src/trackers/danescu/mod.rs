@@ -334,7 +334,8 @@ impl DanescuTracker {
         }
         self.cues.finish()?;
         if let Some(d) = self.detector.as_mut() {
-            d.feed(&self.camera, rgba, width, height)?;
+            let lines = self.config.relock_share > 0.0;
+            d.feed_as_needed(&self.camera, rgba, width, height, lines)?;
         }
         let (travelled_m, turned_rad) = match self.motion.take() {
             Some(m) => {

@@ -589,8 +589,11 @@ impl LeeTracker {
         self.far.detect(&self.gray)?;
         let every_frame = self.config.detector_every_frame();
         if let Some(d) = self.detector.as_mut() {
-            if every_frame || self.stepper.next_is_first() {
-                d.feed(&self.camera, rgba, width, height)?;
+            // The start on the detected pair needs the first frame's lines.
+            let first = self.stepper.next_is_first();
+            let lines = self.config.relock_share > 0.0 || first;
+            if every_frame || first {
+                d.feed_as_needed(&self.camera, rgba, width, height, lines)?;
             }
         }
         self.stages = StageResults::default();

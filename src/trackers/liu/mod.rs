@@ -282,7 +282,8 @@ impl LiuTracker {
         let t0 = now();
         self.descriptors.compute(rgba, width, height)?;
         if let Some(d) = self.detector.as_mut() {
-            d.feed(&self.camera, rgba, width, height)?;
+            let lines = self.config.relock_share > 0.0;
+            d.feed_as_needed(&self.camera, rgba, width, height, lines)?;
         }
         self.stepper.begin(StageTimes {
             preprocess: now() - t0,
