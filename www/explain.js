@@ -38,6 +38,7 @@ export const TRACKERS = {
       SUPPORT_FRAMES,
       { path: 'mode_candidates', label: 'estimate: the heaviest mode around this many heaviest particles (1: the heaviest particle’s; ours)', min: 1, max: 64, step: 1 },
       { path: 'valid_paint_contrast', label: 'valid only with paint on one ego boundary: a stripe this many grey levels brighter than the road beside it (0: off; ours)', min: 0, max: 40, step: 1 },
+      ADJACENT,
       SNAP,
     ],
   },

@@ -1,6 +1,7 @@
 //! The lanes beside the ego lane, for trackers whose paper follows the ego lane only (option
-//! `adjacent_lanes`, ours, beyond the papers; `lee-cpf`, `danescu-*` and `adachi-mmpf`, whose
-//! paper has neighbours only where its lane-configuration model r has them).
+//! `adjacent_lanes`, ours, beyond the papers; `lee-cpf`, `danescu-*`, `adachi-mmpf`, whose
+//! paper has neighbours only where its lane-configuration model r has them, and `liu-ppf`,
+//! whose partitions give one neighbour).
 //!
 //! Lee et al. and Danescu & Nedevschi estimate the ego lane; a user on a multi-lane road wants
 //! its neighbours too (Caltech's "all lanes" and CULane score every labelled lane, up to four).
@@ -37,6 +38,8 @@
 //! paint; it is only added to a valid estimate.
 
 use super::flat_boundary::FlatBoundary;
+use super::paint_snap::snap_with;
+use super::relock::RelockDetector;
 use crate::camera::Camera;
 use crate::image::Image;
 use crate::lane::{Boundary, Role};
@@ -75,6 +78,26 @@ pub const MIN_RANGES: usize = 3;
 
 /// The marking image a search probes: marking intensity, saturation, block size.
 pub type WorkingImages<'a> = (&'a Image<u8>, &'a Image<u8>, usize);
+
+/// Adds to `boundaries` (a valid estimate's) the [`adjacent_boundaries`] of the sides they
+/// leave out, in the marking image of `detector` (`None`: the option is off or the frame not
+/// valid, nothing is added): a tracker's own neighbours (adachi-mmpf's model r, liu-ppf's
+/// partitions) stay. Each one added is moved onto its paint with `snap`
+/// ([`super::paint_snap::snap_with`], `None` when `snap_to_paint` is off).
+pub fn add_adjacent_lanes(
+    camera: &Camera,
+    boundaries: &mut Vec<Boundary>,
+    detector: Option<&RelockDetector>,
+    snap: Option<&RelockDetector>,
+) {
+    let Some(d) = detector else {
+        return;
+    };
+    let mut adjacent = adjacent_boundaries(camera, boundaries, d.working_images());
+    adjacent.retain(|a| boundaries.iter().all(|b| b.role != a.role));
+    snap_with(camera, &mut adjacent, snap);
+    boundaries.extend(adjacent);
+}
 
 /// The adjacent boundaries beside `ego` (the estimate's boundaries: its `ego-left` and
 /// `ego-right` are used), found in the marking image `images` of the frame seen by `camera`.
@@ -263,13 +286,31 @@ mod tests {
         }
     }
 
+    /// liu-ppf's own boundaries are its partitions' (three in the default configuration: the
+    /// ego pair and one neighbour); the option adds the side they leave out. Measured
+    /// (2026-11-30, `multi-lane`, scene seeds 1-2, left / right correct of ground truth):
+    /// without 69/84 and 49/120, 72/84 and 48/120; with 72/84 and 118/120, 74/84 and 120/120;
+    /// nothing extra. Thresholds: those of adachi-mmpf's test above.
+    #[test]
+    fn liu_adds_the_neighbours_its_partitions_leave_out() {
+        let share = |[l, r]: [(usize, usize); 2]| (l.1 + r.1) as f64 / (l.0 + r.0) as f64;
+        for seed in 1..=2 {
+            let (without, _) = accuracy_with("liu-ppf", "multi-lane", seed, false);
+            let (with, extra) = accuracy_with("liu-ppf", "multi-lane", seed, true);
+            assert!(
+                share(with) >= 0.9 && share(with) >= share(without) + 0.1 && extra <= 3,
+                "seed {seed}: without {without:?}, with {with:?}, extra {extra}"
+            );
+        }
+    }
+
     /// `urban` is a two-lane street with kerbs at both edges: the car's right boundary is the
     /// kerb, beyond it the pavement; on the left is the oncoming lane. Measured (2026-11-26,
-    /// danescu-mono, and 2026-11-28, adachi-mmpf, scene seeds 1-2): no boundary where the
-    /// truth has none (nothing beyond the kerb).
+    /// danescu-mono, 2026-11-28, adachi-mmpf, and 2026-11-30, liu-ppf, scene seeds 1-2): no
+    /// boundary where the truth has none (nothing beyond the kerb).
     #[test]
     fn no_lane_is_reported_beyond_the_kerb() {
-        for id in ["danescu-mono", "adachi-mmpf"] {
+        for id in ["danescu-mono", "adachi-mmpf", "liu-ppf"] {
             for seed in 1..=2 {
                 let (_, extra) = adjacent_accuracy(id, "urban", seed);
                 assert_eq!(extra, 0, "{id} seed {seed}");

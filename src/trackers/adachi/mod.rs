@@ -62,7 +62,7 @@ mod side_search_tests;
 pub mod truth;
 pub mod votes;
 
-use super::adjacent_lanes::adjacent_boundaries;
+use super::adjacent_lanes::add_adjacent_lanes;
 use super::lane_change::EgoLane;
 use super::paint_snap::{move_lane_figures, snap_with};
 use super::reacquire::Reacquire;
@@ -512,17 +512,12 @@ impl AdachiTracker {
             .as_ref()
             .filter(|_| e.valid && self.config.snap_to_paint);
         let moved = snap_with(&self.camera, &mut boundaries, snap);
-        if let Some(d) = self
+        // Only the sides model r leaves out: the paper's own neighbours stay.
+        let adjacent = self
             .detector
             .as_ref()
-            .filter(|_| e.valid && self.config.adjacent_lanes)
-        {
-            // Only the sides model r leaves out: the paper's own neighbours stay.
-            let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
-            adjacent.retain(|a| boundaries.iter().all(|b| b.role != a.role));
-            snap_with(&self.camera, &mut adjacent, snap);
-            boundaries.extend(adjacent);
-        }
+            .filter(|_| e.valid && self.config.adjacent_lanes);
+        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
         let state = [
             ("adachi.q", e.q),
             ("adachi.w", e.w),

@@ -61,7 +61,7 @@ pub mod model;
 pub mod stereo;
 pub mod truth;
 
-use super::adjacent_lanes::adjacent_boundaries;
+use super::adjacent_lanes::add_adjacent_lanes;
 use super::lane_change::{self, EgoLane};
 use super::paint_snap::{move_lane_figures, snap_with};
 use super::relock::RelockDetector;
@@ -497,15 +497,11 @@ impl DanescuTracker {
             .as_ref()
             .filter(|_| e.valid && self.config.snap_to_paint);
         let moved = snap_with(&self.camera, &mut boundaries, snap);
-        if let Some(d) = self
+        let adjacent = self
             .detector
             .as_ref()
-            .filter(|_| e.valid && self.config.adjacent_lanes)
-        {
-            let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
-            snap_with(&self.camera, &mut adjacent, snap);
-            boundaries.extend(adjacent);
-        }
+            .filter(|_| e.valid && self.config.adjacent_lanes);
+        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
         // Inserted, not collected: `collect` into a map sorts its pairs first, one more
         // instance of the stable sort in the wasm for eleven keys (issue 21 part 5).
         let mut state = std::collections::BTreeMap::new();

@@ -69,7 +69,7 @@ pub mod measurement;
 pub mod motion;
 pub mod truth;
 
-use super::adjacent_lanes::adjacent_boundaries;
+use super::adjacent_lanes::add_adjacent_lanes;
 use super::lane_change::{self, EgoLane};
 use super::paint_snap::{move_lane_figures, snap_with};
 use super::reacquire::Reacquire;
@@ -639,15 +639,11 @@ impl LeeTracker {
             .as_ref()
             .filter(|_| e.valid && self.config.snap_to_paint);
         let moved = snap_with(&self.camera, &mut boundaries, snap);
-        if let Some(d) = self
+        let adjacent = self
             .detector
             .as_ref()
-            .filter(|_| e.valid && self.config.adjacent_lanes)
-        {
-            let mut adjacent = adjacent_boundaries(&self.camera, &boundaries, d.working_images());
-            snap_with(&self.camera, &mut adjacent, snap);
-            boundaries.extend(adjacent);
-        }
+            .filter(|_| e.valid && self.config.adjacent_lanes);
+        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
         let r = e.raw;
         let state = [
             ("lee.psi", s.psi),

@@ -91,6 +91,12 @@ pub struct LiuConfig {
     /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
+    /// Also report the lanes beside the ego lane on the sides the partitions leave out
+    /// (`left-adjacent`, `right-adjacent`), where markings run beside an ego boundary at a
+    /// lane's width in the bottom-up detector's marking image
+    /// ([`crate::trackers::adjacent_lanes`]; ours, beyond the paper, whose boundaries are the
+    /// partitions' alone; off by default).
+    pub adjacent_lanes: bool,
     /// Ends the top view where the camera still resolves it (ours, beyond the paper, which
     /// names no range): its far end at most [`LiuConfig::resolved_distance_m`], where one
     /// top-view pixel spans [`MIN_COLUMNS_PER_TOP_VIEW_PIXEL`] image columns, but at least
@@ -160,6 +166,7 @@ impl Default for LiuConfig {
             default_jitter_m: 0.1,
             relock_share: 0.0,
             snap_to_paint: false,
+            adjacent_lanes: false,
             top_view_resolved: false,
             reacquire_near_m: 0.0,
             mode_candidates: 1,

@@ -32,7 +32,9 @@
 //! top view's near end ([`super::reacquire`]). With a positive `valid_paint_contrast` (ours,
 //! off by default) a frame is valid only when one ego boundary at least also shows paint, a
 //! bright stripe in the top view, so that shadow edges do not hold a lane through an unmarked
-//! crossing.
+//! crossing. With `snap_to_paint` (ours) the reported boundaries move onto the paint's centre
+//! ([`super::paint_snap`]); with `adjacent_lanes` (ours) the neighbour on the side the
+//! partitions leave out is added where paint runs there ([`super::adjacent_lanes`]).
 
 pub mod atan32;
 pub mod config;
@@ -43,6 +45,7 @@ pub mod model;
 pub mod neg_exp;
 pub mod truth;
 
+use super::adjacent_lanes::add_adjacent_lanes;
 use super::paint_snap::{move_lane_figures, snap_with};
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
@@ -150,7 +153,8 @@ pub struct LiuTracker {
     model: PpfModel,
     initial: DefaultLanes,
     filter: ParticleFilter<LaneParticle>,
-    /// The bottom-up detector of `relock_share` (`None` when it is off).
+    /// The bottom-up detector of `relock_share`, `snap_to_paint` and `adjacent_lanes` (`None`
+    /// when they are off).
     detector: Option<RelockDetector>,
     /// The validity rule after a loss (`reacquire_near_m`).
     reacquire: Reacquire,
@@ -220,8 +224,9 @@ impl LiuTracker {
         )?;
         let detector = if liu.relock_share > 0.0 {
             Some(RelockDetector::new(&camera)?)
-        } else if liu.snap_to_paint {
-            // Output only: frames too small for the detector (under 32x16) go unsnapped.
+        } else if liu.snap_to_paint || liu.adjacent_lanes {
+            // Output only: frames too small for the detector (under 32x16) go unsnapped and
+            // without neighbours found beside the partitions'.
             RelockDetector::new(&camera).ok()
         } else {
             None
@@ -558,6 +563,12 @@ impl LiuTracker {
             .as_ref()
             .filter(|_| e.valid && self.config.snap_to_paint);
         let moved = snap_with(&self.camera, &mut boundaries, snap);
+        // Only the sides the partitions leave out: the paper's own boundaries stay.
+        let adjacent = self
+            .detector
+            .as_ref()
+            .filter(|_| e.valid && self.config.adjacent_lanes);
+        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
         state.insert(
             "liu.mask_pixels".to_string(),
             self.descriptors.count() as f64,

@@ -1642,6 +1642,16 @@ export interface LiuOptions {
    */
   snap_to_paint?: boolean;
   /**
+   * Also report the lanes beside the ego lane on the sides the partitions leave out
+   * (`left-adjacent`, `right-adjacent`), where markings run beside an ego boundary at a
+   * lane's width in the bottom-up detector's marking image
+   * (`adjacent_lanes`; ours, beyond the paper, whose boundaries are the
+   * partitions' alone; off by default).
+   *
+   * @defaultValue `false`
+   */
+  adjacent_lanes?: boolean;
+  /**
    * Ends the top view where the camera still resolves it (ours, beyond the paper, which
    * names no range): its far end at most `resolved_distance_m`, where one
    * top-view pixel spans `MIN_COLUMNS_PER_TOP_VIEW_PIXEL` image columns, but at least
