@@ -438,11 +438,16 @@ impl Calibrator {
         width: usize,
         height: usize,
     ) -> Result<&FrameObservation> {
+        // Counted before the prior is read (its vote needs more than five frames seen); not
+        // counted when the frame is refused.
+        self.frames_seen += 1;
         // Where the road vanishes as known before this frame: it sets the rows computed and
         // searched and picks the ego pair.
         let prior = self.prior_vanishing_point();
-        self.compute_working_images(rgba, width, height, prior)?;
-        self.frames_seen += 1;
+        if let Err(e) = self.compute_working_images(rgba, width, height, prior) {
+            self.frames_seen -= 1;
+            return Err(e);
+        }
         self.observe(prior);
         Ok(&self.last)
     }
