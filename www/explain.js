@@ -8,6 +8,7 @@ const PARTICLES = { path: 'particles', label: 'particles N', min: 20, max: 2000,
 const RELOCK = { path: 'relock_share', label: 're-lock share: particles drawn around a line detector’s ego pair (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 };
 const SUPPORT_FRAMES = { path: 'valid_support_frames', label: 'frames a dashed boundary’s support is remembered (ours; 1: this frame only)', min: 1, max: 15, step: 1 };
 const SNAP = { path: 'snap_to_paint', label: 'snap to paint: move each drawn boundary onto the centre of the marking it lies on (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
+const NEEDS_PAINT = { path: 'valid_needs_paint', label: 'no lane without paint: report a frame not valid when no run of paint lies along either drawn ego boundary (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
 const ADJACENT = { path: 'adjacent_lanes', label: 'adjacent lanes: report the marked lanes beside the ego lane (ours, beyond the paper)', kind: /** @type {const} */ ('bool') };
 
 /**
@@ -40,6 +41,7 @@ export const TRACKERS = {
       { path: 'valid_paint_contrast', label: 'valid only with paint on one ego boundary: a stripe this many grey levels brighter than the road beside it (0: off; ours)', min: 0, max: 40, step: 1 },
       ADJACENT,
       SNAP,
+      NEEDS_PAINT,
     ],
   },
   'lee-cpf': {
@@ -65,6 +67,7 @@ export const TRACKERS = {
       { path: 'reacquire_near_m', label: 'after a loss, valid again only with a marking this near (m beyond the nearest measured; 0: off; ours, beyond the paper)', min: 0, max: 15, step: 0.5 },
       ADJACENT,
       SNAP,
+      NEEDS_PAINT,
     ],
   },
   'adachi-mmpf': {
@@ -89,6 +92,7 @@ export const TRACKERS = {
       SUPPORT_FRAMES,
       ADJACENT,
       SNAP,
+      NEEDS_PAINT,
     ],
   },
   'danescu-stereo': {
@@ -115,6 +119,7 @@ export const TRACKERS = {
       RELOCK,
       ADJACENT,
       SNAP,
+      NEEDS_PAINT,
     ],
   },
 };

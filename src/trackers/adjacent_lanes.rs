@@ -38,8 +38,6 @@
 //! paint; it is only added to a valid estimate.
 
 use super::flat_boundary::FlatBoundary;
-use super::paint_snap::snap_with;
-use super::relock::RelockDetector;
 use crate::camera::Camera;
 use crate::image::Image;
 use crate::lane::{Boundary, Role};
@@ -78,26 +76,6 @@ pub const MIN_RANGES: usize = 3;
 
 /// The marking image a search probes: marking intensity, saturation, block size.
 pub type WorkingImages<'a> = (&'a Image<u8>, &'a Image<u8>, usize);
-
-/// Adds to `boundaries` (a valid estimate's) the [`adjacent_boundaries`] of the sides they
-/// leave out, in the marking image of `detector` (`None`: the option is off or the frame not
-/// valid, nothing is added): a tracker's own neighbours (adachi-mmpf's model r, liu-ppf's
-/// partitions) stay. Each one added is moved onto its paint with `snap`
-/// ([`super::paint_snap::snap_with`], `None` when `snap_to_paint` is off).
-pub fn add_adjacent_lanes(
-    camera: &Camera,
-    boundaries: &mut Vec<Boundary>,
-    detector: Option<&RelockDetector>,
-    snap: Option<&RelockDetector>,
-) {
-    let Some(d) = detector else {
-        return;
-    };
-    let mut adjacent = adjacent_boundaries(camera, boundaries, d.working_images());
-    adjacent.retain(|a| boundaries.iter().all(|b| b.role != a.role));
-    snap_with(camera, &mut adjacent, snap);
-    boundaries.extend(adjacent);
-}
 
 /// The adjacent boundaries beside `ego` (the estimate's boundaries: its `ego-left` and
 /// `ego-right` are used), found in the marking image `images` of the frame seen by `camera`.

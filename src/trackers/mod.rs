@@ -8,7 +8,8 @@
 //! [`StageTimes`]), `truth.rs` the papers' ground truth (each paper's `truth_parameters` of the
 //! simulator's neutral truth: [`papers_truth`]), `lane_change.rs` the lane-change rule trackers
 //! share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the neighbouring lanes found
-//! beside an ego lane, and one folder per paper. Each paper's tracker is its image cues, its
+//! beside an ego lane, `paint_snap.rs` the boundaries moved onto the paint, `paint_output.rs`
+//! the output options that read the paint in their one order, and one folder per paper. Each paper's tracker is its image cues, its
 //! models and its frame schedule: a [`crate::filter::Schedule`] whose operations it implements
 //! ([`crate::filter::Scheduled`]) and the filter core's stepper runs, whole (`step`) or one
 //! step at a time (`begin_frame`, `advance`).
@@ -40,6 +41,9 @@ pub mod liu;
 #[cfg(test)]
 mod option_fuzz;
 mod options;
+pub mod paint_output;
+#[cfg(test)]
+mod paint_output_tests;
 pub mod paint_snap;
 #[cfg(test)]
 mod paint_snap_tests;

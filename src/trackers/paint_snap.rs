@@ -32,11 +32,17 @@
 //!    when the centres span less than [`MIN_SPAN_M`]; nothing moves with fewer than
 //!    [`MIN_CENTRES`] centres, and |b| is at most [`MAX_SLOPE`].
 //!
+//! 4. Paint runs along the boundary ([`Snapped::painted`], for `valid_needs_paint`,
+//!    [`super::paint_output`]) when at least [`MIN_PAINT_RUN`] centres lie on neighbouring
+//!    probes, each within [`RUN_STEP_M`] of the last, in as many rows of the working image:
+//!    1.5 m of one marking near the car, where a crossing's stripes, a car's edges or a patch
+//!    of glare give scattered centres. (Far off, one row spans several probes: a blob there
+//!    counts once.)
+//!
 //! Only the output moves: the filter's particles and validity are the tracker's own.
 
 use super::adjacent_lanes::WorkingImages;
 use super::flat_boundary::FlatBoundary;
-use super::relock::RelockDetector;
 use crate::camera::Camera;
 use crate::image::Image;
 use crate::lane::{Boundary, LaneEstimate, Role};
@@ -65,6 +71,12 @@ pub const OUTLIER_M: [f64; 3] = [0.12, 0.06, 0.04];
 pub const MIN_CENTRES: usize = 6;
 /// Smallest spread of the centres' distances for a slope, metres.
 pub const MIN_SPAN_M: f64 = 8.0;
+/// Largest change of the paint's centre between neighbouring probes of one run of paint,
+/// metres.
+pub const RUN_STEP_M: f64 = 0.1;
+/// Fewest centres on neighbouring probes, in as many rows of the working image, that make a
+/// run of paint (1.5 m of marking near the car).
+pub const MIN_PAINT_RUN: usize = 4;
 /// Largest slope b of the correction (radians, about 1.1 deg).
 pub const MAX_SLOPE: f64 = 0.02;
 
@@ -79,48 +91,65 @@ const KNOTS: usize = (SAMPLES - 1) / KNOT + 1;
 const _: () = assert!((SAMPLES - 1) % KNOT == 0);
 
 /// Moves every boundary of `boundaries` onto the paint beside it (the module docs); a boundary
-/// without enough paint stays as it is. Returns how far the ego-left and ego-right boundaries
-/// moved at the car (x = 0, metres, positive left; 0 for one not moved), for
-/// [`move_lane_figures`].
+/// without enough paint stays as it is. Returns how far the ego boundaries moved and whether
+/// paint runs along them ([`Snapped`]).
 pub fn snap_to_paint(
     camera: &Camera,
     boundaries: &mut [Boundary],
     images: WorkingImages<'_>,
-) -> [f64; 2] {
-    let mut moved_at_car = [0.0; 2];
+) -> Snapped {
+    follow_paint(camera, boundaries, images, true)
+}
+
+/// [`snap_to_paint`], the boundaries moved only when `moves` (without, what the snap finds).
+pub fn follow_paint(
+    camera: &Camera,
+    boundaries: &mut [Boundary],
+    images: WorkingImages<'_>,
+    moves: bool,
+) -> Snapped {
+    let mut snapped = Snapped::default();
     for b in boundaries.iter_mut() {
         let Some(flat) = FlatBoundary::new(camera, b) else {
             continue;
         };
-        let Some(c) = correction(camera, images, &flat) else {
+        let side = match b.role {
+            Role::EgoLeft => Some(0),
+            Role::EgoRight => Some(1),
+            _ => None,
+        };
+        let (c, run) = correction(camera, images, &flat);
+        if let Some(k) = side {
+            snapped.painted[k] = run >= MIN_PAINT_RUN;
+        }
+        let Some(c) = c else {
             continue;
         };
+        if !moves {
+            continue;
+        }
         if let Some(moved) = flat.offset(camera, &|x| c.at(x), b.role) {
-            match b.role {
-                Role::EgoLeft => moved_at_car[0] = c.at(0.0),
-                Role::EgoRight => moved_at_car[1] = c.at(0.0),
-                _ => {}
+            if let Some(k) = side {
+                snapped.moved_at_car[k] = c.at(0.0);
             }
             *b = moved;
         }
     }
-    moved_at_car
+    snapped
 }
 
-/// [`snap_to_paint`] in the marking image of `detector` (a tracker's line detector, `None` when
-/// the option is off or the frame not valid: nothing moves).
-pub fn snap_with(
-    camera: &Camera,
-    boundaries: &mut [Boundary],
-    detector: Option<&RelockDetector>,
-) -> [f64; 2] {
-    detector.map_or([0.0; 2], |d| {
-        snap_to_paint(camera, boundaries, d.working_images())
-    })
+/// What [`snap_to_paint`] did to an estimate's ego boundaries (ego-left, ego-right).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Snapped {
+    /// How far each moved at the car (x = 0, metres, positive left; 0 for one not moved).
+    pub moved_at_car: [f64; 2],
+    /// Whether paint runs along it: a run of at least [`MIN_PAINT_RUN`] centres on
+    /// neighbouring probes, each within [`RUN_STEP_M`] of the last (step 4 of the module docs).
+    pub painted: [bool; 2],
 }
 
 /// Keeps an estimate's lateral offset and lane width those of its drawn ego boundaries after
-/// they moved by `moved_at_car` ([`snap_to_paint`]): the lane's centre moved by the mean of the
+/// they moved by `moved_at_car` ([`Snapped`]): the lane's centre moved by the mean of the
 /// two, its width by their difference. The heading and curvature stay the filter's.
 pub fn move_lane_figures(estimate: &mut LaneEstimate, moved_at_car: [f64; 2]) {
     let has = |role: Role| estimate.boundaries.iter().any(|b| b.role == role);
@@ -151,27 +180,51 @@ impl Correction {
     }
 }
 
-/// The correction for `flat` (steps 1-3 of the module docs).
+/// The correction for `flat` (steps 1-3 of the module docs), and the longest run of paint
+/// centres found along it ([`Snapped::painted`]).
 fn correction(
     camera: &Camera,
     images: WorkingImages<'_>,
     flat: &FlatBoundary,
-) -> Option<Correction> {
+) -> (Option<Correction>, usize) {
     let (near, far) = flat.range();
     let (from, to) = (near.max(NEAR_M), far.min(FAR_M));
     // The centres found, [x, c], on the stack: a frame allocates nothing here.
     let mut centres = [[0.0f64; 2]; PROBES];
     let mut n = 0;
+    // The run of paint in progress: its length in working-image rows (probes that fall in the
+    // row of the last one counted add nothing: far off, one row spans several probes, and a
+    // blob there would make a run) and that row.
+    let (mut run, mut longest, mut run_row) = (0usize, 0usize, i64::MIN);
     for k in 0..PROBES {
         let x = from + k as f64 * PROBE_STEP_M;
         if x > to {
             break;
         }
-        if let Some(c) = paint_centre(camera, images, x, flat.y_at(x)) {
+        let y = flat.y_at(x);
+        if let Some(c) = paint_centre(camera, images, x, y) {
+            let row = camera
+                .road_to_pixel(x, y + c)
+                .map_or(i64::MIN, |[_, v]| (v / images.2 as f64).floor() as i64);
+            let continues = n > 0 && {
+                let [px, pc] = centres[n - 1];
+                (x - px - PROBE_STEP_M).abs() < 1e-6 && (c - pc).abs() <= RUN_STEP_M
+            };
+            if !continues {
+                (run, run_row) = (1, row);
+            } else if row != run_row {
+                (run, run_row) = (run + 1, row);
+            }
+            longest = longest.max(run);
             centres[n] = [x, c];
             n += 1;
         }
     }
+    (fit_centres(&mut centres, n), longest)
+}
+
+/// The correction through the first `n` of `centres` after the outlier rounds (step 3).
+fn fit_centres(centres: &mut [[f64; 2]; PROBES], mut n: usize) -> Option<Correction> {
     // Each round drops the centres off the last fit by more than its tolerance.
     let mut fit = line_fit(&centres[..n])?;
     for tolerance in OUTLIER_M {

@@ -2,7 +2,7 @@
 //! the flat road of a synthetic camera, in working images made from the road itself.
 
 use super::flat_boundary::FlatBoundary;
-use super::paint_snap::snap_to_paint;
+use super::paint_snap::{follow_paint, snap_to_paint};
 use crate::camera::Camera;
 use crate::image::Image;
 use crate::lane::{sample_road_curve, Boundary, Role};
@@ -250,25 +250,14 @@ fn ego_error(
 /// 10-29, tracker seed 1) with `snap_to_paint` on or off: the mean ego-boundary error of its
 /// valid frames, metres.
 fn highway_run(id: &str, snap: bool) -> f64 {
+    use super::paint_output_tests::real_roads_tracker;
     use crate::synth::{scenario, Eye, Scene};
-    use crate::trackers::{create, preset_options, scene_truth, Preset, TrackerConfig};
+    use crate::trackers::scene_truth;
     let camera = default_camera(320, 240).unwrap();
     let mut config = scenario("highway-straight").unwrap();
     config.frames = 30;
     let mut scene = Scene::new(config, camera.clone(), 1).unwrap();
-    let serde_json::Value::Object(mut options) = preset_options(id, Preset::RealRoads).unwrap()
-    else {
-        panic!("{id}: the preset is not an object");
-    };
-    options.insert("snap_to_paint".into(), snap.into());
-    options.insert("seed".into(), 1.into());
-    options.insert(
-        "camera".into(),
-        serde_json::to_value(camera.to_file()).unwrap(),
-    );
-    let config =
-        TrackerConfig::from_json_str(&serde_json::Value::Object(options).to_string()).unwrap();
-    let mut tracker = create(id, &config).unwrap();
+    let mut tracker = real_roads_tracker(id, &camera, "snap_to_paint", snap);
     let mut rgba = vec![0; 320 * 240 * 4];
     let (mut sum, mut n) = (0.0, 0);
     for f in 0..30 {
@@ -300,4 +289,38 @@ fn every_mono_tracker_draws_its_ego_boundaries_nearer_the_paint() {
             "{id}: ego error {without:.3} -> {with:.3} m"
         );
     }
+}
+
+/// Whether [`follow_paint`] finds a run of paint along an ego-left boundary 0.1 m off a line
+/// at 1.8 m, in working images painted where `painted` holds; the boundary does not move.
+fn paint_runs_along(painted: impl Fn(f64, f64) -> bool) -> bool {
+    let camera = default_camera(640, 480).unwrap();
+    let images = working_images(&camera, painted);
+    let b = boundary(&camera, |_| 1.9);
+    let mut out = [b.clone()];
+    let snapped = follow_paint(&camera, &mut out, (&images.0, &images.1, SCALE), false);
+    assert_eq!(out[0], b, "nothing moves");
+    assert_eq!(snapped.moved_at_car, [0.0; 2]);
+    assert!(!snapped.painted[1], "there is no ego-right boundary");
+    snapped.painted[0]
+}
+
+/// A solid line and a dashed one (3 m of paint every 12 m, US interstate) run along the
+/// boundary; bare road, a crossing's stripes (0.5 m bars across the road every metre) and
+/// scattered 0.3 m patches of paint beside it do not.
+#[test]
+fn paint_runs_along_lines_not_along_stripes_or_patches() {
+    assert!(paint_runs_along(single_line));
+    assert!(paint_runs_along(
+        |x, y| single_line(x, y) && x.rem_euclid(12.0) < 3.0
+    ));
+    assert!(!paint_runs_along(|_, _| false));
+    assert!(!paint_runs_along(
+        |x, y| y.abs() < 4.0 && x.rem_euclid(1.0) < 0.5
+    ));
+    assert!(!paint_runs_along(|x, y| {
+        let k = (x / 2.0).floor();
+        let centre = 1.8 + if k.rem_euclid(2.0) < 1.0 { 0.15 } else { -0.15 };
+        x - 2.0 * k < 0.3 && (y - centre).abs() < 0.15
+    }));
 }

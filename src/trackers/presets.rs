@@ -4,11 +4,11 @@
 //!
 //! | tracker | `real-roads` |
 //! |---|---|
-//! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold`, `adjacent_lanes`, `side_search_share` 0.2, `reacquire_near_m` 4, `valid_support_frames` 2, `snap_to_paint` |
-//! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03, `valid_support_frames` 5, `snap_to_paint` |
+//! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold`, `adjacent_lanes`, `side_search_share` 0.2, `reacquire_near_m` 4, `valid_support_frames` 2, `snap_to_paint`, `valid_needs_paint` |
+//! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03, `valid_support_frames` 5, `snap_to_paint`, `valid_needs_paint` |
 //! | danescu-stereo | `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03 |
-//! | lee-cpf | `relock_share` 0.05, `curvature_prior_sd` 0.004, `adjacent_lanes`, `valid_support_frames` 5, `side_search_share` 0.2, `kalman_process_sd` three times its defaults (ten times on the width), `reacquire_near_m` 4, `snap_to_paint` |
-//! | liu-ppf | `top_view_resolved`, `reacquire_near_m` 4, `mode_candidates` 32, `valid_support_frames` 2, `snap_to_paint`, `adjacent_lanes` |
+//! | lee-cpf | `relock_share` 0.05, `curvature_prior_sd` 0.004, `adjacent_lanes`, `valid_support_frames` 5, `side_search_share` 0.2, `kalman_process_sd` three times its defaults (ten times on the width), `reacquire_near_m` 4, `snap_to_paint`, `valid_needs_paint` |
+//! | liu-ppf | `top_view_resolved`, `reacquire_near_m` 4, `mode_candidates` 32, `valid_support_frames` 2, `snap_to_paint`, `adjacent_lanes`, `valid_needs_paint` |
 //! | liu-ppf-nokernel | none (the paper's baseline: its filter as written) |
 //!
 //! A preset is a starting point: options given beside it replace its values.
@@ -146,13 +146,25 @@ const ADACHI_SIDE_SEARCH_SHARE: f64 = 0.2;
 /// danescu-stereo's is not measured (no labelled stereo footage) and stays off.
 const SNAP_TO_PAINT: bool = true;
 
+/// `valid_needs_paint` of the four mono trackers: a frame is reported valid only with a run of
+/// paint along one of its ego boundaries. Measured 2026-11-30, `real-roads` without and with,
+/// tracker seed 1 unless stated (adachi-mmpf, danescu-mono, lee-cpf, liu-ppf): CULane F1, auto
+/// camera, 41.6 -> 43.0, 23.8 -> 24.5, 23.8 -> 24.0, 55.8 -> 57.1 % (adachi-mmpf
+/// `gradient` 52.6 -> 53.7); TuSimple unchanged; Caltech tracker seeds 1-5 ego correct / FP
+/// 95.5 / 2.6 unchanged, 89.7 / 1.9 -> 89.7 / 1.6, 97.9 / 1.2 unchanged, 97.9 / 2.0 -> 97.9 /
+/// 1.2 % (an unmarked crossing's frames 138 and 249 and liu-ppf's wrong 212-213 now not
+/// valid; no correct frame lost); synthetic seeds 201-213 unchanged (`option_compare`);
+/// Udacity in RESULTS.md. danescu-stereo's is not measured
+/// (no labelled stereo footage) and stays off.
+const VALID_NEEDS_PAINT: bool = true;
+
 /// liu-ppf's `adjacent_lanes` (its partitions give the ego pair and one neighbour; the option
 /// adds the other side's). Measured 2026-11-30, `real-roads` with and without, tracker seed 1
-/// unless stated: TuSimple 82.4 -> 88.0 (FN 0.375 -> 0.167); CULane F1 55.9 -> 55.8 (TP / FP
+/// unless stated: TuSimple 82.4 -> 87.9 (FN 0.38 -> 0.17); CULane F1 55.9 -> 55.8 (TP / FP
 /// 105 / 51 -> 108 / 59); Caltech tracker seeds 1-5 all lanes 70.5 / 7.7 -> 77.8 / 14.5 %
 /// correct / FP (the added false positives are kerbs, which Caltech does not label), ego lanes
-/// unchanged; `option_compare` (paper defaults and `snap_to_paint`): synthetic seeds 201-213
-/// boundaries 71.7 -> 92.3 %, TuSimple 79.2 -> 84.3, 0.15 ms a frame more.
+/// unchanged; `option_compare` with `real-roads`: synthetic seeds 201-213 boundaries 72.5 ->
+/// 93.4 %, 0.07 ms a frame more.
 const LIU_ADJACENT_LANES: bool = true;
 
 /// `real-roads` for tracker `id`'s options (`paper` are its defaults).
@@ -167,6 +179,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             reacquire_near_m: REACQUIRE_NEAR_M,
             valid_support_frames: ADACHI_VALID_SUPPORT_FRAMES,
             snap_to_paint: SNAP_TO_PAINT,
+            valid_needs_paint: VALID_NEEDS_PAINT,
             ..c
         }),
         TrackerOptions::DanescuMono(c) => TrackerOptions::DanescuMono(DanescuConfig {
@@ -176,6 +189,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             valid_distance_m: DANESCU_VALID_DISTANCE_M,
             valid_support_frames: DANESCU_VALID_SUPPORT_FRAMES,
             snap_to_paint: SNAP_TO_PAINT,
+            valid_needs_paint: VALID_NEEDS_PAINT,
             ..c
         }),
         TrackerOptions::DanescuStereo(c) => TrackerOptions::DanescuStereo(DanescuConfig {
@@ -193,6 +207,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             kalman_process_sd: LEE_KALMAN_PROCESS_SD,
             reacquire_near_m: REACQUIRE_NEAR_M,
             snap_to_paint: SNAP_TO_PAINT,
+            valid_needs_paint: VALID_NEEDS_PAINT,
             ..c
         }),
         // liu-ppf: a top view that ends where the camera resolves it (RESULTS.md, *Options
@@ -209,6 +224,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             mode_candidates: LIU_MODE_CANDIDATES,
             valid_support_frames: LIU_VALID_SUPPORT_FRAMES,
             snap_to_paint: SNAP_TO_PAINT,
+            valid_needs_paint: VALID_NEEDS_PAINT,
             adjacent_lanes: LIU_ADJACENT_LANES,
             ..c
         }),
@@ -275,6 +291,8 @@ mod tests {
             "mode_candidates",
             // The boundaries moved onto the paint's centre after the estimate: ours.
             "snap_to_paint",
+            // A valid frame reported only with paint along an ego boundary: ours.
+            "valid_needs_paint",
         ];
         let camera = default_camera(320, 240).unwrap().to_file();
         for id in TRACKER_IDS {

@@ -151,6 +151,12 @@ pub struct AdachiConfig {
     /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
+    /// Report a valid frame not valid when no paint runs along either drawn ego boundary: a
+    /// run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
+    /// found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
+    /// marking image ([`crate::trackers::paint_output`]; ours, beyond the paper; output only:
+    /// the filter's own validity, which its other rules read, is unchanged; off by default).
+    pub valid_needs_paint: bool,
 }
 
 /// The image width [`AdachiConfig::width_scaled_threshold`] takes `edge_threshold` for, pixels.
@@ -198,11 +204,22 @@ impl Default for AdachiConfig {
             width_scaled_threshold: false,
             adjacent_lanes: false,
             snap_to_paint: false,
+            valid_needs_paint: false,
         }
     }
 }
 
 impl AdachiConfig {
+    /// The options of [`crate::trackers::paint_output`] (`snap_to_paint`, `valid_needs_paint`,
+    /// `adjacent_lanes`).
+    pub fn paint_options(&self) -> crate::trackers::paint_output::PaintOptions {
+        crate::trackers::paint_output::PaintOptions {
+            snap_to_paint: self.snap_to_paint,
+            valid_needs_paint: self.valid_needs_paint,
+            adjacent_lanes: self.adjacent_lanes,
+        }
+    }
+
     /// Reads the tracker-specific options.
     ///
     /// # Errors

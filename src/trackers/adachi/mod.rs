@@ -62,9 +62,9 @@ mod side_search_tests;
 pub mod truth;
 pub mod votes;
 
-use super::adjacent_lanes::add_adjacent_lanes;
 use super::lane_change::EgoLane;
-use super::paint_snap::{move_lane_figures, snap_with};
+use super::paint_output::apply_paint_options;
+use super::paint_snap::move_lane_figures;
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
@@ -215,8 +215,7 @@ impl AdachiTracker {
             config.seed,
             &initial,
         )?;
-        let detector = if adachi.relock_share > 0.0 || adachi.adjacent_lanes || adachi.snap_to_paint
-        {
+        let detector = if adachi.relock_share > 0.0 || adachi.paint_options().any() {
             Some(RelockDetector::new(&camera)?)
         } else {
             None
@@ -507,17 +506,13 @@ impl AdachiTracker {
     /// The estimate as the shared output type.
     pub fn to_lane_estimate(&self, e: &AdachiEstimate) -> LaneEstimate {
         let mut boundaries = self.boundaries(e.r, e.q, e.w, e.shape);
-        let snap = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.snap_to_paint);
-        let moved = snap_with(&self.camera, &mut boundaries, snap);
-        // Only the sides model r leaves out: the paper's own neighbours stay.
-        let adjacent = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.adjacent_lanes);
-        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
+        let (valid, snapped) = apply_paint_options(
+            &self.camera,
+            &mut boundaries,
+            self.detector.as_ref(),
+            e.valid,
+            self.config.paint_options(),
+        );
         let state = [
             ("adachi.q", e.q),
             ("adachi.w", e.w),
@@ -537,7 +532,7 @@ impl AdachiTracker {
         .collect();
         let mut estimate = LaneEstimate {
             frame: String::new(),
-            valid: e.valid,
+            valid,
             ms: 0.0,
             boundaries,
             lateral_offset_m: e.q,
@@ -547,7 +542,7 @@ impl AdachiTracker {
             delimiters: Vec::new(),
             state,
         };
-        move_lane_figures(&mut estimate, moved);
+        move_lane_figures(&mut estimate, snapped.moved_at_car);
         estimate
     }
 }

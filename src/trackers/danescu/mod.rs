@@ -61,9 +61,9 @@ pub mod model;
 pub mod stereo;
 pub mod truth;
 
-use super::adjacent_lanes::add_adjacent_lanes;
 use super::lane_change::{self, EgoLane};
-use super::paint_snap::{move_lane_figures, snap_with};
+use super::paint_output::apply_paint_options;
+use super::paint_snap::move_lane_figures;
 use super::relock::RelockDetector;
 use super::support_memory::{self, SupportMemory};
 use super::{
@@ -207,12 +207,11 @@ impl DanescuTracker {
         let camera = config.validate()?;
         let danescu = DanescuConfig::from_options(&config.options, id)?;
         let cues = ImageCues::new(&camera, &danescu)?;
-        let detector =
-            if danescu.relock_share > 0.0 || danescu.adjacent_lanes || danescu.snap_to_paint {
-                Some(RelockDetector::new(&camera)?)
-            } else {
-                None
-            };
+        let detector = if danescu.relock_share > 0.0 || danescu.paint_options().any() {
+            Some(RelockDetector::new(&camera)?)
+        } else {
+            None
+        };
         let is_stereo = id == ID_STEREO;
         let n_pixels = camera.width() * camera.height();
         let stereo = if is_stereo {
@@ -492,16 +491,13 @@ impl DanescuTracker {
     pub fn to_lane_estimate(&self, e: &DanescuEstimate) -> LaneEstimate {
         let lane = &e.lane;
         let mut boundaries = self.boundaries(lane);
-        let snap = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.snap_to_paint);
-        let moved = snap_with(&self.camera, &mut boundaries, snap);
-        let adjacent = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.adjacent_lanes);
-        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
+        let (valid, snapped) = apply_paint_options(
+            &self.camera,
+            &mut boundaries,
+            self.detector.as_ref(),
+            e.valid,
+            self.config.paint_options(),
+        );
         // Inserted, not collected: `collect` into a map sorts its pairs first, one more
         // instance of the stable sort in the wasm for eleven keys (issue 21 part 5).
         let mut state = std::collections::BTreeMap::new();
@@ -535,7 +531,7 @@ impl DanescuTracker {
         }
         let mut estimate = LaneEstimate {
             frame: String::new(),
-            valid: e.valid,
+            valid,
             ms: 0.0,
             boundaries,
             lateral_offset_m: lane.xcw,
@@ -545,7 +541,7 @@ impl DanescuTracker {
             state,
             delimiters: self.delimiters(lane),
         };
-        move_lane_figures(&mut estimate, moved);
+        move_lane_figures(&mut estimate, snapped.moved_at_car);
         estimate
     }
 

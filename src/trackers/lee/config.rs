@@ -164,13 +164,29 @@ pub struct LeeConfig {
     /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
+    /// Report a valid frame not valid when no paint runs along either drawn ego boundary: a
+    /// run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
+    /// found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
+    /// marking image ([`crate::trackers::paint_output`]; ours, beyond the paper; output only:
+    /// the filter's own validity, which its other rules read, is unchanged; off by default).
+    pub valid_needs_paint: bool,
 }
 
 impl LeeConfig {
+    /// The options of [`crate::trackers::paint_output`] (`snap_to_paint`, `valid_needs_paint`,
+    /// `adjacent_lanes`).
+    pub fn paint_options(&self) -> crate::trackers::paint_output::PaintOptions {
+        crate::trackers::paint_output::PaintOptions {
+            snap_to_paint: self.snap_to_paint,
+            valid_needs_paint: self.valid_needs_paint,
+            adjacent_lanes: self.adjacent_lanes,
+        }
+    }
+
     /// Whether an option needs the line detector on every frame (`relock_share`,
-    /// `adjacent_lanes`, `snap_to_paint`), not only on first frames (`start_pair_share`).
+    /// `adjacent_lanes`, `snap_to_paint`, `valid_needs_paint`), not only on first frames (`start_pair_share`).
     pub fn detector_every_frame(&self) -> bool {
-        self.relock_share > 0.0 || self.adjacent_lanes || self.snap_to_paint
+        self.relock_share > 0.0 || self.paint_options().any()
     }
 }
 
@@ -221,6 +237,7 @@ impl Default for LeeConfig {
             curvature_prior_sd: 0.0,
             adjacent_lanes: false,
             snap_to_paint: false,
+            valid_needs_paint: false,
             kalman: true,
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],

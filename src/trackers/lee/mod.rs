@@ -69,9 +69,9 @@ pub mod measurement;
 pub mod motion;
 pub mod truth;
 
-use super::adjacent_lanes::add_adjacent_lanes;
 use super::lane_change::{self, EgoLane};
-use super::paint_snap::{move_lane_figures, snap_with};
+use super::paint_output::apply_paint_options;
+use super::paint_snap::move_lane_figures;
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::side_search::{self, Kept};
@@ -634,16 +634,13 @@ impl LeeTracker {
         let s = e.state;
         let curve = Curve::new(s.c, s.delta, self.config.spiral_length_m);
         let mut boundaries = self.boundaries(&s);
-        let snap = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.snap_to_paint);
-        let moved = snap_with(&self.camera, &mut boundaries, snap);
-        let adjacent = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.adjacent_lanes);
-        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
+        let (valid, snapped) = apply_paint_options(
+            &self.camera,
+            &mut boundaries,
+            self.detector.as_ref(),
+            e.valid,
+            self.config.paint_options(),
+        );
         let r = e.raw;
         let state = [
             ("lee.psi", s.psi),
@@ -670,7 +667,7 @@ impl LeeTracker {
         .collect();
         let mut estimate = LaneEstimate {
             frame: String::new(),
-            valid: e.valid,
+            valid,
             ms: 0.0,
             boundaries,
             lateral_offset_m: -s.y0,
@@ -680,7 +677,7 @@ impl LeeTracker {
             delimiters: Vec::new(),
             state,
         };
-        move_lane_figures(&mut estimate, moved);
+        move_lane_figures(&mut estimate, snapped.moved_at_car);
         estimate
     }
 }

@@ -91,6 +91,12 @@ pub struct LiuConfig {
     /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
+    /// Report a valid frame not valid when no paint runs along either drawn ego boundary: a
+    /// run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
+    /// found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
+    /// marking image ([`crate::trackers::paint_output`]; ours, beyond the paper; output only:
+    /// the filter's own validity, which its other rules read, is unchanged; off by default).
+    pub valid_needs_paint: bool,
     /// Also report the lanes beside the ego lane on the sides the partitions leave out
     /// (`left-adjacent`, `right-adjacent`), where markings run beside an ego boundary at a
     /// lane's width in the bottom-up detector's marking image
@@ -166,6 +172,7 @@ impl Default for LiuConfig {
             default_jitter_m: 0.1,
             relock_share: 0.0,
             snap_to_paint: false,
+            valid_needs_paint: false,
             adjacent_lanes: false,
             top_view_resolved: false,
             reacquire_near_m: 0.0,
@@ -175,6 +182,16 @@ impl Default for LiuConfig {
 }
 
 impl LiuConfig {
+    /// The options of [`crate::trackers::paint_output`] (`snap_to_paint`, `valid_needs_paint`,
+    /// `adjacent_lanes`).
+    pub fn paint_options(&self) -> crate::trackers::paint_output::PaintOptions {
+        crate::trackers::paint_output::PaintOptions {
+            snap_to_paint: self.snap_to_paint,
+            valid_needs_paint: self.valid_needs_paint,
+            adjacent_lanes: self.adjacent_lanes,
+        }
+    }
+
     /// Reads the tracker-specific options.
     ///
     /// # Errors

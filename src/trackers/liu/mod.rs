@@ -45,8 +45,8 @@ pub mod model;
 pub mod neg_exp;
 pub mod truth;
 
-use super::adjacent_lanes::add_adjacent_lanes;
-use super::paint_snap::{move_lane_figures, snap_with};
+use super::paint_output::apply_paint_options;
+use super::paint_snap::move_lane_figures;
 use super::reacquire::Reacquire;
 use super::relock::RelockDetector;
 use super::support_memory::SupportMemory;
@@ -224,7 +224,7 @@ impl LiuTracker {
         )?;
         let detector = if liu.relock_share > 0.0 {
             Some(RelockDetector::new(&camera)?)
-        } else if liu.snap_to_paint || liu.adjacent_lanes {
+        } else if liu.paint_options().any() {
             // Output only: frames too small for the detector (under 32x16) go unsnapped and
             // without neighbours found beside the partitions'.
             RelockDetector::new(&camera).ok()
@@ -558,17 +558,13 @@ impl LiuTracker {
             width = (at_car[l] - at_car[r]) * math::cos(heading);
             curvature = -(bl.e() + br.e()) / s;
         }
-        let snap = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.snap_to_paint);
-        let moved = snap_with(&self.camera, &mut boundaries, snap);
-        // Only the sides the partitions leave out: the paper's own boundaries stay.
-        let adjacent = self
-            .detector
-            .as_ref()
-            .filter(|_| e.valid && self.config.adjacent_lanes);
-        add_adjacent_lanes(&self.camera, &mut boundaries, adjacent, snap);
+        let (valid, snapped) = apply_paint_options(
+            &self.camera,
+            &mut boundaries,
+            self.detector.as_ref(),
+            e.valid,
+            self.config.paint_options(),
+        );
         state.insert(
             "liu.mask_pixels".to_string(),
             self.descriptors.count() as f64,
@@ -576,7 +572,7 @@ impl LiuTracker {
         state.insert("liu.ess".to_string(), e.ess);
         let mut estimate = LaneEstimate {
             frame: String::new(),
-            valid: e.valid,
+            valid,
             ms: 0.0,
             boundaries,
             lateral_offset_m: offset,
@@ -586,7 +582,7 @@ impl LiuTracker {
             delimiters: Vec::new(),
             state,
         };
-        move_lane_figures(&mut estimate, moved);
+        move_lane_figures(&mut estimate, snapped.moved_at_car);
         estimate
     }
 }

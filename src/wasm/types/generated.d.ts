@@ -677,6 +677,16 @@ export interface AdachiOptions {
    * @defaultValue `false`
    */
   snap_to_paint?: boolean;
+  /**
+   * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
+   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
+   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
+   * marking image (`paint_output`; ours, beyond the paper; output only:
+   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_needs_paint?: boolean;
 }
 
 /**
@@ -1078,6 +1088,16 @@ export interface DanescuOptions {
    * @defaultValue `false`
    */
   snap_to_paint?: boolean;
+  /**
+   * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
+   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
+   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
+   * marking image (`paint_output`; ours, beyond the paper; output only:
+   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_needs_paint?: boolean;
 }
 
 /**
@@ -1445,6 +1465,16 @@ export interface LeeOptions {
    * @defaultValue `false`
    */
   snap_to_paint?: boolean;
+  /**
+   * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
+   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
+   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
+   * marking image (`paint_output`; ours, beyond the paper; output only:
+   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_needs_paint?: boolean;
 }
 
 /**
@@ -1641,6 +1671,16 @@ export interface LiuOptions {
    * @defaultValue `false`
    */
   snap_to_paint?: boolean;
+  /**
+   * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
+   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
+   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
+   * marking image (`paint_output`; ours, beyond the paper; output only:
+   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_needs_paint?: boolean;
   /**
    * Also report the lanes beside the ego lane on the sides the partitions leave out
    * (`left-adjacent`, `right-adjacent`), where markings run beside an ego boundary at a

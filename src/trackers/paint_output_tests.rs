@@ -1,0 +1,101 @@
+//! Tests of [`super::paint_output`]'s `valid_needs_paint` on every mono tracker: a highway
+//! whose markings stop for 80 m, as across a junction, with tree shadows along it.
+
+use crate::camera::Camera;
+use crate::synth::{default_camera, scenario, Eye, Scene, Wear};
+use crate::trackers::{create, preset_options, Preset, Tracker, TrackerConfig};
+
+/// Where the markings stop and start again, metres along the road.
+const UNMARKED_M: [f64; 2] = [100.0, 180.0];
+/// Frames rendered.
+const FRAMES: u32 = 220;
+
+/// Tracker `id` with its `real-roads` options and `option` set to `on`, for `camera`, tracker
+/// seed 1.
+pub(super) fn real_roads_tracker(
+    id: &str,
+    camera: &Camera,
+    option: &str,
+    on: bool,
+) -> Box<dyn Tracker> {
+    let serde_json::Value::Object(mut options) = preset_options(id, Preset::RealRoads).unwrap()
+    else {
+        panic!("{id}: the preset is not an object");
+    };
+    options.insert(option.into(), on.into());
+    options.insert("seed".into(), 1.into());
+    options.insert(
+        "camera".into(),
+        serde_json::to_value(camera.to_file()).unwrap(),
+    );
+    let config =
+        TrackerConfig::from_json_str(&serde_json::Value::Object(options).to_string()).unwrap();
+    create(id, &config).unwrap()
+}
+
+/// Tracker `id`'s `real-roads` with `valid_needs_paint` set to `needs_paint` on `shadows`
+/// without markings over [`UNMARKED_M`] (320x240, scene and tracker seed 1):
+/// per frame, the distance s of the car along the road and whether the frame was valid.
+fn unmarked_run(id: &str, needs_paint: bool) -> Vec<(f64, bool)> {
+    let camera = default_camera(320, 240).unwrap();
+    let mut config = scenario("shadows").unwrap();
+    config.frames = FRAMES;
+    config.markings.wear = vec![Wear {
+        from_s: UNMARKED_M[0],
+        to_s: UNMARKED_M[1],
+        boundary: None,
+        visibility: 0.0,
+    }];
+    let ego = config.ego.clone();
+    let mut scene = Scene::new(config, camera.clone(), 1).unwrap();
+    let mut tracker = real_roads_tracker(id, &camera, "valid_needs_paint", needs_paint);
+    let mut rgba = vec![0; 320 * 240 * 4];
+    (0..FRAMES)
+        .map(|f| {
+            scene.render(f, Eye::Left, &mut rgba, None).unwrap();
+            let e = tracker.step(&rgba, 320, 240).unwrap();
+            (ego.start_s + ego.speed_mps * f as f64 / ego.fps, e.valid)
+        })
+        .collect()
+}
+
+/// Share of the frames of `run` with s in `range` that were valid.
+fn valid_share(run: &[(f64, bool)], range: [f64; 2]) -> f64 {
+    let frames: Vec<bool> = run
+        .iter()
+        .filter(|(s, _)| *s >= range[0] && *s <= range[1])
+        .map(|&(_, v)| v)
+        .collect();
+    frames.iter().filter(|&&v| v).count() as f64 / frames.len() as f64
+}
+
+/// `shadows` (tree shadows along both sides, whose edges run beside the lane) with its
+/// markings gone over [`UNMARKED_M`]. Measured (2026-11-30, valid share without -> with the
+/// option, frames whose view from 4 to 40 m ahead is all unmarked; before and after the
+/// stretch 1.00 -> 1.00 for every tracker): adachi-mmpf 0.00 -> 0.00, danescu-mono 0.77 ->
+/// 0.00 (its filter holds the lane on the shadows' edges), lee-cpf 0.00 -> 0.00, liu-ppf 0.15
+/// -> 0.00. Thresholds: with the option at most 5 % valid in the stretch and, before and after
+/// it, as valid as without the option and at least 95 %; without the option danescu-mono valid
+/// in at least half the stretch (the scene tests what it should).
+#[test]
+fn every_mono_tracker_reports_no_lane_where_the_paint_stops() {
+    // The view from 4 to 40 m ahead: all unmarked, and all marked before and after.
+    let unmarked = [UNMARKED_M[0] - 4.0, UNMARKED_M[1] - 40.0];
+    let (before, after) = ([30.0, UNMARKED_M[0] - 40.0], [UNMARKED_M[1] + 10.0, 1e9]);
+    for id in ["adachi-mmpf", "danescu-mono", "lee-cpf", "liu-ppf"] {
+        let without = unmarked_run(id, false);
+        let with = unmarked_run(id, true);
+        let shares =
+            |run: &[(f64, bool)]| [before, unmarked, after].map(|range| valid_share(run, range));
+        let ([b0, u0, a0], [b1, u1, a1]) = (shares(&without), shares(&with));
+        let message = format!("{id}: before / unmarked / after {b0:.2} / {u0:.2} / {a0:.2} -> {b1:.2} / {u1:.2} / {a1:.2}");
+        assert!(u1 <= 0.05, "{message}");
+        assert!(
+            b1 >= b0 && a1 >= a0 && b1 >= 0.95 && a1 >= 0.95,
+            "{message}"
+        );
+        if id == "danescu-mono" {
+            assert!(u0 >= 0.5, "{message}");
+        }
+    }
+}
