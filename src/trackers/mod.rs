@@ -9,10 +9,11 @@
 //! simulator's neutral truth: [`papers_truth`]), `lane_change.rs` the lane-change rule trackers
 //! share, `relock.rs` the detector proposal, `adjacent_lanes.rs` the neighbouring lanes found
 //! beside an ego lane, `paint_snap.rs` the boundaries moved onto the paint, `paint_output.rs`
-//! the output options that read the paint in their one order, and one folder per paper. Each paper's tracker is its image cues, its
-//! models and its frame schedule: a [`crate::filter::Schedule`] whose operations it implements
-//! ([`crate::filter::Scheduled`]) and the filter core's stepper runs, whole (`step`) or one
-//! step at a time (`begin_frame`, `advance`).
+//! the output options that read the paint in their one order, and one folder per paper. Each
+//! paper's tracker is its image cues, its models and its frame schedule: a
+//! [`crate::filter::Schedule`] whose operations it implements ([`crate::filter::Scheduled`])
+//! and the filter core's stepper runs, whole (`step`) or one step at a time (`begin_frame`,
+//! `advance`).
 //!
 //! Ids (see ../shared/DESIGN.md): `liu-ppf`, `liu-ppf-nokernel`, `lee-cpf`, `adachi-mmpf`,
 //! `danescu-stereo`, `danescu-mono`. An id is listed in [`TRACKER_IDS`] only once its tracker

@@ -5,7 +5,10 @@
 //!    ([`super::paint_snap`]);
 //! 2. `valid_needs_paint` reports a valid frame not valid when no run of paint lies along
 //!    either ego boundary ([`Snapped::painted`]): a filter holds its lane through an unmarked
-//!    crossing or on a car's edges by its own support, which counts edges, not paint;
+//!    crossing or on a car's edges by its own support, which counts edges, not paint. The
+//!    test reads the snap's own probes, so with `snap_to_paint` a frame it reports not valid
+//!    has had its boundaries moved already (onto scattered paint: a move needs centres that
+//!    fit a line, not a run); the frame is drawn as not valid either way;
 //! 3. `adjacent_lanes` adds the neighbours on the sides the tracker's own boundaries leave out
 //!    ([`super::adjacent_lanes`]), moved onto their paint with `snap_to_paint`, on a frame
 //!    still valid.

@@ -35,9 +35,10 @@
 //! 4. Paint runs along the boundary ([`Snapped::painted`], for `valid_needs_paint`,
 //!    [`super::paint_output`]) when at least [`MIN_PAINT_RUN`] centres lie on neighbouring
 //!    probes, each within [`RUN_STEP_M`] of the last, in as many rows of the working image:
-//!    1.5 m of one marking near the car, where a crossing's stripes, a car's edges or a patch
-//!    of glare give scattered centres. (Far off, one row spans several probes: a blob there
-//!    counts once.)
+//!    1.5 m of one marking near the car, where a crossing's transverse bars, a car's edges or
+//!    a patch of glare give scattered centres. (Far off, one row spans several probes: a blob
+//!    there counts once.) Known limit: a zebra crossing's stripes run along the road, 0.5 m
+//!    wide and metres long, and one within 0.3 m of a boundary is a run like a line's.
 //!
 //! Only the output moves: the filter's particles and validity are the tracker's own.
 
@@ -118,6 +119,10 @@ pub fn follow_paint(
             Role::EgoRight => Some(1),
             _ => None,
         };
+        // Without moving, only the ego boundaries' paint is asked for.
+        if side.is_none() && !moves {
+            continue;
+        }
         let (c, run) = correction(camera, images, &flat);
         if let Some(k) = side {
             snapped.painted[k] = run >= MIN_PAINT_RUN;

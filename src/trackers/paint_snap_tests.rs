@@ -2,7 +2,7 @@
 //! the flat road of a synthetic camera, in working images made from the road itself.
 
 use super::flat_boundary::FlatBoundary;
-use super::paint_snap::{follow_paint, snap_to_paint};
+use super::paint_snap::{follow_paint, snap_to_paint, PROBE_STEP_M};
 use crate::camera::Camera;
 use crate::image::Image;
 use crate::lane::{sample_road_curve, Boundary, Role};
@@ -306,10 +306,35 @@ fn paint_runs_along(painted: impl Fn(f64, f64) -> bool) -> bool {
 }
 
 /// A solid line and a dashed one (3 m of paint every 12 m, US interstate) run along the
-/// boundary; bare road, a crossing's stripes (0.5 m bars across the road every metre) and
-/// scattered 0.3 m patches of paint beside it do not.
+/// boundary, and so does 2 m of the line near the car (four probes); bare road, bars across
+/// the road (0.5 m every metre, a crossing's transverse bars), scattered 0.3 m patches, 1.2 m
+/// of the line (three probes), a line whose centre steps 16 cm from probe to probe (4-10 m
+/// ahead), and 1.6 m
+/// of it 35 m ahead (four probes in two rows of the image) do not.
 #[test]
 fn paint_runs_along_lines_not_along_stripes_or_patches() {
+    let on_line =
+        |x0: f64, x1: f64| move |x: f64, y: f64| (x0..x1).contains(&x) && single_line(x, y);
+    assert!(paint_runs_along(on_line(6.0, 8.0)));
+    assert!(!paint_runs_along(on_line(6.0, 7.2)));
+    // Pieces 0.5 m long, each probe in the middle of one, near the car (where a row of the
+    // image spans well under a piece).
+    assert!(!paint_runs_along(|x, y| {
+        let piece = ((x + PROBE_STEP_M / 2.0) / PROBE_STEP_M).floor();
+        let step = if piece.rem_euclid(2.0) < 1.0 {
+            0.08
+        } else {
+            -0.08
+        };
+        x < 10.0 && (y - 1.8 - step).abs() <= 0.075
+    }));
+    let camera = default_camera(640, 480).unwrap();
+    let row = |x: f64| (camera.road_to_pixel(x, 1.8).unwrap()[1] / SCALE as f64).floor();
+    let rows: std::collections::BTreeSet<i64> = [34.5, 35.0, 35.5, 36.0, 36.5, 37.0]
+        .map(|x| row(x) as i64)
+        .into();
+    assert!(rows.len() <= 2, "rows {rows:?}");
+    assert!(!paint_runs_along(on_line(35.0, 36.6)));
     assert!(paint_runs_along(single_line));
     assert!(paint_runs_along(
         |x, y| single_line(x, y) && x.rem_euclid(12.0) < 3.0

@@ -171,13 +171,16 @@ mod tests {
 
     /// The marking-image-only feed computes exactly the working images of the full one (the
     /// snap and the neighbouring-lane probes of a tracker without `relock_share` read them),
-    /// finds no ego pair, and leaves the full feed's detections as they would have been.
+    /// finds no ego pair, and leaves the full feed's detections as they would have been; fed
+    /// lines on the first frame only (lee-cpf's start), the images are the full feed's on
+    /// every frame.
     #[test]
     fn the_markings_only_feed_gives_the_full_feeds_images() {
         let camera = default_camera(320, 240).unwrap();
         let mut rgba = vec![0u8; 320 * 240 * 4];
         let mut scene = Scene::new(scenario("highway-curve").unwrap(), camera.clone(), 3).unwrap();
-        let (mut full, mut markings, mut mixed) = (
+        let (mut full, mut markings, mut mixed, mut first_only) = (
+            RelockDetector::new(&camera).unwrap(),
             RelockDetector::new(&camera).unwrap(),
             RelockDetector::new(&camera).unwrap(),
             RelockDetector::new(&camera).unwrap(),
@@ -202,6 +205,17 @@ mod tests {
             }
             mixed.feed(&camera, &rgba, 320, 240).unwrap();
             assert_eq!(mixed.detection(), full.detection(), "frame {f}");
+            // lee-cpf's start on the pair without `relock_share`: lines on the first frame only.
+            first_only
+                .feed_as_needed(&camera, &rgba, 320, 240, f == 0)
+                .unwrap();
+            assert_eq!(
+                first_only.working_images(),
+                full.working_images(),
+                "frame {f}"
+            );
+            let expected = if f == 0 { full.detection() } else { None };
+            assert_eq!(first_only.detection(), expected, "frame {f}");
         }
         let err = markings.feed_markings_only(&rgba[4..], 320, 240);
         assert!(err.is_err(), "a short buffer is refused");

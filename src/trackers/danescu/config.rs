@@ -171,10 +171,11 @@ pub struct DanescuConfig {
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
     /// Report a valid frame not valid when no paint runs along either drawn ego boundary: a
-    /// run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
-    /// found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
-    /// marking image ([`crate::trackers::paint_output`]; ours, beyond the paper; output only:
-    /// the filter's own validity, which its other rules read, is unchanged; off by default).
+    /// run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
+    /// each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
+    /// in the bottom-up detector's marking image ([`crate::trackers::paint_output`]; ours,
+    /// beyond the paper; output only: the filter's own validity, which its other rules read,
+    /// is unchanged; off by default).
     pub valid_needs_paint: bool,
 }
 

@@ -111,8 +111,8 @@ pub struct LeeConfig {
     /// around the ego pair the same bottom-up line detector finds in that frame, the rest
     /// from the initial distribution (ours: the paper does not say how the filter starts;
     /// 0.5 by default; 0: the uniform start alone, as before 2026-11-26). The detector then
-    /// runs on first frames only, unless `relock_share` or `adjacent_lanes` needs it on every
-    /// frame.
+    /// runs on first frames only, unless `relock_share` or an output option (`adjacent_lanes`,
+    /// `snap_to_paint`, `valid_needs_paint`) needs it on every frame.
     pub start_pair_share: f64,
     /// Share of the stage-1 particles replaced, each frame after one on which one boundary of
     /// the estimate had near support (at least `valid_fraction`) and the other had none (under
@@ -165,10 +165,11 @@ pub struct LeeConfig {
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
     /// Report a valid frame not valid when no paint runs along either drawn ego boundary: a
-    /// run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
-    /// found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
-    /// marking image ([`crate::trackers::paint_output`]; ours, beyond the paper; output only:
-    /// the filter's own validity, which its other rules read, is unchanged; off by default).
+    /// run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
+    /// each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
+    /// in the bottom-up detector's marking image ([`crate::trackers::paint_output`]; ours,
+    /// beyond the paper; output only: the filter's own validity, which its other rules read,
+    /// is unchanged; off by default).
     pub valid_needs_paint: bool,
 }
 
@@ -184,7 +185,8 @@ impl LeeConfig {
     }
 
     /// Whether an option needs the line detector on every frame (`relock_share`,
-    /// `adjacent_lanes`, `snap_to_paint`, `valid_needs_paint`), not only on first frames (`start_pair_share`).
+    /// `adjacent_lanes`, `snap_to_paint`, `valid_needs_paint`), not only on first frames
+    /// (`start_pair_share`).
     pub fn detector_every_frame(&self) -> bool {
         self.relock_share > 0.0 || self.paint_options().any()
     }

@@ -591,7 +591,8 @@ impl LeeTracker {
         if let Some(d) = self.detector.as_mut() {
             // The start on the detected pair needs the first frame's lines.
             let first = self.stepper.next_is_first();
-            let lines = self.config.relock_share > 0.0 || first;
+            let lines =
+                self.config.relock_share > 0.0 || (first && self.config.start_pair_share > 0.0);
             if every_frame || first {
                 d.feed_as_needed(&self.camera, rgba, width, height, lines)?;
             }

@@ -33,8 +33,10 @@
 //! off by default) a frame is valid only when one ego boundary at least also shows paint, a
 //! bright stripe in the top view, so that shadow edges do not hold a lane through an unmarked
 //! crossing. With `snap_to_paint` (ours) the reported boundaries move onto the paint's centre
-//! ([`super::paint_snap`]); with `adjacent_lanes` (ours) the neighbour on the side the
-//! partitions leave out is added where paint runs there ([`super::adjacent_lanes`]).
+//! ([`super::paint_snap`]); with `valid_needs_paint` (ours) a frame is reported not valid
+//! when no run of paint lies along either ego boundary; with `adjacent_lanes` (ours) the
+//! neighbour on the side the partitions leave out is added where paint runs there
+//! ([`super::paint_output`], [`super::adjacent_lanes`]).
 
 pub mod atan32;
 pub mod config;
@@ -153,8 +155,8 @@ pub struct LiuTracker {
     model: PpfModel,
     initial: DefaultLanes,
     filter: ParticleFilter<LaneParticle>,
-    /// The bottom-up detector of `relock_share`, `snap_to_paint` and `adjacent_lanes` (`None`
-    /// when they are off).
+    /// The bottom-up detector of `relock_share` and the output options (`snap_to_paint`,
+    /// `valid_needs_paint`, `adjacent_lanes`; `None` when they are off).
     detector: Option<RelockDetector>,
     /// The validity rule after a loss (`reacquire_near_m`).
     reacquire: Reacquire,

@@ -679,10 +679,11 @@ export interface AdachiOptions {
   snap_to_paint?: boolean;
   /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
-   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
-   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
-   * marking image (`paint_output`; ours, beyond the paper; output only:
-   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
+   * each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
+   * in the bottom-up detector's marking image (`paint_output`; ours,
+   * beyond the paper; output only: the filter's own validity, which its other rules read,
+   * is unchanged; off by default).
    *
    * @defaultValue `false`
    */
@@ -1090,10 +1091,11 @@ export interface DanescuOptions {
   snap_to_paint?: boolean;
   /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
-   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
-   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
-   * marking image (`paint_output`; ours, beyond the paper; output only:
-   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
+   * each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
+   * in the bottom-up detector's marking image (`paint_output`; ours,
+   * beyond the paper; output only: the filter's own validity, which its other rules read,
+   * is unchanged; off by default).
    *
    * @defaultValue `false`
    */
@@ -1361,8 +1363,8 @@ export interface LeeOptions {
    * around the ego pair the same bottom-up line detector finds in that frame, the rest
    * from the initial distribution (ours: the paper does not say how the filter starts;
    * 0.5 by default; 0: the uniform start alone, as before 2026-11-26). The detector then
-   * runs on first frames only, unless `relock_share` or `adjacent_lanes` needs it on every
-   * frame.
+   * runs on first frames only, unless `relock_share` or an output option (`adjacent_lanes`,
+   * `snap_to_paint`, `valid_needs_paint`) needs it on every frame.
    *
    * Range: 0 to 1.
    * @defaultValue `0.5`
@@ -1467,10 +1469,11 @@ export interface LeeOptions {
   snap_to_paint?: boolean;
   /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
-   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
-   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
-   * marking image (`paint_output`; ours, beyond the paper; output only:
-   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
+   * each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
+   * in the bottom-up detector's marking image (`paint_output`; ours,
+   * beyond the paper; output only: the filter's own validity, which its other rules read,
+   * is unchanged; off by default).
    *
    * @defaultValue `false`
    */
@@ -1673,10 +1676,12 @@ export interface LiuOptions {
   snap_to_paint?: boolean;
   /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
-   * run of at least four paint centres 0.5 m apart (1.5 m), each within 10 cm of the last,
-   * found within 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's
-   * marking image (`paint_output`; ours, beyond the paper; output only:
-   * the filter's own validity, which its other rules read, is unchanged; off by default).
+   * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
+   * each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
+   * in the bottom-up detector's marking image (`paint_output`; ours,
+   * beyond the paper; output only: the filter's own validity, which its other rules read,
+   * is unchanged, and it stands on frames under 32x16, where the detector cannot run; off
+   * by default).
    *
    * @defaultValue `false`
    */
