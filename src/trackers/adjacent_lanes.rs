@@ -246,39 +246,26 @@ mod tests {
         }
     }
 
-    /// adachi-mmpf's own neighbours are those of its lane-configuration model r; the option
-    /// adds the sides r leaves out. Measured (2026-11-28, `multi-lane`, scene seeds 1-2, left
-    /// / right correct of ground truth): without 73/84 and 80/120, 73/84 and 81/120; with
-    /// 73/84 and 120/120 for both seeds, nothing extra. Thresholds: at least 90 % with the
-    /// option and 10 points more than without, at most 3 extra boundaries.
+    /// adachi-mmpf's own neighbours are those of its lane-configuration model r, liu-ppf's
+    /// those of its partitions (three in the default configuration: the ego pair and one
+    /// neighbour); the option adds the sides they leave out. Measured (`multi-lane`, scene
+    /// seeds 1-2, left / right correct of ground truth): adachi-mmpf (2026-11-28) without
+    /// 73/84 and 80/120, 73/84 and 81/120, with 73/84 and 120/120 for both seeds; liu-ppf
+    /// (2026-11-30) without 69/84 and 49/120, 72/84 and 48/120, with 72/84 and 118/120, 74/84
+    /// and 120/120; nothing extra. Thresholds: at least 90 % with the option and 10 points
+    /// more than without, at most 3 extra boundaries.
     #[test]
-    fn adachi_adds_the_neighbours_its_model_leaves_out() {
+    fn the_option_adds_the_neighbours_a_trackers_own_boundaries_leave_out() {
         let share = |[l, r]: [(usize, usize); 2]| (l.1 + r.1) as f64 / (l.0 + r.0) as f64;
-        for seed in 1..=2 {
-            let (without, _) = accuracy_with("adachi-mmpf", "multi-lane", seed, false);
-            let (with, extra) = accuracy_with("adachi-mmpf", "multi-lane", seed, true);
-            assert!(
-                share(with) >= 0.9 && share(with) >= share(without) + 0.1 && extra <= 3,
-                "seed {seed}: without {without:?}, with {with:?}, extra {extra}"
-            );
-        }
-    }
-
-    /// liu-ppf's own boundaries are its partitions' (three in the default configuration: the
-    /// ego pair and one neighbour); the option adds the side they leave out. Measured
-    /// (2026-11-30, `multi-lane`, scene seeds 1-2, left / right correct of ground truth):
-    /// without 69/84 and 49/120, 72/84 and 48/120; with 72/84 and 118/120, 74/84 and 120/120;
-    /// nothing extra. Thresholds: those of adachi-mmpf's test above.
-    #[test]
-    fn liu_adds_the_neighbours_its_partitions_leave_out() {
-        let share = |[l, r]: [(usize, usize); 2]| (l.1 + r.1) as f64 / (l.0 + r.0) as f64;
-        for seed in 1..=2 {
-            let (without, _) = accuracy_with("liu-ppf", "multi-lane", seed, false);
-            let (with, extra) = accuracy_with("liu-ppf", "multi-lane", seed, true);
-            assert!(
-                share(with) >= 0.9 && share(with) >= share(without) + 0.1 && extra <= 3,
-                "seed {seed}: without {without:?}, with {with:?}, extra {extra}"
-            );
+        for id in ["adachi-mmpf", "liu-ppf"] {
+            for seed in 1..=2 {
+                let (without, _) = accuracy_with(id, "multi-lane", seed, false);
+                let (with, extra) = accuracy_with(id, "multi-lane", seed, true);
+                assert!(
+                    share(with) >= 0.9 && share(with) >= share(without) + 0.1 && extra <= 3,
+                    "{id} seed {seed}: without {without:?}, with {with:?}, extra {extra}"
+                );
+            }
         }
     }
 
