@@ -79,7 +79,8 @@ pub type WorkingImages<'a> = (&'a Image<u8>, &'a Image<u8>, usize);
 
 /// The adjacent boundaries beside `ego` (the estimate's boundaries: its `ego-left` and
 /// `ego-right` are used), found in the marking image `images` of the frame seen by `camera`.
-/// At most one per side.
+/// At most one per side, and none on a side `ego` already has a neighbour of (a tracker's own
+/// neighbours stay: adachi-mmpf's model r, liu-ppf's partitions).
 pub fn adjacent_boundaries(
     camera: &Camera,
     ego: &[Boundary],
@@ -100,6 +101,9 @@ pub fn adjacent_boundaries(
         (&right, Role::RightAdjacent, -1.0),
     ] {
         let Some(flat) = flat else { continue };
+        if ego.iter().any(|b| b.role == role) {
+            continue;
+        }
         if let Some(d) = best_width(camera, images, flat, side, ego_width) {
             out.extend(flat.offset(camera, &|_| side * d, role));
         }

@@ -65,9 +65,8 @@ pub fn apply_paint_options(
     };
     let valid = !options.valid_needs_paint || snapped.painted.iter().any(|&p| p);
     if valid && options.adjacent_lanes {
+        // Only the sides the tracker's own boundaries leave out.
         let mut adjacent = adjacent_boundaries(camera, boundaries, images);
-        // Only the sides the tracker's own boundaries leave out: its own neighbours stay.
-        adjacent.retain(|a| boundaries.iter().all(|b| b.role != a.role));
         if options.snap_to_paint {
             snap_to_paint(camera, &mut adjacent, images);
         }
