@@ -8,6 +8,7 @@ const PARTICLES = { path: 'particles', label: 'particles N', min: 20, max: 2000,
 const RELOCK = { path: 'relock_share', label: 're-lock share: particles drawn around a line detector’s ego pair (ours, beyond the paper)', min: 0, max: 0.5, step: 0.01 };
 const SUPPORT_FRAMES = { path: 'valid_support_frames', label: 'frames a dashed boundary’s support is remembered (ours; 1: this frame only)', min: 1, max: 15, step: 1 };
 const SNAP = { path: 'snap_to_paint', label: 'snap to paint: move each drawn boundary onto the centre of the marking it lies on (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
+const BENDS = { path: 'snap_follows_bends', label: 'snap follows bends: with snap to paint, follow the marking round a bend the estimate does not (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
 const NEEDS_PAINT = { path: 'valid_needs_paint', label: 'no lane without paint: report a frame not valid when no run of paint lies along either drawn ego boundary (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
 const ADJACENT = { path: 'adjacent_lanes', label: 'adjacent lanes: report the marked lanes beside the ego lane (ours, beyond the paper)', kind: /** @type {const} */ ('bool') };
 
@@ -41,6 +42,7 @@ export const TRACKERS = {
       { path: 'valid_paint_contrast', label: 'valid only with paint on one ego boundary: a stripe this many grey levels brighter than the road beside it (0: off; ours)', min: 0, max: 40, step: 1 },
       ADJACENT,
       SNAP,
+      BENDS,
       NEEDS_PAINT,
     ],
   },
@@ -67,6 +69,7 @@ export const TRACKERS = {
       { path: 'reacquire_near_m', label: 'after a loss, valid again only with a marking this near (m beyond the nearest measured; 0: off; ours, beyond the paper)', min: 0, max: 15, step: 0.5 },
       ADJACENT,
       SNAP,
+      BENDS,
       NEEDS_PAINT,
     ],
   },
@@ -92,6 +95,7 @@ export const TRACKERS = {
       SUPPORT_FRAMES,
       ADJACENT,
       SNAP,
+      BENDS,
       NEEDS_PAINT,
     ],
   },
@@ -119,6 +123,7 @@ export const TRACKERS = {
       RELOCK,
       ADJACENT,
       SNAP,
+      BENDS,
       NEEDS_PAINT,
     ],
   },

@@ -28,6 +28,8 @@ use crate::lane::Boundary;
 pub struct PaintOptions {
     /// `snap_to_paint`.
     pub snap_to_paint: bool,
+    /// `snap_follows_bends`.
+    pub snap_follows_bends: bool,
     /// `valid_needs_paint`.
     pub valid_needs_paint: bool,
     /// `adjacent_lanes`.
@@ -59,7 +61,13 @@ pub fn apply_paint_options(
         return (valid, Snapped::default());
     };
     let snapped = if options.snap_to_paint || options.valid_needs_paint {
-        follow_paint(camera, boundaries, images, options.snap_to_paint)
+        follow_paint(
+            camera,
+            boundaries,
+            images,
+            options.snap_to_paint,
+            options.snap_follows_bends,
+        )
     } else {
         Snapped::default()
     };
@@ -68,7 +76,7 @@ pub fn apply_paint_options(
         // Only the sides the tracker's own boundaries leave out.
         let mut adjacent = adjacent_boundaries(camera, boundaries, images);
         if options.snap_to_paint {
-            snap_to_paint(camera, &mut adjacent, images);
+            snap_to_paint(camera, &mut adjacent, images, options.snap_follows_bends);
         }
         boundaries.extend(adjacent);
     }

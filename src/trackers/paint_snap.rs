@@ -32,6 +32,21 @@
 //!    when the centres span less than [`MIN_SPAN_M`]; nothing moves with fewer than
 //!    [`MIN_CENTRES`] centres, and |b| is at most [`MAX_SLOPE`].
 //!
+//! With `snap_follows_bends` (ours) the snap goes round a bend the estimate does not follow
+//! (adachi-mmpf's straight model, a curvature the filter has not caught up with), where the
+//! paint leaves the 0.3 m search some metres ahead:
+//!
+//! - each probe's search is centred on y_b(x) + g(x), g the least-squares line through the
+//!   last [`GUIDE_CENTRES`] centres of the latest run of at least [`MIN_PAINT_RUN`] (step 4),
+//!   extrapolated, and held within [`MAX_FOLLOW_M`] of the boundary (under half a lane: the
+//!   search cannot walk onto a neighbour's line); g = 0 until the first such run, so isolated
+//!   centres (a crossing's bar, an arrow) do not steer it, and it carries over a dashed line's
+//!   gaps;
+//! - the correction is y(x) = y_b(x) + a + b t + q t^2, t = x - x̄, by least squares (the
+//!   same outlier rounds), q = 0 when the centres span less than [`MIN_BEND_SPAN_M`];
+//!   |b| <= [`MAX_FOLLOW_SLOPE`] and |q| <= [`MAX_FOLLOW_BEND`] (a change of curvature of
+//!   0.01 1/m), held at its ends as before.
+//!
 //! 4. Paint runs along the boundary ([`Snapped::painted`], for `valid_needs_paint`,
 //!    [`super::paint_output`]) when at least [`MIN_PAINT_RUN`] centres lie on neighbouring
 //!    probes, each within [`RUN_STEP_M`] of the last, in as many rows of the working image:
@@ -80,6 +95,19 @@ pub const RUN_STEP_M: f64 = 0.1;
 pub const MIN_PAINT_RUN: usize = 4;
 /// Largest slope b of the correction (radians, about 1.1 deg).
 pub const MAX_SLOPE: f64 = 0.02;
+/// With `snap_follows_bends`: the farthest the search follows the paint from the boundary,
+/// metres (under half a lane).
+pub const MAX_FOLLOW_M: f64 = 1.5;
+/// With `snap_follows_bends`: the most recent centres of a run that steer the search.
+pub const GUIDE_CENTRES: usize = 8;
+/// With `snap_follows_bends`: the largest slope b of the correction.
+pub const MAX_FOLLOW_SLOPE: f64 = 0.2;
+/// With `snap_follows_bends`: the largest quadratic term q of the correction (half a change of
+/// curvature, 1/m).
+pub const MAX_FOLLOW_BEND: f64 = 0.005;
+/// With `snap_follows_bends`: the smallest spread of the centres' distances for a quadratic
+/// term, metres.
+pub const MIN_BEND_SPAN_M: f64 = 12.0;
 
 /// Probes along a boundary, at most.
 const PROBES: usize = ((FAR_M - NEAR_M) / PROBE_STEP_M) as usize + 1;
@@ -98,8 +126,9 @@ pub fn snap_to_paint(
     camera: &Camera,
     boundaries: &mut [Boundary],
     images: WorkingImages<'_>,
+    bends: bool,
 ) -> Snapped {
-    follow_paint(camera, boundaries, images, true)
+    follow_paint(camera, boundaries, images, true, bends)
 }
 
 /// [`snap_to_paint`], the boundaries moved only when `moves` (without, what the snap finds).
@@ -108,6 +137,7 @@ pub fn follow_paint(
     boundaries: &mut [Boundary],
     images: WorkingImages<'_>,
     moves: bool,
+    bends: bool,
 ) -> Snapped {
     let mut snapped = Snapped::default();
     for b in boundaries.iter_mut() {
@@ -123,7 +153,7 @@ pub fn follow_paint(
         if side.is_none() && !moves {
             continue;
         }
-        let (c, run) = correction(camera, images, &flat);
+        let (c, run) = correction(camera, images, &flat, bends);
         if let Some(k) = side {
             snapped.painted[k] = run >= MIN_PAINT_RUN;
         }
@@ -173,6 +203,7 @@ pub fn move_lane_figures(estimate: &mut LaneEstimate, moved_at_car: [f64; 2]) {
 struct Correction {
     a: f64,
     b: f64,
+    q: f64,
     mid: f64,
     near: f64,
     far: f64,
@@ -181,7 +212,8 @@ struct Correction {
 impl Correction {
     /// The lateral move at distance `x`, metres.
     fn at(&self, x: f64) -> f64 {
-        self.a + self.b * (crate::math::clamp(x, self.near, self.far) - self.mid)
+        let t = crate::math::clamp(x, self.near, self.far) - self.mid;
+        self.a + self.b * t + self.q * t * t
     }
 }
 
@@ -191,6 +223,7 @@ fn correction(
     camera: &Camera,
     images: WorkingImages<'_>,
     flat: &FlatBoundary,
+    bends: bool,
 ) -> (Option<Correction>, usize) {
     let (near, far) = flat.range();
     let (from, to) = (near.max(NEAR_M), far.min(FAR_M));
@@ -201,58 +234,125 @@ fn correction(
     // row of the last one counted add nothing: far off, one row spans several probes, and a
     // blob there would make a run) and that row.
     let (mut run, mut longest, mut run_row) = (0usize, 0usize, i64::MIN);
+    // With `bends`: the line (x0, c at x0, slope) through the latest run of paint's last
+    // centres, on which the next probe's search is centred, and where that run began.
+    let mut guide: Option<(f64, f64, f64)> = None;
+    let mut run_start = 0usize;
     for k in 0..PROBES {
         let x = from + k as f64 * PROBE_STEP_M;
         if x > to {
             break;
         }
-        let y = flat.y_at(x);
-        if let Some(c) = paint_centre(camera, images, x, y) {
+        let shift = guide.map_or(0.0, |(x0, c0, slope)| {
+            crate::math::clamp(c0 + slope * (x - x0), -MAX_FOLLOW_M, MAX_FOLLOW_M)
+        });
+        let y = flat.y_at(x) + shift;
+        if let Some(c) = paint_centre(camera, images, x, y).map(|c| c + shift) {
             let row = camera
-                .road_to_pixel(x, y + c)
+                .road_to_pixel(x, flat.y_at(x) + c)
                 .map_or(i64::MIN, |[_, v]| (v / images.2 as f64).floor() as i64);
             let continues = n > 0 && {
                 let [px, pc] = centres[n - 1];
                 (x - px - PROBE_STEP_M).abs() < 1e-6 && (c - pc).abs() <= RUN_STEP_M
             };
             if !continues {
-                (run, run_row) = (1, row);
+                (run, run_row, run_start) = (1, row, n);
             } else if row != run_row {
                 (run, run_row) = (run + 1, row);
             }
             longest = longest.max(run);
             centres[n] = [x, c];
             n += 1;
+            if bends && run >= MIN_PAINT_RUN {
+                guide = line_fit_any(&centres[run_start.max(n.saturating_sub(GUIDE_CENTRES))..n]);
+            }
         }
     }
-    (fit_centres(&mut centres, n), longest)
+    (fit_centres(&mut centres, n, bends), longest)
+}
+
+/// (x̄, c at x̄, slope) of the least-squares line through `points` ([x, c]), two or more at
+/// different distances.
+fn line_fit_any(points: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
+    if points.len() < 2 {
+        return None;
+    }
+    let n = points.len() as f64;
+    let mid = points.iter().map(|p| p[0]).sum::<f64>() / n;
+    let a = points.iter().map(|p| p[1]).sum::<f64>() / n;
+    let (sxx, sxc) = points.iter().fold((0.0, 0.0), |(sxx, sxc), &[x, c]| {
+        (sxx + (x - mid) * (x - mid), sxc + (x - mid) * (c - a))
+    });
+    (sxx > 0.0).then(|| (mid, a, sxc / sxx))
 }
 
 /// The correction through the first `n` of `centres` after the outlier rounds (step 3).
-fn fit_centres(centres: &mut [[f64; 2]; PROBES], mut n: usize) -> Option<Correction> {
+fn fit_centres(centres: &mut [[f64; 2]; PROBES], mut n: usize, bends: bool) -> Option<Correction> {
+    let fit_any = |points: &[[f64; 2]]| {
+        if bends {
+            curve_fit(points)
+        } else {
+            line_fit(points).map(|(a, b, mid)| (a, b, 0.0, mid))
+        }
+    };
     // Each round drops the centres off the last fit by more than its tolerance.
-    let mut fit = line_fit(&centres[..n])?;
+    let mut fit = fit_any(&centres[..n])?;
     for tolerance in OUTLIER_M {
-        let (a, b, mid) = fit;
+        let (a, b, q, mid) = fit;
         let mut kept = 0;
         for k in 0..n {
             let [x, c] = centres[k];
-            if (c - a - b * (x - mid)).abs() <= tolerance {
+            let t = x - mid;
+            if (c - a - b * t - q * t * t).abs() <= tolerance {
                 centres[kept] = centres[k];
                 kept += 1;
             }
         }
         n = kept;
-        fit = line_fit(&centres[..n])?;
+        fit = fit_any(&centres[..n])?;
     }
-    let (a, b, mid) = fit;
+    let (a, b, q, mid) = fit;
+    let (max_b, max_q) = if bends {
+        (MAX_FOLLOW_SLOPE, MAX_FOLLOW_BEND)
+    } else {
+        (MAX_SLOPE, 0.0)
+    };
     Some(Correction {
         a,
-        b: b.clamp(-MAX_SLOPE, MAX_SLOPE),
+        b: b.clamp(-max_b, max_b),
+        q: q.clamp(-max_q, max_q),
         mid,
         near: centres[0][0],
         far: centres[n - 1][0],
     })
+}
+
+/// Least squares a + b t + q t^2 (t = x - x̄) through `points`: q = 0 when they span less
+/// than [`MIN_BEND_SPAN_M`]; otherwise [`line_fit`]'s.
+fn curve_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64, f64)> {
+    let (a, b, mid) = line_fit(points)?;
+    let span = points[points.len() - 1][0] - points[0][0];
+    if span < MIN_BEND_SPAN_M {
+        return Some((a, b, 0.0, mid));
+    }
+    // Normal equations in (a, b, q) with t centred (sum t = 0).
+    let (mut s2, mut s3, mut s4, mut sc, mut stc, mut st2c) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for &[x, c] in points {
+        let t = x - mid;
+        s2 += t * t;
+        s3 += t * t * t;
+        s4 += t * t * t * t;
+        sc += c;
+        stc += t * c;
+        st2c += t * t * c;
+    }
+    let n = points.len() as f64;
+    let m = nalgebra::Matrix3::new(n, 0.0, s2, 0.0, s2, s3, s2, s3, s4);
+    let r = nalgebra::Vector3::new(sc, stc, st2c);
+    let Some(sol) = m.lu().solve(&r) else {
+        return Some((a, b, 0.0, mid));
+    };
+    Some((sol[0], sol[1], sol[2], mid))
 }
 
 /// Least-squares a + b (x - x̄) through `points` ([x, c]): (a, b, x̄); b = 0 when they span
@@ -261,19 +361,9 @@ fn line_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
     if points.len() < MIN_CENTRES {
         return None;
     }
-    let n = points.len() as f64;
-    let mid = points.iter().map(|p| p[0]).sum::<f64>() / n;
-    let a = points.iter().map(|p| p[1]).sum::<f64>() / n;
+    let (mid, a, b) = line_fit_any(points)?;
     let span = points[points.len() - 1][0] - points[0][0];
-    let (sxx, sxc) = points.iter().fold((0.0, 0.0), |(sxx, sxc), &[x, c]| {
-        (sxx + (x - mid) * (x - mid), sxc + (x - mid) * (c - a))
-    });
-    let b = if span >= MIN_SPAN_M && sxx > 0.0 {
-        sxc / sxx
-    } else {
-        0.0
-    };
-    Some((a, b, mid))
+    Some((a, if span >= MIN_SPAN_M { b } else { 0.0 }, mid))
 }
 
 /// The centre of the paint across road point (x, y), as an offset from y (step 2 of the

@@ -56,10 +56,30 @@ fn boundary(camera: &Camera, y: impl Fn(f64) -> f64) -> Boundary {
     }
 }
 
-/// `b` snapped in `images`, and its lateral position at 8, 15 and 25 m.
+/// `b` snapped in `images`, and its lateral position at 8, 15 and 25 m. Every test through it
+/// is of straight paint, where following bends must change nothing: the same snap with
+/// `snap_follows_bends` is asserted within 1 cm of it at the three distances.
 fn snapped(camera: &Camera, b: Boundary, images: &(Image<u8>, Image<u8>)) -> (Boundary, [f64; 3]) {
+    let (_, bent) = snapped_with(camera, b.clone(), images, true);
+    let (out, at) = snapped_with(camera, b, images, false);
+    for (y, z) in at.iter().zip(bent) {
+        assert!(
+            (y - z).abs() < 0.01,
+            "straight {at:?}, following bends {bent:?}"
+        );
+    }
+    (out, at)
+}
+
+/// [`snapped`] with `snap_follows_bends` set to `bends`.
+fn snapped_with(
+    camera: &Camera,
+    b: Boundary,
+    images: &(Image<u8>, Image<u8>),
+    bends: bool,
+) -> (Boundary, [f64; 3]) {
     let mut out = [b];
-    snap_to_paint(camera, &mut out, (&images.0, &images.1, SCALE));
+    snap_to_paint(camera, &mut out, (&images.0, &images.1, SCALE), bends);
     let [b] = out;
     let flat = FlatBoundary::new(camera, &b).unwrap();
     let at = [8.0, 15.0, 25.0].map(|x| flat.y_at(x));
@@ -141,7 +161,7 @@ fn beyond_its_centres_the_correction_is_held_not_extrapolated() {
     let images = working_images(&camera, |x, y| x <= 20.0 && (y - 1.8).abs() <= 0.075);
     let start = |x: f64| 1.95 + 0.01 * (x - 10.0);
     let mut out = [boundary(&camera, start)];
-    snap_to_paint(&camera, &mut out, (&images.0, &images.1, SCALE));
+    snap_to_paint(&camera, &mut out, (&images.0, &images.1, SCALE), false);
     let flat = FlatBoundary::new(&camera, &out[0]).unwrap();
     for x in [8.0, 15.0] {
         assert!(
@@ -156,6 +176,31 @@ fn beyond_its_centres_the_correction_is_held_not_extrapolated() {
         (flat.y_at(30.0) - held).abs() < 0.03,
         "at 30 m: {} against {held}",
         flat.y_at(30.0)
+    );
+}
+
+/// A bend the straight correction cannot follow: the line turns away from a boundary drawn
+/// along its tangent at the car (radius 250 m: 1.25 m off at 25 m, beyond the 0.3 m search
+/// from 12 m on). Following bends, the search goes with the line and the correction's
+/// quadratic term takes the bend out. Measured (2026-11-30): largest error at 8, 15 and 25 m
+/// without 0.95 m, with 0.010 m. Thresholds: 0.05 with, 0.3 without.
+#[test]
+fn following_bends_the_snap_goes_round_a_bend() {
+    let camera = default_camera(640, 480).unwrap();
+    let line = |x: f64| 1.8 + 0.002 * x * x;
+    let images = working_images(&camera, |x, y| (y - line(x)).abs() <= 0.075);
+    let error = |bends| {
+        let (_, at) = snapped_with(&camera, boundary(&camera, |_| 1.8), &images, bends);
+        let truth = [8.0, 15.0, 25.0].map(line);
+        at.iter()
+            .zip(truth)
+            .map(|(y, t)| (y - t).abs())
+            .fold(0.0, f64::max)
+    };
+    let (without, with) = (error(false), error(true));
+    assert!(
+        with < 0.05 && without > 0.3,
+        "largest error without {without:.3} m, with {with:.3} m"
     );
 }
 
@@ -250,21 +295,27 @@ fn ego_error(
 /// 10-29, tracker seed 1) with `snap_to_paint` on or off: the mean ego-boundary error of its
 /// valid frames, metres.
 fn highway_run(id: &str, snap: bool) -> f64 {
+    road_run(id, "highway-straight", 10..30, "snap_to_paint", snap)
+}
+
+/// Tracker `id`'s `real-roads` on scenario `name` (320x240, scene and tracker seed 1) with
+/// `option` set to `on`: the mean ego-boundary error of its valid frames in `frames`, metres.
+fn road_run(id: &str, name: &str, frames: std::ops::Range<u32>, option: &str, on: bool) -> f64 {
     use super::paint_output_tests::real_roads_tracker;
     use crate::synth::{scenario, Eye, Scene};
     use crate::trackers::scene_truth;
     let camera = default_camera(320, 240).unwrap();
-    let mut config = scenario("highway-straight").unwrap();
-    config.frames = 30;
+    let mut config = scenario(name).unwrap();
+    config.frames = frames.end;
     let mut scene = Scene::new(config, camera.clone(), 1).unwrap();
-    let mut tracker = real_roads_tracker(id, &camera, "snap_to_paint", snap);
+    let mut tracker = real_roads_tracker(id, &camera, option, on);
     let mut rgba = vec![0; 320 * 240 * 4];
     let (mut sum, mut n) = (0.0, 0);
-    for f in 0..30 {
+    for f in 0..frames.end {
         scene.render(f, Eye::Left, &mut rgba, None).unwrap();
         let e = tracker.step(&rgba, 320, 240).unwrap();
         let truth = scene_truth(&scene, f);
-        if f < 10 || !e.valid {
+        if !frames.contains(&f) || !e.valid {
             continue;
         }
         if let Some(err) = ego_error(&camera, &e, &truth) {
@@ -272,7 +323,11 @@ fn highway_run(id: &str, snap: bool) -> f64 {
             n += 1;
         }
     }
-    assert!(n >= 15, "{id} snap {snap}: {n} valid frames of 20");
+    let len = frames.len();
+    assert!(
+        n * 4 >= len * 3,
+        "{id} on {name}, {option} {on}: {n} valid frames of {len}"
+    );
     sum / n as f64
 }
 
@@ -291,6 +346,24 @@ fn every_mono_tracker_draws_its_ego_boundaries_nearer_the_paint() {
     }
 }
 
+/// On `s-curve`'s 300 m arcs (frames 60-239) adachi-mmpf's straight lane (its paper's model)
+/// leaves the paint ahead, and danescu-mono's and lee-cpf's curvature lags the bend's; following
+/// bends, the snap draws them on the paint. Measured (2026-11-30, mean ego-boundary error at
+/// 8-20 m, without -> with `snap_follows_bends`): adachi-mmpf 0.164 -> 0.022 m, danescu-mono
+/// 0.019 -> 0.007, lee-cpf 0.066 -> 0.011 (liu-ppf 0.050 -> 0.048: its error there is not
+/// the bend's, not asserted). Thresholds: with at most 0.7 of without, and under 3 cm.
+#[test]
+fn following_bends_draws_the_ego_lane_on_the_paint_of_a_bend() {
+    for id in ["adachi-mmpf", "danescu-mono", "lee-cpf"] {
+        let without = road_run(id, "s-curve", 60..240, "snap_follows_bends", false);
+        let with = road_run(id, "s-curve", 60..240, "snap_follows_bends", true);
+        assert!(
+            with <= 0.7 * without && with < 0.03,
+            "{id}: ego error {without:.3} -> {with:.3} m"
+        );
+    }
+}
+
 /// Whether [`follow_paint`] finds a run of paint along an ego-left boundary 0.1 m off a line
 /// at 1.8 m, in working images painted where `painted` holds; the boundary does not move.
 fn paint_runs_along(painted: impl Fn(f64, f64) -> bool) -> bool {
@@ -298,7 +371,13 @@ fn paint_runs_along(painted: impl Fn(f64, f64) -> bool) -> bool {
     let images = working_images(&camera, painted);
     let b = boundary(&camera, |_| 1.9);
     let mut out = [b.clone()];
-    let snapped = follow_paint(&camera, &mut out, (&images.0, &images.1, SCALE), false);
+    let snapped = follow_paint(
+        &camera,
+        &mut out,
+        (&images.0, &images.1, SCALE),
+        false,
+        false,
+    );
     assert_eq!(out[0], b, "nothing moves");
     assert_eq!(snapped.moved_at_car, [0.0; 2]);
     assert!(!snapped.painted[1], "there is no ego-right boundary");

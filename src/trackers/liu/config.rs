@@ -91,6 +91,10 @@ pub struct LiuConfig {
     /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
+    /// With `snap_to_paint`: the snap follows the paint round a bend: each probe's search is
+    /// centred on the line through the last run of paint centres, and the correction gets a
+    /// quadratic term ([`crate::trackers::paint_snap`]; ours; off by default).
+    pub snap_follows_bends: bool,
     /// Report a valid frame not valid when no paint runs along either drawn ego boundary: a
     /// run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
     /// each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
@@ -174,6 +178,7 @@ impl Default for LiuConfig {
             default_jitter_m: 0.1,
             relock_share: 0.0,
             snap_to_paint: false,
+            snap_follows_bends: false,
             valid_needs_paint: false,
             adjacent_lanes: false,
             top_view_resolved: false,
@@ -189,6 +194,7 @@ impl LiuConfig {
     pub fn paint_options(&self) -> crate::trackers::paint_output::PaintOptions {
         crate::trackers::paint_output::PaintOptions {
             snap_to_paint: self.snap_to_paint,
+            snap_follows_bends: self.snap_follows_bends,
             valid_needs_paint: self.valid_needs_paint,
             adjacent_lanes: self.adjacent_lanes,
         }

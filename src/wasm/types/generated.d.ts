@@ -678,6 +678,14 @@ export interface AdachiOptions {
    */
   snap_to_paint?: boolean;
   /**
+   * With `snap_to_paint`: the snap follows the paint round a bend: each probe's search is
+   * centred on the line through the last run of paint centres, and the correction gets a
+   * quadratic term (`paint_snap`; ours; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_follows_bends?: boolean;
+  /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
    * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
    * each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
@@ -1090,6 +1098,14 @@ export interface DanescuOptions {
    */
   snap_to_paint?: boolean;
   /**
+   * With `snap_to_paint`: the snap follows the paint round a bend: each probe's search is
+   * centred on the line through the last run of paint centres, and the correction gets a
+   * quadratic term (`paint_snap`; ours; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_follows_bends?: boolean;
+  /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
    * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
    * each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
@@ -1468,6 +1484,14 @@ export interface LeeOptions {
    */
   snap_to_paint?: boolean;
   /**
+   * With `snap_to_paint`: the snap follows the paint round a bend: each probe's search is
+   * centred on the line through the last run of paint centres, and the correction gets a
+   * quadratic term (`paint_snap`; ours; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_follows_bends?: boolean;
+  /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
    * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
    * each within 10 cm of the last, found within 0.3 m of the boundary from 4 to 40 m ahead
@@ -1674,6 +1698,14 @@ export interface LiuOptions {
    * @defaultValue `false`
    */
   snap_to_paint?: boolean;
+  /**
+   * With `snap_to_paint`: the snap follows the paint round a bend: each probe's search is
+   * centred on the line through the last run of paint centres, and the correction gets a
+   * quadratic term (`paint_snap`; ours; off by default).
+   *
+   * @defaultValue `false`
+   */
+  snap_follows_bends?: boolean;
   /**
    * Report a valid frame not valid when no paint runs along either drawn ego boundary: a
    * run of at least four paint centres 0.5 m apart (1.5 m) and in four rows of the image,
