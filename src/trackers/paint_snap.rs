@@ -10,7 +10,7 @@
 //!
 //!   y(x) = y_b(x) + a + b (x - x̄),
 //!
-//! which keeps the estimate's curvature:
+//! which keeps the estimate's curvature (with `snap_follows_bends`, below, a quadratic one):
 //!
 //! 1. At distances x every [`PROBE_STEP_M`] from [`NEAR_M`] to [`FAR_M`] (within the
 //!    boundary's range) the marking intensity of the auto-calibration's working image
@@ -32,21 +32,6 @@
 //!    when the centres span less than [`MIN_SPAN_M`]; nothing moves with fewer than
 //!    [`MIN_CENTRES`] centres, and |b| is at most [`MAX_SLOPE`].
 //!
-//! With `snap_follows_bends` (ours) the snap goes round a bend the estimate does not follow
-//! (adachi-mmpf's straight model, a curvature the filter has not caught up with), where the
-//! paint leaves the 0.3 m search some metres ahead:
-//!
-//! - each probe's search is centred on y_b(x) + g(x), g the least-squares line through the
-//!   last [`GUIDE_CENTRES`] centres of the latest run of at least [`MIN_PAINT_RUN`] (step 4),
-//!   extrapolated, and held within [`MAX_FOLLOW_M`] of the boundary (under half a lane: the
-//!   search cannot walk onto a neighbour's line); g = 0 until the first such run, so isolated
-//!   centres (a crossing's bar, an arrow) do not steer it, and it carries over a dashed line's
-//!   gaps;
-//! - the correction is y(x) = y_b(x) + a + b t + q t^2, t = x - x̄, by least squares (the
-//!   same outlier rounds), q = 0 when the centres span less than [`MIN_BEND_SPAN_M`];
-//!   |b| <= [`MAX_FOLLOW_SLOPE`] and |q| <= [`MAX_FOLLOW_BEND`] (a change of curvature of
-//!   0.01 1/m), held at its ends as before.
-//!
 //! 4. Paint runs along the boundary ([`Snapped::painted`], for `valid_needs_paint`,
 //!    [`super::paint_output`]) when at least [`MIN_PAINT_RUN`] centres lie on neighbouring
 //!    probes, each within [`RUN_STEP_M`] of the last, in as many rows of the working image:
@@ -54,6 +39,27 @@
 //!    a patch of glare give scattered centres. (Far off, one row spans several probes: a blob
 //!    there counts once.) Known limit: a zebra crossing's stripes run along the road, 0.5 m
 //!    wide and metres long, and one within 0.3 m of a boundary is a run like a line's.
+//!
+//! With `snap_follows_bends` (ours) the snap goes round a bend the estimate does not follow
+//! (adachi-mmpf's straight model, a curvature the filter has not caught up with), where the
+//! paint leaves the 0.3 m search some metres ahead:
+//!
+//! - each probe's search is centred on y_b(x) + g(x), g the least-squares line through the
+//!   last [`GUIDE_CENTRES`] centres of the latest run of at least [`MIN_PAINT_RUN`] (step 4),
+//!   extrapolated, its slope at most [`MAX_FOLLOW_SLOPE`] and its value at most
+//!   [`MAX_FOLLOW_M`] from the boundary (with the search's [`SEARCH_M`], under half of a 3 m
+//!   lane: it does not walk onto a neighbour's line); g = 0 until the first such run, so
+//!   isolated centres (a crossing's bar, an arrow) do not steer it; it carries over a dashed
+//!   line's gaps and is dropped after [`MAX_GUIDE_GAP_M`] without a centre;
+//! - the correction is y(x) = y_b(x) + a + b t + q t^2, t = x - x̄, by least squares (the same
+//!   outlier rounds); q = 0 unless the centres span [`MIN_BEND_SPAN_M`] with
+//!   [`MIN_BEND_END_CENTRES`] in each outer third (a lone far centre would bend the curve
+//!   through it); |q| <= [`MAX_FOLLOW_BEND`] (a change of curvature of 0.01 1/m), a and b
+//!   solved again for a clamped q; |b| <= [`MAX_FOLLOW_SLOPE`] (0.2 rad instead of
+//!   [`MAX_SLOPE`], with or without q); held at its ends as before.
+//!
+//! On straight paint it moves a boundary as the straight correction does to within a few
+//! millimetres (`highway-straight`: mean ego error 4-13 mm, 0.6-2.7 mm more than without).
 //!
 //! Only the output moves: the filter's particles and validity are the tracker's own.
 
@@ -95,12 +101,16 @@ pub const RUN_STEP_M: f64 = 0.1;
 pub const MIN_PAINT_RUN: usize = 4;
 /// Largest slope b of the correction (radians, about 1.1 deg).
 pub const MAX_SLOPE: f64 = 0.02;
-/// With `snap_follows_bends`: the farthest the search follows the paint from the boundary,
-/// metres (under half a lane).
-pub const MAX_FOLLOW_M: f64 = 1.5;
+/// With `snap_follows_bends`: the farthest the search's centre follows the paint from the
+/// boundary, metres: with [`SEARCH_M`] the search stays under half of a 3 m lane.
+pub const MAX_FOLLOW_M: f64 = 1.2;
+/// With `snap_follows_bends`: the distance without a centre after which the search is no
+/// longer steered, metres (a dashed line's gap is about 9 m).
+pub const MAX_GUIDE_GAP_M: f64 = 15.0;
 /// With `snap_follows_bends`: the most recent centres of a run that steer the search.
 pub const GUIDE_CENTRES: usize = 8;
-/// With `snap_follows_bends`: the largest slope b of the correction.
+/// With `snap_follows_bends`: the largest slope b of the correction and of the search's guide,
+/// radians (about 11 deg; 0.02 without).
 pub const MAX_FOLLOW_SLOPE: f64 = 0.2;
 /// With `snap_follows_bends`: the largest quadratic term q of the correction (half a change of
 /// curvature, 1/m).
@@ -108,6 +118,10 @@ pub const MAX_FOLLOW_BEND: f64 = 0.005;
 /// With `snap_follows_bends`: the smallest spread of the centres' distances for a quadratic
 /// term, metres.
 pub const MIN_BEND_SPAN_M: f64 = 12.0;
+/// With `snap_follows_bends`: the fewest centres in each outer third of their span for a
+/// quadratic term (a lone centre would have the curve through it; a far dash seen at a few
+/// probes is enough: with 3 or 4 `s-curve`'s error doubles, the test of the bends).
+pub const MIN_BEND_END_CENTRES: usize = 2;
 
 /// Probes along a boundary, at most.
 const PROBES: usize = ((FAR_M - NEAR_M) / PROBE_STEP_M) as usize + 1;
@@ -153,7 +167,7 @@ pub fn follow_paint(
         if side.is_none() && !moves {
             continue;
         }
-        let (c, run) = correction(camera, images, &flat, bends);
+        let (c, run) = correction(camera, images, &flat, bends && moves);
         if let Some(k) = side {
             snapped.painted[k] = run >= MIN_PAINT_RUN;
         }
@@ -197,8 +211,8 @@ pub fn move_lane_figures(estimate: &mut LaneEstimate, moved_at_car: [f64; 2]) {
     estimate.lane_width_m += left - right;
 }
 
-/// The correction a + b (x - x̄), held at its ends beyond the distances of the centres it was
-/// fitted to.
+/// The correction a + b t + q t^2, t = x - x̄ (q = 0 without `snap_follows_bends`), held at
+/// its ends beyond the distances of the centres it was fitted to.
 #[derive(Debug, Clone, Copy)]
 struct Correction {
     a: f64,
@@ -243,6 +257,10 @@ fn correction(
         if x > to {
             break;
         }
+        // A guide that has seen no paint for MAX_GUIDE_GAP_M steers no more.
+        if guide.is_some() && n > 0 && x - centres[n - 1][0] > MAX_GUIDE_GAP_M {
+            guide = None;
+        }
         let shift = guide.map_or(0.0, |(x0, c0, slope)| {
             crate::math::clamp(c0 + slope * (x - x0), -MAX_FOLLOW_M, MAX_FOLLOW_M)
         });
@@ -264,7 +282,10 @@ fn correction(
             centres[n] = [x, c];
             n += 1;
             if bends && run >= MIN_PAINT_RUN {
-                guide = line_fit_any(&centres[run_start.max(n.saturating_sub(GUIDE_CENTRES))..n]);
+                guide = line_fit_any(&centres[run_start.max(n.saturating_sub(GUIDE_CENTRES))..n])
+                    .map(|(x0, c0, slope)| {
+                        (x0, c0, slope.clamp(-MAX_FOLLOW_SLOPE, MAX_FOLLOW_SLOPE))
+                    });
             }
         }
     }
@@ -312,30 +333,32 @@ fn fit_centres(centres: &mut [[f64; 2]; PROBES], mut n: usize, bends: bool) -> O
         fit = fit_any(&centres[..n])?;
     }
     let (a, b, q, mid) = fit;
-    let (max_b, max_q) = if bends {
-        (MAX_FOLLOW_SLOPE, MAX_FOLLOW_BEND)
-    } else {
-        (MAX_SLOPE, 0.0)
-    };
+    let max_b = if bends { MAX_FOLLOW_SLOPE } else { MAX_SLOPE };
     Some(Correction {
         a,
         b: b.clamp(-max_b, max_b),
-        q: q.clamp(-max_q, max_q),
+        q,
         mid,
         near: centres[0][0],
         far: centres[n - 1][0],
     })
 }
 
-/// Least squares a + b t + q t^2 (t = x - x̄) through `points`: q = 0 when they span less
-/// than [`MIN_BEND_SPAN_M`]; otherwise [`line_fit`]'s.
-fn curve_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64, f64)> {
+/// Least squares a + b t + q t^2 (t = x - x̄) through `points`: (a, b, q, x̄), |q| at most
+/// [`MAX_FOLLOW_BEND`] with a and b solved again for the clamped q. q = 0 ([`line_fit`]'s)
+/// unless the centres span [`MIN_BEND_SPAN_M`] and each outer third of the span holds
+/// [`MIN_BEND_END_CENTRES`] of them: a lone far centre would bend the curve through it.
+pub(super) fn curve_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64, f64)> {
     let (a, b, mid) = line_fit(points)?;
-    let span = points[points.len() - 1][0] - points[0][0];
-    if span < MIN_BEND_SPAN_M {
+    let (first, last) = (points[0][0], points[points.len() - 1][0]);
+    let span = last - first;
+    let near = points.iter().filter(|p| p[0] <= first + span / 3.0).count();
+    let far = points.iter().filter(|p| p[0] >= last - span / 3.0).count();
+    if span < MIN_BEND_SPAN_M || near.min(far) < MIN_BEND_END_CENTRES {
         return Some((a, b, 0.0, mid));
     }
-    // Normal equations in (a, b, q) with t centred (sum t = 0).
+    // Normal equations in (a, b, q) with t centred (sum t = 0):
+    //   n a + s2 q = sc,  s2 b + s3 q = stc,  s2 a + s3 b + s4 q = st2c.
     let (mut s2, mut s3, mut s4, mut sc, mut stc, mut st2c) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
     for &[x, c] in points {
         let t = x - mid;
@@ -349,10 +372,12 @@ fn curve_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64, f64)> {
     let n = points.len() as f64;
     let m = nalgebra::Matrix3::new(n, 0.0, s2, 0.0, s2, s3, s2, s3, s4);
     let r = nalgebra::Vector3::new(sc, stc, st2c);
-    let Some(sol) = m.lu().solve(&r) else {
+    let Some(solution) = m.lu().solve(&r) else {
         return Some((a, b, 0.0, mid));
     };
-    Some((sol[0], sol[1], sol[2], mid))
+    // The first two equations give a and b for any q: the clamped q's.
+    let q = solution[2].clamp(-MAX_FOLLOW_BEND, MAX_FOLLOW_BEND);
+    Some(((sc - s2 * q) / n, (stc - s3 * q) / s2, q, mid))
 }
 
 /// Least-squares a + b (x - x̄) through `points` ([x, c]): (a, b, x̄); b = 0 when they span
