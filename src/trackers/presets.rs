@@ -161,12 +161,14 @@ const VALID_NEEDS_PAINT: bool = true;
 /// `snap_follows_bends` of the four mono trackers: the snap's search follows the paint round a
 /// bend and its correction gets a quadratic term. Measured 2026-11-30, `real-roads` without
 /// and with (adachi-mmpf, danescu-mono, lee-cpf, liu-ppf): CULane F1, auto camera, tracker
-/// seed 1, 43.0 -> 43.6, 24.5 -> 27.8, 24.0 -> 38.5, 57.1 -> 56.7 % (adachi-mmpf `gradient`
-/// 53.7 -> 53.8); `option_compare`: TuSimple 92.1 -> 92.4, 90.0 -> 91.4, 93.0 -> 93.2, 87.9
-/// -> 90.3; Caltech tracker seeds 1-5 ego correct / FP 95.5 / 2.6 -> 95.9 / 2.2, 89.7 / 1.6
-/// -> 89.6 / 1.8, 97.9 / 1.2 -> 98.1 / 1.1, 97.9 / 1.2 -> 97.8 / 1.4 %, all lanes 74.7 ->
-/// 76.4, 70.6 -> 70.9, 75.7 -> 76.4, 77.8 -> 78.0 %; synthetic seeds 201-213 boundaries 88.5
-/// -> 89.3, 86.8 -> 86.9, 90.9 -> 91.5, 93.4 -> 93.5 %. Off for danescu-stereo with its snap.
+/// seed 1, 43.0 -> 43.5, 24.5 -> 27.7, 24.0 -> 31.9, 57.1 -> 57.9 % (adachi-mmpf `gradient`
+/// 53.7 -> 53.7); `option_compare`: TuSimple 92.1 -> 92.4, 90.0 -> 91.8, 93.0 -> 93.2, 87.9
+/// -> 90.6; Caltech tracker seeds 1-5 ego correct / FP 95.5 / 2.6 -> 96.0 / 2.1, 89.7 / 1.6
+/// unchanged, 97.9 / 1.2 -> 98.4 / 0.8, 97.9 / 1.2 -> 97.8 / 1.4 %, all lanes 74.7 -> 76.2,
+/// 70.6 -> 70.9, 75.7 -> 76.6, 77.8 -> 78.0 %; synthetic seeds 201-213 boundaries 88.5 ->
+/// 89.2, 86.8 -> 86.9, 90.9 -> 91.2, 93.4 -> 93.5 %; Udacity valid unchanged. On straight
+/// paint it costs 0.6-2.7 mm of mean ego error (`highway-straight`). Off for danescu-stereo
+/// with its snap.
 const SNAP_FOLLOWS_BENDS: bool = true;
 
 /// liu-ppf's `adjacent_lanes` (its partitions give the ego pair and one neighbour; the option
