@@ -370,13 +370,15 @@ pub(super) fn curve_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64, f64)> {
         st2c += t * t * c;
     }
     let n = points.len() as f64;
-    let m = nalgebra::Matrix3::new(n, 0.0, s2, 0.0, s2, s3, s2, s3, s4);
-    let r = nalgebra::Vector3::new(sc, stc, st2c);
-    let Some(solution) = m.lu().solve(&r) else {
+    // a and b from the first two for a given q, put into the third: q times the spread of t^2
+    // left after fitting 1 and t (positive for three or more distances) is the same of c.
+    let spread = s4 - s2 * s2 / n - s3 * s3 / s2;
+    if spread <= 1e-12 * s4 {
         return Some((a, b, 0.0, mid));
-    };
+    }
+    let q =
+        ((st2c - s2 * sc / n - s3 * stc / s2) / spread).clamp(-MAX_FOLLOW_BEND, MAX_FOLLOW_BEND);
     // The first two equations give a and b for any q: the clamped q's.
-    let q = solution[2].clamp(-MAX_FOLLOW_BEND, MAX_FOLLOW_BEND);
     Some(((sc - s2 * q) / n, (stc - s3 * q) / s2, q, mid))
 }
 
