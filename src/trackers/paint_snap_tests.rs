@@ -187,21 +187,37 @@ fn beyond_its_centres_the_correction_is_held_not_extrapolated() {
 #[test]
 fn following_bends_the_snap_goes_round_a_bend() {
     let camera = default_camera(640, 480).unwrap();
-    let line = |x: f64| 1.8 + 0.002 * x * x;
-    let images = working_images(&camera, |x, y| (y - line(x)).abs() <= 0.075);
-    let error = |bends| {
-        let (_, at) = snapped_with(&camera, boundary(&camera, |_| 1.8), &images, bends);
-        let truth = [8.0, 15.0, 25.0].map(line);
-        at.iter()
-            .zip(truth)
-            .map(|(y, t)| (y - t).abs())
-            .fold(0.0, f64::max)
-    };
-    let (without, with) = (error(false), error(true));
+    let images = working_images(&camera, |x, y| (y - bend(x)).abs() <= 0.075);
+    let (without, with) = (
+        bend_error(&camera, &images, 3, false),
+        bend_error(&camera, &images, 3, true),
+    );
     assert!(
         with < 0.05 && without > 0.3,
         "largest error without {without:.3} m, with {with:.3} m"
     );
+}
+
+/// The line of the bend tests: radius 250 m, 1.8 m left of the car, heading along the road.
+fn bend(x: f64) -> f64 {
+    1.8 + 0.002 * x * x
+}
+
+/// The largest error against [`bend`] of a boundary along its tangent at the car, snapped in
+/// `images` with `snap_follows_bends` set to `bends`, at the first `distances` of 8, 15 and
+/// 25 m.
+fn bend_error(
+    camera: &Camera,
+    images: &(Image<u8>, Image<u8>),
+    distances: usize,
+    bends: bool,
+) -> f64 {
+    let (_, at) = snapped_with(camera, boundary(camera, |_| 1.8), images, bends);
+    at.iter()
+        .zip([8.0, 15.0, 25.0].map(bend))
+        .take(distances)
+        .map(|(y, t)| (y - t).abs())
+        .fold(0.0, f64::max)
 }
 
 /// A dashed line (3 m of paint, 9 m gaps, from 4 m) on the same bend: the search carries the
@@ -211,17 +227,13 @@ fn following_bends_the_snap_goes_round_a_bend() {
 #[test]
 fn following_bends_the_snap_carries_over_a_dashed_lines_gaps() {
     let camera = default_camera(640, 480).unwrap();
-    let line = |x: f64| 1.8 + 0.002 * x * x;
     let images = working_images(&camera, |x, y| {
-        (x - 4.0).rem_euclid(12.0) <= 3.0 && (y - line(x)).abs() <= 0.075
+        (x - 4.0).rem_euclid(12.0) <= 3.0 && (y - bend(x)).abs() <= 0.075
     });
-    let error = |bends| {
-        let (_, at) = snapped_with(&camera, boundary(&camera, |_| 1.8), &images, bends);
-        [at[0] - line(8.0), at[1] - line(15.0)]
-            .iter()
-            .fold(0.0f64, |m, e| m.max(e.abs()))
-    };
-    let (without, with) = (error(false), error(true));
+    let (without, with) = (
+        bend_error(&camera, &images, 2, false),
+        bend_error(&camera, &images, 2, true),
+    );
     assert!(
         with < 0.05 && without > 0.2,
         "largest error without {without:.3} m, with {with:.3} m"
@@ -229,7 +241,7 @@ fn following_bends_the_snap_carries_over_a_dashed_lines_gaps() {
 }
 
 /// The quadratic term needs centres at both ends of the span: 3 m of centres near the car
-/// (1 cm of noise) and one 25 m ahead, 0.2 m off, give no bend (a curve through the lone far
+/// (1 cm of noise) and one at 30 m, 0.2 m off, give no bend (a curve through the lone far
 /// centre would bow the boundary between); the same near centres with two far ones, and
 /// centres all along a bend, give the bend's q.
 #[test]
