@@ -52,6 +52,14 @@ if grep -Eq 'class (Scene|TestRoad)\b' pkg/web/lanepf.d.ts; then
   echo "[build-pkg] pkg/web/lanepf.d.ts declares the simulator: it belongs in pkg/sim" >&2
   exit 1
 fi
+# Issue 21's budget: the main module (the one a page that tracks loads) at most 250 kB gzip -9
+# (RESULTS.md, *Package*, has what each change cost and how the last overrun was won back).
+zipped=$(gzip -9 -c pkg/web/lanepf_bg.wasm | wc -c)
+if [ "$zipped" -gt 250000 ]; then
+  echo "[build-pkg] pkg/web/lanepf_bg.wasm is $zipped bytes gzip -9, over the 250 000 budget" >&2
+  exit 1
+fi
+echo "[build-pkg] pkg/web/lanepf_bg.wasm: $zipped bytes gzip -9 (budget 250 000)"
 out=pkg/web
 # The Tracker class takes its id as a type parameter, so that `new Tracker('lee-cpf', config)`
 # checks config against lee-cpf's options (TrackerConfig<Id>, src/wasm/types/generated.d.ts):

@@ -9,10 +9,12 @@ fn object(particles: usize, config: Value) -> Result<Value> {
     map.insert("particles".into(), Value::from(particles));
     match config {
         Value::Object(options) => map.extend(options),
-        other => {
-            return Err(Error::Config(format!(
-                "tracker defaults are not an object: {other}"
-            )))
+        // Not shown: Value's Display (serde_json's JSON writer) costs the main wasm 6.1 kB
+        // raw, 2.4 kB gzip -9 (2026-11-30).
+        _ => {
+            return Err(Error::Config(
+                "tracker defaults are not an object".to_string(),
+            ))
         }
     }
     Ok(Value::Object(map))
