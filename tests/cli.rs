@@ -744,12 +744,12 @@ fn track_starts_from_a_preset_and_the_config_replaces_its_values() {
     let ours = r#"{"relock_share": 0.05, "curvature_prior_sd": 0.004, "adjacent_lanes": true,
         "valid_support_frames": 5, "side_search_share": 0.2, "reacquire_near_m": 4,
         "kalman_process_sd": [0.009, 0.09, 0.1, 0.0015, 6.0, 0.0006], "snap_to_paint": true,
-        "snap_follows_bends": true, "valid_needs_paint": true}"#;
+        "snap_follows_bends": true, "valid_needs_paint": true, "valid_from_paint": true}"#;
     let (_, _, by_hand) = run(None, Some(ours), "by-hand");
     let off = r#"{"relock_share": 0, "curvature_prior_sd": 0, "adjacent_lanes": false,
         "valid_support_frames": 1, "side_search_share": 0, "reacquire_near_m": 0,
         "kalman_process_sd": [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002], "snap_to_paint": false,
-        "snap_follows_bends": false, "valid_needs_paint": false}"#;
+        "snap_follows_bends": false, "valid_needs_paint": false, "valid_from_paint": false}"#;
     let (_, _, replaced) = run(Some("real-roads"), Some(off), "replaced");
     assert_eq!(paper.len(), 4);
     assert_eq!(named_paper, paper);

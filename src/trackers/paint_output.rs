@@ -1,5 +1,6 @@
 //! Our output options beyond the papers that read the paint, applied in one order by every
-//! mono tracker to its estimate's boundaries (ours; each off by default):
+//! mono tracker to its estimate's boundaries (ours; each off by default; the rescue of a frame
+//! not valid, `valid_from_paint`, below them):
 //!
 //! 1. `snap_to_paint` moves each boundary onto the centre of the paint it lies on
 //!    ([`super::paint_snap`]);
@@ -12,6 +13,16 @@
 //! 3. `adjacent_lanes` adds the neighbours on the sides the tracker's own boundaries leave out
 //!    ([`super::adjacent_lanes`]), moved onto their paint with `snap_to_paint`, on a frame
 //!    still valid.
+//!
+//! Before them, on a frame the filter finds not valid, `valid_from_paint` reports it valid
+//! (and the three then apply) when the same probes find runs of paint along both ego
+//! boundaries, the first run along one beginning within [`FROM_PAINT_NEAR_M`] of the nearest
+//! probe and along the other within [`FROM_PAINT_FAR_M`] ([`Snapped::painted_from_m`]): paint
+//! from the car on one side and a dashed line's next dash on the other. A filter's validity
+//! counts its own cue (danescu-mono: road edges within 2 pixels of its clothoid's inner edges)
+//! and can fall short where the paint is plain (Caltech's turn pocket, 200-216); the far side
+//! of a crossing, whose paint begins ahead on both sides, stays not valid. The filter, whose
+//! rules read its own validity, is unchanged.
 //!
 //! All read the marking image of the tracker's bottom-up line detector ([`super::relock`]) and
 //! change nothing in the filter: its particles and its own validity, which its other rules
@@ -34,19 +45,37 @@ pub struct PaintOptions {
     pub valid_needs_paint: bool,
     /// `adjacent_lanes`.
     pub adjacent_lanes: bool,
+    /// `valid_from_paint`.
+    pub valid_from_paint: bool,
 }
 
 impl PaintOptions {
     /// Whether any of them is on (the tracker then needs its line detector's marking image).
     pub fn any(&self) -> bool {
-        self.snap_to_paint || self.valid_needs_paint || self.adjacent_lanes
+        self.snap_to_paint || self.valid_needs_paint || self.adjacent_lanes || self.valid_from_paint
     }
+}
+
+/// With `valid_from_paint`: the farthest the first run of paint along one ego boundary may
+/// begin beyond the nearest probe, metres (four probes: paint at the car).
+pub const FROM_PAINT_NEAR_M: f64 = 2.0;
+/// With `valid_from_paint`: the farthest the first run of paint along the other ego boundary
+/// may begin beyond the nearest probe, metres (a dashed line's 9 m gap and a probe).
+pub const FROM_PAINT_FAR_M: f64 = 10.0;
+
+/// Whether runs of paint along the ego boundaries make a frame the filter found not valid
+/// valid (`valid_from_paint`): along one from the car ([`FROM_PAINT_NEAR_M`]), along the other
+/// within [`FROM_PAINT_FAR_M`] ([`Snapped::painted_from_m`]).
+pub fn paint_makes_valid(snapped: &Snapped) -> bool {
+    let [left, right] = snapped.painted_from_m;
+    left.min(right) <= FROM_PAINT_NEAR_M && left.max(right) <= FROM_PAINT_FAR_M
 }
 
 /// Applies `options` to `boundaries`, a frame's estimate, `valid` by the filter's own rule, in
 /// the marking image of `detector` (the frame's; `None` when the tracker has none). Returns
 /// the frame's reported validity and what the snap did to the ego boundaries (nothing moves,
-/// and the validity is the filter's, on a frame the filter found not valid).
+/// and the validity is the filter's, on a frame the filter found not valid and
+/// `valid_from_paint` does not make valid).
 pub fn apply_paint_options(
     camera: &Camera,
     boundaries: &mut Vec<Boundary>,
@@ -55,11 +84,15 @@ pub fn apply_paint_options(
     options: PaintOptions,
 ) -> (bool, Snapped) {
     let Some(images) = detector
-        .filter(|_| valid)
+        .filter(|_| valid || options.valid_from_paint)
         .map(RelockDetector::working_images)
     else {
         return (valid, Snapped::default());
     };
+    // Without moving anything: only the ego boundaries' paint is asked for.
+    if !valid && !paint_makes_valid(&follow_paint(camera, boundaries, images, false, false)) {
+        return (false, Snapped::default());
+    }
     let snapped = if options.snap_to_paint || options.valid_needs_paint {
         follow_paint(
             camera,

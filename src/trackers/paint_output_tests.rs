@@ -99,3 +99,34 @@ fn every_mono_tracker_reports_no_lane_where_the_paint_stops() {
         }
     }
 }
+
+/// `valid_from_paint`'s rule on the snap's `painted_from_m`: paint from the car along one
+/// boundary and within a dashed line's gap along the other makes a frame valid; paint that
+/// begins ahead on both (a crossing's far side), farther than the gap on one, or missing on
+/// one does not.
+#[test]
+fn paint_from_the_car_on_one_side_and_within_a_gap_on_the_other_makes_a_lane() {
+    use super::paint_output::{paint_makes_valid, FROM_PAINT_FAR_M, FROM_PAINT_NEAR_M};
+    use super::paint_snap::Snapped;
+    let with = |painted_from_m: [f64; 2]| {
+        paint_makes_valid(&Snapped {
+            painted_from_m,
+            ..Snapped::default()
+        })
+    };
+    let (near, far) = (FROM_PAINT_NEAR_M, FROM_PAINT_FAR_M);
+    assert!(with([0.0, 0.0]));
+    assert!(with([0.0, 6.5]) && with([6.5, 0.0]));
+    assert!(with([near, far]) && with([far, near]));
+    assert!(!with([0.0, far + 0.5]) && !with([far + 0.5, 0.0]));
+    // Caltech 139 (tracker seed 2): the double yellow from 8 m beyond the nearest probe, the
+    // dashes from 9.5 m, across the junction.
+    assert!(!with([8.0, 9.5]));
+    assert!(!with([near + 0.5, near + 0.5]));
+    assert!(!with([0.0, f64::INFINITY]) && !with([f64::INFINITY, 0.0]));
+    assert!(!Snapped::default()
+        .painted_from_m
+        .iter()
+        .any(|x| x.is_finite()));
+    assert!(!with(Snapped::default().painted_from_m));
+}

@@ -39,6 +39,8 @@
 //!    a patch of glare give scattered centres. (Far off, one row spans several probes: a blob
 //!    there counts once.) Known limit: a zebra crossing's stripes run along the road, 0.5 m
 //!    wide and metres long, and one within 0.3 m of a boundary is a run like a line's.
+//!    Where the first run begins, from the nearest probe, is [`Snapped::painted_from_m`] (for
+//!    `valid_from_paint`).
 //!
 //! With `snap_follows_bends` (ours) the snap goes round a bend the estimate does not follow
 //! (adachi-mmpf's straight model, a curvature the filter has not caught up with), where the
@@ -167,9 +169,10 @@ pub fn follow_paint(
         if side.is_none() && !moves {
             continue;
         }
-        let (c, run) = correction(camera, images, &flat, bends && moves);
+        let (c, run, from) = correction(camera, images, &flat, bends && moves);
         if let Some(k) = side {
             snapped.painted[k] = run >= MIN_PAINT_RUN;
+            snapped.painted_from_m[k] = from;
         }
         let Some(c) = c else {
             continue;
@@ -188,13 +191,26 @@ pub fn follow_paint(
 }
 
 /// What [`snap_to_paint`] did to an estimate's ego boundaries (ego-left, ego-right).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Snapped {
     /// How far each moved at the car (x = 0, metres, positive left; 0 for one not moved).
     pub moved_at_car: [f64; 2],
     /// Whether paint runs along it: a run of at least [`MIN_PAINT_RUN`] centres on
     /// neighbouring probes, each within [`RUN_STEP_M`] of the last (step 4 of the module docs).
     pub painted: [bool; 2],
+    /// Where the first such run begins on each, metres beyond the nearest probe (infinite
+    /// without one).
+    pub painted_from_m: [f64; 2],
+}
+
+impl Default for Snapped {
+    fn default() -> Self {
+        Self {
+            moved_at_car: [0.0; 2],
+            painted: [false; 2],
+            painted_from_m: [f64::INFINITY; 2],
+        }
+    }
 }
 
 /// Keeps an estimate's lateral offset and lane width those of its drawn ego boundaries after
@@ -238,7 +254,7 @@ fn correction(
     images: WorkingImages<'_>,
     flat: &FlatBoundary,
     bends: bool,
-) -> (Option<Correction>, usize) {
+) -> (Option<Correction>, usize, f64) {
     let (near, far) = flat.range();
     let (from, to) = (near.max(NEAR_M), far.min(FAR_M));
     // The centres found, [x, c], on the stack: a frame allocates nothing here.
@@ -252,6 +268,8 @@ fn correction(
     // centres, on which the next probe's search is centred, and where that run began.
     let mut guide: Option<(f64, f64, f64)> = None;
     let mut run_start = 0usize;
+    // Where the first run of paint (MIN_PAINT_RUN rows) began, metres.
+    let (mut run_x, mut painted_from) = (0.0f64, f64::INFINITY);
     for k in 0..PROBES {
         let x = from + k as f64 * PROBE_STEP_M;
         if x > to {
@@ -274,11 +292,14 @@ fn correction(
                 (x - px - PROBE_STEP_M).abs() < 1e-6 && (c - pc).abs() <= RUN_STEP_M
             };
             if !continues {
-                (run, run_row, run_start) = (1, row, n);
+                (run, run_row, run_start, run_x) = (1, row, n, x);
             } else if row != run_row {
                 (run, run_row) = (run + 1, row);
             }
             longest = longest.max(run);
+            if run >= MIN_PAINT_RUN && painted_from.is_infinite() {
+                painted_from = run_x - from;
+            }
             centres[n] = [x, c];
             n += 1;
             if bends && run >= MIN_PAINT_RUN {
@@ -289,7 +310,7 @@ fn correction(
             }
         }
     }
-    (fit_centres(&mut centres, n, bends), longest)
+    (fit_centres(&mut centres, n, bends), longest, painted_from)
 }
 
 /// (x̄, c at x̄, slope) of the least-squares line through `points` ([x, c]), two or more at

@@ -434,6 +434,12 @@ fn following_bends_draws_the_ego_lane_on_the_paint_of_a_bend() {
 /// Whether [`follow_paint`] finds a run of paint along an ego-left boundary 0.1 m off a line
 /// at 1.8 m, in working images painted where `painted` holds; the boundary does not move.
 fn paint_runs_along(painted: impl Fn(f64, f64) -> bool) -> bool {
+    paint_along(painted).painted[0]
+}
+
+/// What [`follow_paint`] finds along the boundary of [`paint_runs_along`] (which it asserts
+/// does not move).
+fn paint_along(painted: impl Fn(f64, f64) -> bool) -> super::paint_snap::Snapped {
     let camera = default_camera(640, 480).unwrap();
     let images = working_images(&camera, painted);
     let b = boundary(&camera, |_| 1.9);
@@ -448,7 +454,38 @@ fn paint_runs_along(painted: impl Fn(f64, f64) -> bool) -> bool {
     assert_eq!(out[0], b, "nothing moves");
     assert_eq!(snapped.moved_at_car, [0.0; 2]);
     assert!(!snapped.painted[1], "there is no ego-right boundary");
-    snapped.painted[0]
+    assert!(snapped.painted_from_m[1].is_infinite());
+    snapped
+}
+
+/// Where the first run of paint begins, from the nearest probe: at it (or the next) on a solid
+/// line, 4 m later on a line that starts 4 m later, at the first dash that makes a run on a
+/// dashed line (3 m of paint every 12 m), nowhere without paint or where only 1.2 m of a line
+/// lies.
+#[test]
+fn the_first_run_of_paint_is_placed_from_the_nearest_probe() {
+    let from = |x0: f64| move |x: f64, y: f64| x >= x0 && single_line(x, y);
+    let first = |painted: &dyn Fn(f64, f64) -> bool| paint_along(painted).painted_from_m[0];
+    // The nearest probe itself may see the road beside the line in its block of the image.
+    assert!(
+        first(&single_line) <= PROBE_STEP_M,
+        "{}",
+        first(&single_line)
+    );
+    let (at_10, at_14) = (first(&from(10.0)), first(&from(14.0)));
+    assert!(
+        (at_14 - at_10 - 4.0).abs() <= PROBE_STEP_M,
+        "{at_10} {at_14}"
+    );
+    // Dashes from 9 to 12 m, 21 to 24 m, ...: the first starts 1 m after the line of 10 m.
+    let dashed = |x: f64, y: f64| single_line(x, y) && (x - 9.0).rem_euclid(12.0) < 3.0;
+    let at_dash = first(&dashed);
+    assert!(
+        (at_dash - (at_10 - 1.0)).abs() <= PROBE_STEP_M,
+        "{at_10} {at_dash}"
+    );
+    assert!(first(&|_, _| false).is_infinite());
+    assert!(first(&|x, y| (6.0..7.2).contains(&x) && single_line(x, y)).is_infinite());
 }
 
 /// A solid line and a dashed one (3 m of paint every 12 m, US interstate) run along the

@@ -181,6 +181,13 @@ pub struct DanescuConfig {
     /// beyond the paper; output only: the filter's own validity, which its other rules read,
     /// is unchanged; off by default).
     pub valid_needs_paint: bool,
+    /// Report a frame the filter finds not valid valid when paint runs along both drawn ego
+    /// boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
+    /// counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
+    /// dashed line's gap), in the bottom-up detector's marking image
+    /// ([`crate::trackers::paint_output`]; ours, beyond the paper; output only: the filter's
+    /// own validity, which its other rules read, is unchanged; off by default).
+    pub valid_from_paint: bool,
 }
 
 impl Default for DanescuConfig {
@@ -247,6 +254,7 @@ impl Default for DanescuConfig {
             snap_to_paint: false,
             snap_follows_bends: false,
             valid_needs_paint: false,
+            valid_from_paint: false,
         }
     }
 }
@@ -259,6 +267,7 @@ impl DanescuConfig {
             snap_to_paint: self.snap_to_paint,
             snap_follows_bends: self.snap_follows_bends,
             valid_needs_paint: self.valid_needs_paint,
+            valid_from_paint: self.valid_from_paint,
             adjacent_lanes: self.adjacent_lanes,
         }
     }

@@ -175,6 +175,13 @@ pub struct LeeConfig {
     /// beyond the paper; output only: the filter's own validity, which its other rules read,
     /// is unchanged; off by default).
     pub valid_needs_paint: bool,
+    /// Report a frame the filter finds not valid valid when paint runs along both drawn ego
+    /// boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
+    /// counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
+    /// dashed line's gap), in the bottom-up detector's marking image
+    /// ([`crate::trackers::paint_output`]; ours, beyond the paper; output only: the filter's
+    /// own validity, which its other rules read, is unchanged; off by default).
+    pub valid_from_paint: bool,
 }
 
 impl LeeConfig {
@@ -185,6 +192,7 @@ impl LeeConfig {
             snap_to_paint: self.snap_to_paint,
             snap_follows_bends: self.snap_follows_bends,
             valid_needs_paint: self.valid_needs_paint,
+            valid_from_paint: self.valid_from_paint,
             adjacent_lanes: self.adjacent_lanes,
         }
     }
@@ -246,6 +254,7 @@ impl Default for LeeConfig {
             snap_to_paint: false,
             snap_follows_bends: false,
             valid_needs_paint: false,
+            valid_from_paint: false,
             kalman: true,
             kalman_process_sd: [0.003, 0.03, 0.01, 0.0005, 2.0, 0.0002],
             kalman_measurement_sd: [0.006, 0.05, 0.05, 0.002, 6.0, 0.0005],

@@ -103,6 +103,13 @@ pub struct LiuConfig {
     /// is unchanged, and it stands on frames under 32x16, where the detector cannot run; off
     /// by default).
     pub valid_needs_paint: bool,
+    /// Report a frame the filter finds not valid valid when paint runs along both drawn ego
+    /// boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
+    /// counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
+    /// dashed line's gap), in the bottom-up detector's marking image
+    /// ([`crate::trackers::paint_output`]; ours, beyond the paper; output only: the filter's
+    /// own validity, which its other rules read, is unchanged; off by default).
+    pub valid_from_paint: bool,
     /// Also report the lanes beside the ego lane on the sides the partitions leave out
     /// (`left-adjacent`, `right-adjacent`), where markings run beside an ego boundary at a
     /// lane's width in the bottom-up detector's marking image
@@ -180,6 +187,7 @@ impl Default for LiuConfig {
             snap_to_paint: false,
             snap_follows_bends: false,
             valid_needs_paint: false,
+            valid_from_paint: false,
             adjacent_lanes: false,
             top_view_resolved: false,
             reacquire_near_m: 0.0,
@@ -196,6 +204,7 @@ impl LiuConfig {
             snap_to_paint: self.snap_to_paint,
             snap_follows_bends: self.snap_follows_bends,
             valid_needs_paint: self.valid_needs_paint,
+            valid_from_paint: self.valid_from_paint,
             adjacent_lanes: self.adjacent_lanes,
         }
     }

@@ -696,6 +696,17 @@ export interface AdachiOptions {
    * @defaultValue `false`
    */
   valid_needs_paint?: boolean;
+  /**
+   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
+   * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
+   * dashed line's gap), in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_from_paint?: boolean;
 }
 
 /**
@@ -1116,6 +1127,17 @@ export interface DanescuOptions {
    * @defaultValue `false`
    */
   valid_needs_paint?: boolean;
+  /**
+   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
+   * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
+   * dashed line's gap), in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_from_paint?: boolean;
 }
 
 /**
@@ -1502,6 +1524,17 @@ export interface LeeOptions {
    * @defaultValue `false`
    */
   valid_needs_paint?: boolean;
+  /**
+   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
+   * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
+   * dashed line's gap), in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_from_paint?: boolean;
 }
 
 /**
@@ -1718,6 +1751,17 @@ export interface LiuOptions {
    * @defaultValue `false`
    */
   valid_needs_paint?: boolean;
+  /**
+   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
+   * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
+   * dashed line's gap), in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged; off by default).
+   *
+   * @defaultValue `false`
+   */
+  valid_from_paint?: boolean;
   /**
    * Also report the lanes beside the ego lane on the sides the partitions leave out
    * (`left-adjacent`, `right-adjacent`), where markings run beside an ego boundary at a
