@@ -455,7 +455,8 @@ impl Calibrator {
     /// Computes the working images of one RGBA frame ([`Self::working_images`]) and nothing
     /// else: no lines are found, and what the calibrator has learnt, its frame count and its
     /// last observation stay as they were. For a tracker that needs the marking image only
-    /// (its output options, `snap_to_paint`, `valid_needs_paint` or `adjacent_lanes`, without
+    /// (its output options, `snap_to_paint`, `valid_needs_paint`, `valid_from_paint` or
+    /// `adjacent_lanes`, without
     /// `relock_share`); with a known
     /// vanishing point ([`Self::set_known_vanishing_point`]) the images are those
     /// [`Self::feed_rgba`] computes, at a fraction of its cost.

@@ -16,10 +16,11 @@
 //!
 //! Before them, on a frame the filter finds not valid, `valid_from_paint` reports it valid
 //! (and the three then apply) when the same probes find runs of paint along both ego
-//! boundaries, the first run along one beginning within [`FROM_PAINT_NEAR_M`] of the nearest
-//! probe and along the other within [`FROM_PAINT_FAR_M`] ([`Snapped::painted_from_m`]): paint
-//! from the car on one side and a dashed line's next dash on the other. A filter's validity
-//! counts its own cue (danescu-mono: road edges within 2 pixels of its clothoid's inner edges)
+//! boundaries, the first run along one beginning within [`FROM_PAINT_NEAR_M`] of its nearest
+//! probe (4 m ahead, or where the boundary comes into view) and along the other within
+//! [`FROM_PAINT_FAR_M`] ([`Snapped::painted_from_m`]): paint from the car on one side and a
+//! dashed line's next dash on the other. A filter's validity
+//! counts its own cue (danescu-mono: road edges within its tolerance of the inner edges)
 //! and can fall short where the paint is plain (Caltech's turn pocket, 200-216); the far side
 //! of a crossing, whose paint begins ahead on both sides, stays not valid. The filter, whose
 //! rules read its own validity, is unchanged.
@@ -57,10 +58,14 @@ impl PaintOptions {
 }
 
 /// With `valid_from_paint`: the farthest the first run of paint along one ego boundary may
-/// begin beyond the nearest probe, metres (four probes: paint at the car).
+/// begin beyond its nearest probe (4 m ahead, or where the boundary comes into view), metres
+/// (four probe steps: paint from the car).
 pub const FROM_PAINT_NEAR_M: f64 = 2.0;
 /// With `valid_from_paint`: the farthest the first run of paint along the other ego boundary
-/// may begin beyond the nearest probe, metres (a dashed line's 9 m gap and a probe).
+/// may begin beyond its nearest probe, metres: a US dashed line's 9 m gap and a probe. A
+/// longer gap (12 m on some European motorways), or a dash's tail too short for a run at the
+/// nearest probe with the next dash a gap beyond, fails it: the frame stays as the filter
+/// found it.
 pub const FROM_PAINT_FAR_M: f64 = 10.0;
 
 /// Whether runs of paint along the ego boundaries make a frame the filter found not valid

@@ -247,8 +247,9 @@ impl Correction {
     }
 }
 
-/// The correction for `flat` (steps 1-3 of the module docs), and the longest run of paint
-/// centres found along it ([`Snapped::painted`]).
+/// The correction for `flat` (steps 1-3 of the module docs), the longest run of paint
+/// centres found along it ([`Snapped::painted`]) and where the first run of
+/// [`MIN_PAINT_RUN`] began beyond the nearest probe ([`Snapped::painted_from_m`]).
 fn correction(
     camera: &Camera,
     images: WorkingImages<'_>,

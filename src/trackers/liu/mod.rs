@@ -34,7 +34,9 @@
 //! bright stripe in the top view, so that shadow edges do not hold a lane through an unmarked
 //! crossing. With `snap_to_paint` (ours) the reported boundaries move onto the paint's centre
 //! ([`super::paint_snap`]); with `valid_needs_paint` (ours) a frame is reported not valid
-//! when no run of paint lies along either ego boundary; with `adjacent_lanes` (ours) the
+//! when no run of paint lies along either ego boundary, and with `valid_from_paint` (ours) a
+//! frame it finds not valid is reported valid when paint runs along both from near the car;
+//! with `adjacent_lanes` (ours) the
 //! neighbour on the side the partitions leave out is added where paint runs there
 //! ([`super::paint_output`], [`super::adjacent_lanes`]).
 
@@ -156,7 +158,7 @@ pub struct LiuTracker {
     initial: DefaultLanes,
     filter: ParticleFilter<LaneParticle>,
     /// The bottom-up detector of `relock_share` and the output options (`snap_to_paint`,
-    /// `valid_needs_paint`, `adjacent_lanes`; `None` when they are off).
+    /// `valid_needs_paint`, `valid_from_paint`, `adjacent_lanes`; `None` when they are off).
     detector: Option<RelockDetector>,
     /// The validity rule after a loss (`reacquire_near_m`).
     reacquire: Reacquire,
