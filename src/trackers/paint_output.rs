@@ -19,11 +19,11 @@
 //! boundaries, the first run along one beginning within [`FROM_PAINT_NEAR_M`] of its nearest
 //! probe (4 m ahead, or where the boundary comes into view) and along the other within
 //! [`FROM_PAINT_FAR_M`] ([`Snapped::painted_from_m`]): paint from the car on one side and a
-//! dashed line's next dash on the other. A filter's validity
-//! counts its own cue (danescu-mono: road edges within its tolerance of the inner edges)
-//! and can fall short where the paint is plain (Caltech's turn pocket, 200-216); the far side
-//! of a crossing, whose paint begins ahead on both sides, stays not valid. The filter, whose
-//! rules read its own validity, is unchanged.
+//! dashed line's next dash on the other. A filter's validity counts its own cue
+//! (danescu-mono: road edges within its tolerance of the inner edges) and can fall short where
+//! the paint is plain (Caltech's turn pocket, 200-216); the far side of a crossing, whose
+//! paint begins ahead on both sides, stays not valid. The filter, whose rules read its own
+//! validity, is unchanged.
 //!
 //! All read the marking image of the tracker's bottom-up line detector ([`super::relock`]) and
 //! change nothing in the filter: its particles and its own validity, which its other rules
