@@ -48,6 +48,7 @@ lint-rust:
 	cargo clippy --lib --target wasm32-unknown-unknown -- -D warnings
 	cargo clippy --lib --target wasm32-unknown-unknown --no-default-features --features wasm-track -- -D warnings
 	cargo clippy --lib --target wasm32-unknown-unknown --no-default-features --features wasm-sim -- -D warnings
+	RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib
 
 # The demo's types need the generated pkg/web/lanepf.d.ts, hence `pkg` (built once per make run:
 # `make test` builds it here, in its lint step, not again later).

@@ -183,7 +183,7 @@ pub struct CalibrationEstimate {
 
 /// Share of the frame height above the horizon (or the principal point's row, when higher)
 /// from which the marking image is computed once a horizon is known
-/// ([`Calibrator::first_working_row`]): room for a camera's roll and a lens's bend.
+/// (`Calibrator::first_working_row`): room for a camera's roll and a lens's bend.
 pub const ROAD_TOP_MARGIN: f64 = 0.05;
 
 /// Least ridge contrast of a marking pixel, grey levels of the marking intensity (see

@@ -3,9 +3,10 @@
 //! benchmark scores a bird's-eye view, so the figures are not comparable with its table).
 //!
 //! **Camera.** The calibration file holds `KEY: v1 v2 ...` lines. `P2` (3 x 4, row-major) is
-//! the rectified left colour camera's projection: fx = P2[0][0], fy = P2[1][1], cx = P2[0][2],
-//! cy = P2[1][2]. `Tr_cam_to_road` (3 x 4) maps camera coordinates (x right, y down, z ahead)
-//! to road coordinates with the same axes and the road plane at y = 0: p_road = R p_cam + t.
+//! the rectified left colour camera's projection: fx = `P2[0][0]`, fy = `P2[1][1]`,
+//! cx = `P2[0][2]`, cy = `P2[1][2]`. `Tr_cam_to_road` (3 x 4) maps camera coordinates (x right,
+//! y down, z ahead) to road coordinates with the same axes and the road plane at y = 0:
+//! p_road = R p_cam + t.
 //! The camera centre is then at t, so its height is -t_y. The optical axis in road coordinates
 //! is R's third column d, the camera's x axis R's first column e; with the crate's
 //! R = Rz(yaw) Ry(pitch) Rx(roll) ([`crate::camera`]), whose forward axis is (d_z, -d_x, -d_y)

@@ -6,7 +6,7 @@
 //! on CULane's 1640-pixel stills a median 7-14 pixels from the labels near the car, up to half
 //! of the 30-pixel line the benchmark scores.
 //! After the estimate, each boundary y_b(x) (on the flat road of the camera,
-//! [`super::flat_boundary`]) is moved by a straight correction fitted to the paint across it,
+//! `super::flat_boundary`) is moved by a straight correction fitted to the paint across it,
 //!
 //!   y(x) = y_b(x) + a + b (x - x̄),
 //!
