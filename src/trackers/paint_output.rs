@@ -68,7 +68,7 @@ pub const FROM_PAINT_NEAR_M: f64 = 2.0;
 /// found it.
 pub const FROM_PAINT_FAR_M: f64 = 10.0;
 
-/// Whether runs of paint along the ego boundaries make a frame the filter found not valid
+/// Whether runs of paint along the ego boundaries make valid a frame the filter found not
 /// valid (`valid_from_paint`): along one from the car ([`FROM_PAINT_NEAR_M`]), along the other
 /// within [`FROM_PAINT_FAR_M`] ([`Snapped::painted_from_m`]).
 pub fn paint_makes_valid(snapped: &Snapped) -> bool {

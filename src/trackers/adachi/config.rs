@@ -162,7 +162,7 @@ pub struct AdachiConfig {
     /// beyond the paper; output only: the filter's own validity, which its other rules read,
     /// is unchanged; off by default).
     pub valid_needs_paint: bool,
-    /// Report a frame the filter finds not valid valid when paint runs along both drawn ego
+    /// Report as valid a frame the filter finds not valid when paint runs along both drawn ego
     /// boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
     /// counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
     /// dashed line's gap), in the bottom-up detector's marking image

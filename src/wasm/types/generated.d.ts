@@ -697,7 +697,7 @@ export interface AdachiOptions {
    */
   valid_needs_paint?: boolean;
   /**
-   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * Report as valid a frame the filter finds not valid when paint runs along both drawn ego
    * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
    * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
    * dashed line's gap), in the bottom-up detector's marking image
@@ -1128,7 +1128,7 @@ export interface DanescuOptions {
    */
   valid_needs_paint?: boolean;
   /**
-   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * Report as valid a frame the filter finds not valid when paint runs along both drawn ego
    * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
    * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
    * dashed line's gap), in the bottom-up detector's marking image
@@ -1525,7 +1525,7 @@ export interface LeeOptions {
    */
   valid_needs_paint?: boolean;
   /**
-   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * Report as valid a frame the filter finds not valid when paint runs along both drawn ego
    * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
    * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
    * dashed line's gap), in the bottom-up detector's marking image
@@ -1752,7 +1752,7 @@ export interface LiuOptions {
    */
   valid_needs_paint?: boolean;
   /**
-   * Report a frame the filter finds not valid valid when paint runs along both drawn ego
+   * Report as valid a frame the filter finds not valid when paint runs along both drawn ego
    * boundaries, along one from the car (its first run of paint, as `valid_needs_paint`
    * counts one, begins within 2 m of the nearest probe) and along the other within 10 m (a
    * dashed line's gap), in the bottom-up detector's marking image
