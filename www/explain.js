@@ -9,7 +9,7 @@ const RELOCK = { path: 'relock_share', label: 're-lock share: particles drawn ar
 const SUPPORT_FRAMES = { path: 'valid_support_frames', label: 'frames a dashed boundary’s support is remembered (ours; 1: this frame only)', min: 1, max: 15, step: 1 };
 const SNAP = { path: 'snap_to_paint', label: 'snap to paint: move each drawn boundary onto the centre of the marking it lies on (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
 const BENDS = { path: 'snap_follows_bends', label: 'snap follows bends: with snap to paint, follow the marking round a bend the estimate does not (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
-const NEEDS_PAINT = { path: 'valid_needs_paint', label: 'no lane without paint: report a frame not valid when no run of paint lies along either drawn ego boundary (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
+const NEEDS_PAINT = { path: 'valid_needs_paint', label: 'no lane without paint: report a frame not valid when no run of paint begins within 12 m of the nearest probe along either drawn ego boundary (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
 const FROM_PAINT = { path: 'valid_from_paint', label: 'a lane from paint: report as valid a frame the filter finds not valid when paint runs along both drawn ego boundaries, one from the car (ours, beyond the paper; output only)', kind: /** @type {const} */ ('bool') };
 const ADJACENT = { path: 'adjacent_lanes', label: 'adjacent lanes: report the marked lanes beside the ego lane (ours, beyond the paper)', kind: /** @type {const} */ ('bool') };
 

@@ -4,9 +4,11 @@
 //!
 //! 1. `snap_to_paint` moves each boundary onto the centre of the paint it lies on
 //!    ([`super::paint_snap`]);
-//! 2. `valid_needs_paint` reports a valid frame not valid when no run of paint lies along
-//!    either ego boundary ([`Snapped::painted`]): a filter holds its lane through an unmarked
-//!    crossing or on a car's edges by its own support, which counts edges, not paint. The
+//! 2. `valid_needs_paint` reports a valid frame not valid when no run of paint begins along
+//!    either ego boundary within [`NEEDS_PAINT_WITHIN_M`] of its nearest probe
+//!    ([`Snapped::painted_from_m`]): a filter holds its lane through an unmarked crossing or
+//!    on a car's edges by its own support, which counts edges, not paint, and on the near
+//!    side of a crossing the paint beyond it is no lane for the car yet. The
 //!    test reads the snap's own probes, so with `snap_to_paint` a frame it reports not valid
 //!    has had its boundaries moved already (onto scattered paint: a move needs centres that
 //!    fit a line, not a run); the frame is drawn as not valid either way;
@@ -68,6 +70,28 @@ pub const FROM_PAINT_NEAR_M: f64 = 2.0;
 /// found it.
 pub const FROM_PAINT_FAR_M: f64 = 10.0;
 
+/// With `valid_needs_paint`: the farthest a run of paint along either ego boundary may begin
+/// beyond its nearest probe (4 m ahead, or where the boundary comes into view) for the frame
+/// to stay valid, metres: the longest common gap of a dashed line (12 m on European
+/// motorways, 9 m in the US), so a lane between two dashed lines stays valid whatever their
+/// phase. Paint that begins farther off is the far side of an unmarked stretch (a crossing, a
+/// junction). Until 2026-12-01 (session 37) a run anywhere up to 40 m ahead kept a frame
+/// valid, and the paint beyond a simulated crossing kept a lane on its near side
+/// (`no_lane_eval`: RESULTS.md, *No lane*). With 10 m instead ([`FROM_PAINT_FAR_M`]) the
+/// lane came back 2 frames later after each crossing and liu-ppf lost Caltech's frame 123,
+/// held across a gap in the sequence, on every tracker seed.
+pub const NEEDS_PAINT_WITHIN_M: f64 = 12.0;
+
+/// Whether paint near the car keeps valid a frame the filter found valid
+/// (`valid_needs_paint`): a run along either ego boundary beginning within
+/// [`NEEDS_PAINT_WITHIN_M`] of its nearest probe.
+pub fn paint_keeps_valid(snapped: &Snapped) -> bool {
+    snapped
+        .painted_from_m
+        .iter()
+        .any(|&from| from <= NEEDS_PAINT_WITHIN_M)
+}
+
 /// Whether runs of paint along the ego boundaries make valid a frame the filter found not
 /// valid (`valid_from_paint`): along one from the car ([`FROM_PAINT_NEAR_M`]), along the other
 /// within [`FROM_PAINT_FAR_M`] ([`Snapped::painted_from_m`]).
@@ -109,7 +133,7 @@ pub fn apply_paint_options(
     } else {
         Snapped::default()
     };
-    let valid = !options.valid_needs_paint || snapped.painted.iter().any(|&p| p);
+    let valid = !options.valid_needs_paint || paint_keeps_valid(&snapped);
     if valid && options.adjacent_lanes {
         // Only the sides the tracker's own boundaries leave out.
         let mut adjacent = adjacent_boundaries(camera, boundaries, images);

@@ -32,7 +32,7 @@
 //!    when the centres span less than [`MIN_SPAN_M`]; nothing moves with fewer than
 //!    [`MIN_CENTRES`] centres, and |b| is at most [`MAX_SLOPE`].
 //!
-//! 4. Paint runs along the boundary ([`Snapped::painted`], for `valid_needs_paint`,
+//! 4. Paint runs along the boundary (for `valid_needs_paint` and `valid_from_paint`,
 //!    [`super::paint_output`]) when at least [`MIN_PAINT_RUN`] centres lie on neighbouring
 //!    probes, each within [`RUN_STEP_M`] of the last, in as many rows of the working image:
 //!    1.5 m of one marking near the car, where a crossing's transverse bars, a car's edges or
@@ -169,9 +169,8 @@ pub fn follow_paint(
         if side.is_none() && !moves {
             continue;
         }
-        let (c, run, from) = correction(camera, images, &flat, bends && moves);
+        let (c, from) = correction(camera, images, &flat, bends && moves);
         if let Some(k) = side {
-            snapped.painted[k] = run >= MIN_PAINT_RUN;
             snapped.painted_from_m[k] = from;
         }
         let Some(c) = c else {
@@ -195,11 +194,9 @@ pub fn follow_paint(
 pub struct Snapped {
     /// How far each moved at the car (x = 0, metres, positive left; 0 for one not moved).
     pub moved_at_car: [f64; 2],
-    /// Whether paint runs along it: a run of at least [`MIN_PAINT_RUN`] centres on
-    /// neighbouring probes, each within [`RUN_STEP_M`] of the last (step 4 of the module docs).
-    pub painted: [bool; 2],
-    /// Where the first such run begins on each, metres beyond the nearest probe (infinite
-    /// without one).
+    /// Where the first run of paint along each begins (at least [`MIN_PAINT_RUN`] centres on
+    /// neighbouring probes, each within [`RUN_STEP_M`] of the last: step 4 of the module
+    /// docs), metres beyond the nearest probe; infinite where paint runs nowhere along it.
     pub painted_from_m: [f64; 2],
 }
 
@@ -207,7 +204,6 @@ impl Default for Snapped {
     fn default() -> Self {
         Self {
             moved_at_car: [0.0; 2],
-            painted: [false; 2],
             painted_from_m: [f64::INFINITY; 2],
         }
     }
@@ -247,15 +243,15 @@ impl Correction {
     }
 }
 
-/// The correction for `flat` (steps 1-3 of the module docs), the longest run of paint
-/// centres found along it ([`Snapped::painted`]) and where the first run of
-/// [`MIN_PAINT_RUN`] began beyond the nearest probe ([`Snapped::painted_from_m`]).
+/// The correction for `flat` (steps 1-3 of the module docs) and where the first run of
+/// [`MIN_PAINT_RUN`] paint centres found along it began beyond the nearest probe
+/// ([`Snapped::painted_from_m`]).
 fn correction(
     camera: &Camera,
     images: WorkingImages<'_>,
     flat: &FlatBoundary,
     bends: bool,
-) -> (Option<Correction>, usize, f64) {
+) -> (Option<Correction>, f64) {
     let (near, far) = flat.range();
     let (from, to) = (near.max(NEAR_M), far.min(FAR_M));
     // The centres found, [x, c], on the stack: a frame allocates nothing here.
@@ -264,7 +260,7 @@ fn correction(
     // The run of paint in progress: its length in working-image rows (probes that fall in the
     // row of the last one counted add nothing: far off, one row spans several probes, and a
     // blob there would make a run) and that row.
-    let (mut run, mut longest, mut run_row) = (0usize, 0usize, i64::MIN);
+    let (mut run, mut run_row) = (0usize, i64::MIN);
     // With `bends`: the line (x0, c at x0, slope) through the latest run of paint's last
     // centres, on which the next probe's search is centred, and where that run began.
     let mut guide: Option<(f64, f64, f64)> = None;
@@ -297,7 +293,6 @@ fn correction(
             } else if row != run_row {
                 (run, run_row) = (run + 1, row);
             }
-            longest = longest.max(run);
             if run >= MIN_PAINT_RUN && painted_from.is_infinite() {
                 painted_from = run_x - from;
             }
@@ -311,7 +306,7 @@ fn correction(
             }
         }
     }
-    (fit_centres(&mut centres, n, bends), longest, painted_from)
+    (fit_centres(&mut centres, n, bends), painted_from)
 }
 
 /// (x̄, c at x̄, slope) of the least-squares line through `points` ([x, c]), two or more at

@@ -434,7 +434,7 @@ fn following_bends_draws_the_ego_lane_on_the_paint_of_a_bend() {
 /// Whether [`follow_paint`] finds a run of paint along an ego-left boundary 0.1 m off a line
 /// at 1.8 m, in working images painted where `painted` holds; the boundary does not move.
 fn paint_runs_along(painted: impl Fn(f64, f64) -> bool) -> bool {
-    paint_along(painted).painted[0]
+    paint_along(painted).painted_from_m[0].is_finite()
 }
 
 /// What [`follow_paint`] finds along the boundary of [`paint_runs_along`] (which it asserts
@@ -453,8 +453,10 @@ fn paint_along(painted: impl Fn(f64, f64) -> bool) -> super::paint_snap::Snapped
     );
     assert_eq!(out[0], b, "nothing moves");
     assert_eq!(snapped.moved_at_car, [0.0; 2]);
-    assert!(!snapped.painted[1], "there is no ego-right boundary");
-    assert!(snapped.painted_from_m[1].is_infinite());
+    assert!(
+        snapped.painted_from_m[1].is_infinite(),
+        "there is no ego-right boundary"
+    );
     snapped
 }
 

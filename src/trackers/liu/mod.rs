@@ -34,7 +34,8 @@
 //! bright stripe in the top view, so that shadow edges do not hold a lane through an unmarked
 //! crossing. With `snap_to_paint` (ours) the reported boundaries move onto the paint's centre
 //! ([`super::paint_snap`]); with `valid_needs_paint` (ours) a frame is reported not valid
-//! when no run of paint lies along either ego boundary, and with `valid_from_paint` (ours) a
+//! when no run of paint begins near the car (within a dashed line's gap) along either ego
+//! boundary, and with `valid_from_paint` (ours) a
 //! frame it finds not valid is reported valid when paint runs along both from near the car;
 //! with `adjacent_lanes` (ours) the
 //! neighbour on the side the partitions leave out is added where paint runs there
