@@ -129,9 +129,9 @@ fn every_mono_tracker_reports_no_lane_where_the_paint_stops() {
 
 /// `valid_needs_paint` on the near side of a 30 m crossing at 640x480, where the paint beyond
 /// it comes into view, with danescu-mono, whose filter holds a lane on the tree shadows'
-/// edges: a frame whose next paint lies more than 18 m ahead (12 m beyond the nearest probe
-/// at 4 m, and 2 m for the probes to see a run) is not valid; before the crossing, and from
-/// 10 m after it, at least 95 % of the frames are. Measured (2026-12-01, valid shares before /
+/// edges: of the frames whose next paint lies 18 m or more ahead (12 m beyond the nearest
+/// probe at 4 m, and 2 m to spare) at most 5 % are valid; before the crossing, and from
+/// 10 m after it, at least 95 % are. Measured (2026-12-01, valid shares before /
 /// near side / after, the option off -> on): 1.00 / 0.53 / 0.96 -> 1.00 / 0.00 / 0.96; with
 /// `NEEDS_PAINT_WITHIN_M` 40 m, the rule before session 37, the near side 0.11 (the test
 /// fails). liu-ppf's filter, the other that holds on shadows, lets this crossing go by

@@ -40,7 +40,7 @@
 //!    there counts once.) Known limit: a zebra crossing's stripes run along the road, 0.5 m
 //!    wide and metres long, and one within 0.3 m of a boundary is a run like a line's.
 //!    Where the first run begins, from the nearest probe, is [`Snapped::painted_from_m`] (for
-//!    `valid_from_paint`).
+//!    `valid_needs_paint` and `valid_from_paint`).
 //!
 //! With `snap_follows_bends` (ours) the snap goes round a bend the estimate does not follow
 //! (adachi-mmpf's straight model, a curvature the filter has not caught up with), where the
@@ -136,8 +136,8 @@ const KNOTS: usize = (SAMPLES - 1) / KNOT + 1;
 const _: () = assert!((SAMPLES - 1) % KNOT == 0);
 
 /// Moves every boundary of `boundaries` onto the paint beside it (the module docs); a boundary
-/// without enough paint stays as it is. Returns how far the ego boundaries moved and whether
-/// paint runs along them ([`Snapped`]).
+/// without enough paint stays as it is. Returns how far the ego boundaries moved and where
+/// paint begins to run along them ([`Snapped`]).
 pub fn snap_to_paint(
     camera: &Camera,
     boundaries: &mut [Boundary],

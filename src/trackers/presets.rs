@@ -147,7 +147,8 @@ const ADACHI_SIDE_SEARCH_SHARE: f64 = 0.2;
 const SNAP_TO_PAINT: bool = true;
 
 /// `valid_needs_paint` of the four mono trackers: a frame is reported valid only with a run of
-/// paint along one of its ego boundaries. Measured 2026-11-30, `real-roads` without and with,
+/// paint along one of its ego boundaries (beginning within 12 m of the nearest probe since
+/// 2026-12-01, session 37: RESULTS.md, *No lane*). Measured 2026-11-30, `real-roads` without and with,
 /// tracker seed 1 unless stated (adachi-mmpf, danescu-mono, lee-cpf, liu-ppf): CULane F1, auto
 /// camera, 41.6 -> 43.0, 23.8 -> 24.5, 23.8 -> 24.0, 55.8 -> 57.1 % (adachi-mmpf
 /// `gradient` 52.6 -> 53.7); TuSimple unchanged; Caltech tracker seeds 1-5 ego correct / FP

@@ -169,13 +169,13 @@ pub struct LeeConfig {
     /// quadratic term ([`crate::trackers::paint_snap`]; ours; off by default).
     pub snap_follows_bends: bool,
     /// Report a valid frame not valid when no run of paint begins along either drawn ego
-    /// boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes into
-    /// view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing does not
-    /// keep its near side valid): a run of at least four paint centres 0.5 m apart (1.5 m) and
-    /// in four rows of the image, each within 10 cm of the last, found within 0.3 m of the
-    /// boundary from 4 to 40 m ahead in the bottom-up detector's marking image ([`crate::trackers::paint_output`]; ours,
-    /// beyond the paper; output only: the filter's own validity, which its other rules read,
-    /// is unchanged; off by default).
+    /// boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes
+    /// into view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing
+    /// does not keep its near side valid): a run of at least four paint centres 0.5 m apart
+    /// (1.5 m) and in four rows of the image, each within 10 cm of the last, found within
+    /// 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's marking image
+    /// ([`crate::trackers::paint_output`]; ours, beyond the paper; output only: the filter's
+    /// own validity, which its other rules read, is unchanged; off by default).
     pub valid_needs_paint: bool,
     /// Report as valid a frame the filter finds not valid when paint runs along both drawn ego
     /// boundaries, along one from the car (its first run of paint, as `valid_needs_paint`

@@ -35,10 +35,8 @@
 //! crossing. With `snap_to_paint` (ours) the reported boundaries move onto the paint's centre
 //! ([`super::paint_snap`]); with `valid_needs_paint` (ours) a frame is reported not valid
 //! when no run of paint begins near the car (within a dashed line's gap) along either ego
-//! boundary, and with `valid_from_paint` (ours) a
-//! frame it finds not valid is reported valid when paint runs along both from near the car;
-//! with `adjacent_lanes` (ours) the
-//! neighbour on the side the partitions leave out is added where paint runs there
+//! boundary, and with `valid_from_paint` (ours) a frame it finds not valid is reported valid
+//! when paint runs along both from near the car; with `adjacent_lanes` (ours) the neighbour on the side the partitions leave out is added where paint runs there
 //! ([`super::paint_output`], [`super::adjacent_lanes`]).
 
 pub mod atan32;

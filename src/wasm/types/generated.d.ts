@@ -687,13 +687,13 @@ export interface AdachiOptions {
   snap_follows_bends?: boolean;
   /**
    * Report a valid frame not valid when no run of paint begins along either drawn ego
-   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes into
-   * view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing does not
-   * keep its near side valid): a run of at least four paint centres 0.5 m apart (1.5 m) and
-   * in four rows of the image, each within 10 cm of the last, found within 0.3 m of the
-   * boundary from 4 to 40 m ahead in the bottom-up detector's marking image (`paint_output`; ours,
-   * beyond the paper; output only: the filter's own validity, which its other rules read,
-   * is unchanged; off by default).
+   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes
+   * into view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing
+   * does not keep its near side valid): a run of at least four paint centres 0.5 m apart
+   * (1.5 m) and in four rows of the image, each within 10 cm of the last, found within
+   * 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged; off by default).
    *
    * @defaultValue `false`
    */
@@ -1120,13 +1120,13 @@ export interface DanescuOptions {
   snap_follows_bends?: boolean;
   /**
    * Report a valid frame not valid when no run of paint begins along either drawn ego
-   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes into
-   * view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing does not
-   * keep its near side valid): a run of at least four paint centres 0.5 m apart (1.5 m) and
-   * in four rows of the image, each within 10 cm of the last, found within 0.3 m of the
-   * boundary from 4 to 40 m ahead in the bottom-up detector's marking image (`paint_output`; ours,
-   * beyond the paper; output only: the filter's own validity, which its other rules read,
-   * is unchanged; off by default).
+   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes
+   * into view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing
+   * does not keep its near side valid): a run of at least four paint centres 0.5 m apart
+   * (1.5 m) and in four rows of the image, each within 10 cm of the last, found within
+   * 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged; off by default).
    *
    * @defaultValue `false`
    */
@@ -1519,13 +1519,13 @@ export interface LeeOptions {
   snap_follows_bends?: boolean;
   /**
    * Report a valid frame not valid when no run of paint begins along either drawn ego
-   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes into
-   * view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing does not
-   * keep its near side valid): a run of at least four paint centres 0.5 m apart (1.5 m) and
-   * in four rows of the image, each within 10 cm of the last, found within 0.3 m of the
-   * boundary from 4 to 40 m ahead in the bottom-up detector's marking image (`paint_output`; ours,
-   * beyond the paper; output only: the filter's own validity, which its other rules read,
-   * is unchanged; off by default).
+   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes
+   * into view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing
+   * does not keep its near side valid): a run of at least four paint centres 0.5 m apart
+   * (1.5 m) and in four rows of the image, each within 10 cm of the last, found within
+   * 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged; off by default).
    *
    * @defaultValue `false`
    */
@@ -1747,14 +1747,14 @@ export interface LiuOptions {
   snap_follows_bends?: boolean;
   /**
    * Report a valid frame not valid when no run of paint begins along either drawn ego
-   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes into
-   * view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing does not
-   * keep its near side valid): a run of at least four paint centres 0.5 m apart (1.5 m) and
-   * in four rows of the image, each within 10 cm of the last, found within 0.3 m of the
-   * boundary from 4 to 40 m ahead in the bottom-up detector's marking image (`paint_output`; ours,
-   * beyond the paper; output only: the filter's own validity, which its other rules read,
-   * is unchanged, and it stands on frames under 32x16, where the detector cannot run; off
-   * by default).
+   * boundary within 12 m of its nearest probe (4 m ahead, or where the boundary comes
+   * into view; 12 m: a dashed line's longest common gap, so the paint beyond a crossing
+   * does not keep its near side valid): a run of at least four paint centres 0.5 m apart
+   * (1.5 m) and in four rows of the image, each within 10 cm of the last, found within
+   * 0.3 m of the boundary from 4 to 40 m ahead in the bottom-up detector's marking image
+   * (`paint_output`; ours, beyond the paper; output only: the filter's
+   * own validity, which its other rules read, is unchanged, and it stands on frames under
+   * 32x16, where the detector cannot run; off by default).
    *
    * @defaultValue `false`
    */
