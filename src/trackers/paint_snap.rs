@@ -41,6 +41,12 @@
 //!    wide and metres long, and one within 0.3 m of a boundary is a run like a line's.
 //!    Where the first run begins, from the nearest probe, is [`Snapped::painted_from_m`] (for
 //!    `valid_needs_paint` and `valid_from_paint`).
+//! 5. Where steps 1-4 find no run of paint along the boundary, they run again with the peak
+//!    looked for within [`WIDE_SEARCH_M`] (since 2026-12-01, session 37): an estimate more than
+//!    0.3 m off its marking, as liu-ppf's right boundary after a gap in Caltech's sequence
+//!    (0.3-0.56 m off the dashes) or a still's boundary on CULane, is moved onto it; where the
+//!    first search found a run, nothing changes. Each probe samples only the span its search
+//!    reads (a wider one near the image's edge would lose the probe).
 //!
 //! With `snap_follows_bends` (ours) the snap goes round a bend the estimate does not follow
 //! (adachi-mmpf's straight model, a curvature the filter has not caught up with), where the
@@ -79,6 +85,9 @@ pub const FAR_M: f64 = 40.0;
 pub const PROBE_STEP_M: f64 = 0.5;
 /// How far either side of the boundary the paint's peak is looked for, metres.
 pub const SEARCH_M: f64 = 0.3;
+/// How far either side the peak is looked for again along a boundary where the search of
+/// [`SEARCH_M`] found no run of paint, metres (step 5 of the module docs).
+pub const WIDE_SEARCH_M: f64 = 0.6;
 /// Spacing of the samples across the boundary, metres.
 pub const STEP_M: f64 = 0.02;
 /// How far either side of the peak the paint's span may reach, metres.
@@ -104,7 +113,8 @@ pub const MIN_PAINT_RUN: usize = 4;
 /// Largest slope b of the correction (radians, about 1.1 deg).
 pub const MAX_SLOPE: f64 = 0.02;
 /// With `snap_follows_bends`: the farthest the search's centre follows the paint from the
-/// boundary, metres: with [`SEARCH_M`] the search stays under half of a 3 m lane.
+/// boundary, metres: with [`SEARCH_M`] the search stays under half of a 3 m lane (in the wide
+/// search of step 5 the centre follows by as much less as the search reaches farther).
 pub const MAX_FOLLOW_M: f64 = 1.2;
 /// With `snap_follows_bends`: the distance without a centre after which the search is no
 /// longer steered, metres (a dashed line's gap is about 9 m).
@@ -128,7 +138,7 @@ pub const MIN_BEND_END_CENTRES: usize = 2;
 /// Probes along a boundary, at most.
 const PROBES: usize = ((FAR_M - NEAR_M) / PROBE_STEP_M) as usize + 1;
 /// Samples across a boundary at one distance: δ from -(SEARCH + PAIR) to +(SEARCH + PAIR).
-const HALF: usize = ((SEARCH_M + PAIR_M) / STEP_M + 0.5) as usize;
+const HALF: usize = ((WIDE_SEARCH_M + PAIR_M) / STEP_M + 0.5) as usize;
 const SAMPLES: usize = 2 * HALF + 1;
 /// Samples between two projected knots; the knots span the samples exactly.
 const KNOT: usize = 5;
@@ -169,7 +179,11 @@ pub fn follow_paint(
         if side.is_none() && !moves {
             continue;
         }
-        let (c, from) = correction(camera, images, &flat, bends && moves);
+        let mut found = correction(camera, images, &flat, bends && moves, SEARCH_M);
+        if found.1.is_infinite() {
+            found = correction(camera, images, &flat, bends && moves, WIDE_SEARCH_M);
+        }
+        let (c, from) = found;
         if let Some(k) = side {
             snapped.painted_from_m[k] = from;
         }
@@ -251,7 +265,10 @@ fn correction(
     images: WorkingImages<'_>,
     flat: &FlatBoundary,
     bends: bool,
+    search_m: f64,
 ) -> (Option<Correction>, f64) {
+    // The guide's reach shrinks as the search widens: together they stay within half a lane.
+    let max_follow = MAX_FOLLOW_M + SEARCH_M - search_m;
     let (near, far) = flat.range();
     let (from, to) = (near.max(NEAR_M), far.min(FAR_M));
     // The centres found, [x, c], on the stack: a frame allocates nothing here.
@@ -277,10 +294,10 @@ fn correction(
             guide = None;
         }
         let shift = guide.map_or(0.0, |(x0, c0, slope)| {
-            crate::math::clamp(c0 + slope * (x - x0), -MAX_FOLLOW_M, MAX_FOLLOW_M)
+            crate::math::clamp(c0 + slope * (x - x0), -max_follow, max_follow)
         });
         let y = flat.y_at(x) + shift;
-        if let Some(c) = paint_centre(camera, images, x, y).map(|c| c + shift) {
+        if let Some(c) = paint_centre(camera, images, x, y, search_m).map(|c| c + shift) {
             let row = camera
                 .road_to_pixel(x, flat.y_at(x) + c)
                 .map_or(i64::MIN, |[_, v]| (v / images.2 as f64).floor() as i64);
@@ -412,26 +429,36 @@ fn line_fit(points: &[[f64; 2]]) -> Option<(f64, f64, f64)> {
 
 /// The centre of the paint across road point (x, y), as an offset from y (step 2 of the
 /// module docs); `None` without paint or out of view.
-fn paint_centre(camera: &Camera, images: WorkingImages<'_>, x: f64, y: f64) -> Option<f64> {
+fn paint_centre(
+    camera: &Camera,
+    images: WorkingImages<'_>,
+    x: f64,
+    y: f64,
+    search_m: f64,
+) -> Option<f64> {
     let (m, saturation, scale) = images;
     let at = |image: &Image<u8>, d: f64| -> Option<f64> {
         let [u, v] = camera.road_to_pixel(x, y + d)?;
         bilinear(image, scale, u, v)
     };
+    // Only the samples this search reads, [lo, hi] of the widest layout (centre HALF), so a
+    // narrow search near the image's edge is not lost to samples it never needs.
+    let reach = (search_m / STEP_M).round() as usize;
+    let pair = (PAIR_M / STEP_M).round() as usize;
+    let (lo, hi) = (HALF - reach - pair, HALF + reach + pair);
     // The samples' pixels interpolated between projected knots every KNOT samples: across
     // 10 cm of road the image of the lateral line is straight to well under a pixel.
     let mut knots = [[0.0f64; 2]; KNOTS];
-    for (k, p) in knots.iter_mut().enumerate() {
-        *p = camera.road_to_pixel(x, y + ((k * KNOT) as f64 - HALF as f64) * STEP_M)?;
+    for k in lo / KNOT..=hi.div_ceil(KNOT).min(KNOTS - 1) {
+        knots[k] = camera.road_to_pixel(x, y + ((k * KNOT) as f64 - HALF as f64) * STEP_M)?;
     }
     let mut profile = [0.0f64; SAMPLES];
-    for (k, p) in profile.iter_mut().enumerate() {
+    for (k, p) in profile.iter_mut().enumerate().take(hi + 1).skip(lo) {
         let (i, t) = ((k / KNOT).min(KNOTS - 2), (k % KNOT) as f64 / KNOT as f64);
         let t = if k == SAMPLES - 1 { 1.0 } else { t };
         let ([u0, v0], [u1, v1]) = (knots[i], knots[i + 1]);
         *p = bilinear(m, scale, u0 + t * (u1 - u0), v0 + t * (v1 - v0))?;
     }
-    let reach = (SEARCH_M / STEP_M).round() as usize;
     let (peak, &top) = profile[HALF - reach..=HALF + reach]
         .iter()
         .enumerate()
@@ -452,10 +479,8 @@ fn paint_centre(camera: &Camera, images: WorkingImages<'_>, x: f64, y: f64) -> O
         return None;
     }
     let half = (top + road) / 2.0;
-    let pair = (PAIR_M / STEP_M).round() as usize;
-    let (lo, hi) = (peak.saturating_sub(pair), (peak + pair).min(SAMPLES - 1));
-    let first = (lo..=peak).find(|&k| profile[k] >= half)?;
-    let last = (peak..=hi).rev().find(|&k| profile[k] >= half)?;
+    let first = (peak - pair..=peak).find(|&k| profile[k] >= half)?;
+    let last = (peak..=peak + pair).rev().find(|&k| profile[k] >= half)?;
     // The crossings of the half level, interpolated between the samples either side.
     let crossing = |inside: usize, outside: usize| -> f64 {
         let (vi, vo) = (profile[inside], profile[outside]);
@@ -466,12 +491,12 @@ fn paint_centre(camera: &Camera, images: WorkingImages<'_>, x: f64, y: f64) -> O
         };
         inside as f64 + t.clamp(0.0, 1.0) * (outside as f64 - inside as f64)
     };
-    let left = if first > 0 {
+    let left = if first > lo {
         crossing(first, first - 1)
     } else {
         first as f64
     };
-    let right = if last + 1 < SAMPLES {
+    let right = if last < hi {
         crossing(last, last + 1)
     } else {
         last as f64

@@ -103,6 +103,31 @@ fn a_boundary_beside_a_line_moves_onto_its_centre() {
     }
 }
 
+/// Where the search of `SEARCH_M` finds no run of paint, the wide search of `WIDE_SEARCH_M`
+/// does: a boundary 0.4-0.5 m off the line (the line's near edge beyond the first, its centre
+/// within the second) moves onto it, with and without following bends (to 3 cm: 2.2 cm at
+/// 25 m from 0.4 m off, the 0.3 m search's runs within 2 cm).
+#[test]
+fn a_boundary_beyond_the_first_search_moves_onto_the_line_the_wide_one_finds() {
+    use super::paint_snap::{SEARCH_M, WIDE_SEARCH_M};
+    let camera = default_camera(640, 480).unwrap();
+    let images = working_images(&camera, single_line);
+    for off in [-0.5f64, -0.4, 0.4, 0.45, 0.5] {
+        // The 15 cm line's near edge is beyond the first search.
+        assert!(off.abs() - 0.075 > SEARCH_M && off.abs() < WIDE_SEARCH_M);
+        for bends in [false, true] {
+            let b = boundary(&camera, |_| 1.8 + off);
+            let (_, at) = snapped_with(&camera, b, &images, bends);
+            for y in at {
+                assert!(
+                    (y - 1.8).abs() < 0.03,
+                    "offset {off}, following bends {bends}: {at:?}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn a_heading_error_is_taken_out_too() {
     let camera = default_camera(640, 480).unwrap();
@@ -273,8 +298,8 @@ fn without_a_marking_nothing_moves() {
         ("bare road", Box::new(|_, _| false)),
         // A light strip as wide as a gutter or a car's side is not a marking.
         ("wide strip", Box::new(|_, y: f64| (y - 1.8).abs() <= 0.4)),
-        // Paint farther than the search reaches.
-        ("far line", Box::new(|_, y: f64| (y - 2.4).abs() <= 0.075)),
+        // Paint farther than even the wide search reaches.
+        ("far line", Box::new(|_, y: f64| (y - 2.6).abs() <= 0.075)),
     ];
     for (name, painted) in cases {
         let images = working_images(&camera, painted);

@@ -148,7 +148,8 @@ pub struct AdachiConfig {
     pub adjacent_lanes: bool,
     /// Move each reported boundary onto the centre of the paint it lies on: a straight
     /// sideways correction fitted to the marking centres the bottom-up detector's marking
-    /// image shows within 0.3 m of it ([`crate::trackers::paint_snap`]; ours, beyond the
+    /// image shows within 0.3 m of it, or 0.6 m where no run of paint lies within 0.3 m
+    /// ([`crate::trackers::paint_snap`]; ours, beyond the
     /// paper; output only: the filter and the validity are unchanged; off by default).
     pub snap_to_paint: bool,
     /// With `snap_to_paint`: the snap follows the paint round a bend: each probe's search is

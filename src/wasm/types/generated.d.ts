@@ -671,7 +671,8 @@ export interface AdachiOptions {
   /**
    * Move each reported boundary onto the centre of the paint it lies on: a straight
    * sideways correction fitted to the marking centres the bottom-up detector's marking
-   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * image shows within 0.3 m of it, or 0.6 m where no run of paint lies within 0.3 m
+   * (`paint_snap`; ours, beyond the
    * paper; output only: the filter and the validity are unchanged; off by default).
    *
    * @defaultValue `false`
@@ -1104,7 +1105,8 @@ export interface DanescuOptions {
   /**
    * Move each reported boundary onto the centre of the paint it lies on: a straight
    * sideways correction fitted to the marking centres the bottom-up detector's marking
-   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * image shows within 0.3 m of it, or 0.6 m where no run of paint lies within 0.3 m
+   * (`paint_snap`; ours, beyond the
    * paper; output only: the filter and the validity are unchanged; off by default).
    *
    * @defaultValue `false`
@@ -1503,7 +1505,8 @@ export interface LeeOptions {
   /**
    * Move each reported boundary onto the centre of the paint it lies on: a straight
    * sideways correction fitted to the marking centres the bottom-up detector's marking
-   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * image shows within 0.3 m of it, or 0.6 m where no run of paint lies within 0.3 m
+   * (`paint_snap`; ours, beyond the
    * paper; output only: the filter and the validity are unchanged; off by default).
    *
    * @defaultValue `false`
@@ -1731,7 +1734,8 @@ export interface LiuOptions {
   /**
    * Move each reported boundary onto the centre of the paint it lies on: a straight
    * sideways correction fitted to the marking centres the bottom-up detector's marking
-   * image shows within 0.3 m of it (`paint_snap`; ours, beyond the
+   * image shows within 0.3 m of it, or 0.6 m where no run of paint lies within 0.3 m
+   * (`paint_snap`; ours, beyond the
    * paper; output only: the filter and the validity are unchanged; off by default).
    *
    * @defaultValue `false`
