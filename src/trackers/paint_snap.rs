@@ -449,8 +449,14 @@ fn paint_centre(
     // The samples' pixels interpolated between projected knots every KNOT samples: across
     // 10 cm of road the image of the lateral line is straight to well under a pixel.
     let mut knots = [[0.0f64; 2]; KNOTS];
-    for k in lo / KNOT..=hi.div_ceil(KNOT).min(KNOTS - 1) {
-        knots[k] = camera.road_to_pixel(x, y + ((k * KNOT) as f64 - HALF as f64) * STEP_M)?;
+    let last_knot = hi.div_ceil(KNOT).min(KNOTS - 1);
+    for (k, p) in knots
+        .iter_mut()
+        .enumerate()
+        .take(last_knot + 1)
+        .skip(lo / KNOT)
+    {
+        *p = camera.road_to_pixel(x, y + ((k * KNOT) as f64 - HALF as f64) * STEP_M)?;
     }
     let mut profile = [0.0f64; SAMPLES];
     for (k, p) in profile.iter_mut().enumerate().take(hi + 1).skip(lo) {
