@@ -144,6 +144,8 @@ const SAMPLES: usize = 2 * HALF + 1;
 const KNOT: usize = 5;
 const KNOTS: usize = (SAMPLES - 1) / KNOT + 1;
 const _: () = assert!((SAMPLES - 1) % KNOT == 0);
+// The narrow search's span falls on knots too (see `paint_centre`).
+const _: () = assert!((HALF - ((SEARCH_M + PAIR_M) / STEP_M + 0.5) as usize) % KNOT == 0);
 
 /// Moves every boundary of `boundaries` onto the paint beside it (the module docs); a boundary
 /// without enough paint stays as it is. Returns how far the ego boundaries moved and where
@@ -448,6 +450,8 @@ fn paint_centre(
     let (lo, hi) = (HALF - reach - pair, HALF + reach + pair);
     // The samples' pixels interpolated between projected knots every KNOT samples: across
     // 10 cm of road the image of the lateral line is straight to well under a pixel.
+    // lo and hi fall on knots (both searches' spans are whole multiples of KNOT samples): the
+    // sample at hi is its knot itself (t = 0), so no knot beyond it is projected.
     let mut knots = [[0.0f64; 2]; KNOTS];
     let last_knot = hi.div_ceil(KNOT).min(KNOTS - 1);
     for (k, p) in knots
