@@ -137,7 +137,8 @@ pub const MIN_BEND_END_CENTRES: usize = 2;
 
 /// Probes along a boundary, at most.
 const PROBES: usize = ((FAR_M - NEAR_M) / PROBE_STEP_M) as usize + 1;
-/// Samples across a boundary at one distance: δ from -(SEARCH + PAIR) to +(SEARCH + PAIR).
+/// Samples across a boundary at one distance, for the widest search: δ from
+/// -(WIDE_SEARCH + PAIR) to +(WIDE_SEARCH + PAIR).
 const HALF: usize = ((WIDE_SEARCH_M + PAIR_M) / STEP_M + 0.5) as usize;
 const SAMPLES: usize = 2 * HALF + 1;
 /// Samples between two projected knots; the knots span the samples exactly.
