@@ -5,7 +5,7 @@
 //! | tracker | `real-roads` |
 //! |---|---|
 //! | adachi-mmpf | `relock_share` 0.05, `paired_edges`, `width_scaled_threshold`, `adjacent_lanes`, `side_search_share` 0.2, `reacquire_near_m` 4, `valid_support_frames` 2, `snap_to_paint`, `snap_follows_bends`, `valid_needs_paint`, `valid_from_paint` |
-//! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03, `valid_support_frames` 5, `snap_to_paint`, `snap_follows_bends`, `valid_needs_paint`, `valid_from_paint` |
+//! | danescu-mono | `relock_share` 0.1, `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03, `valid_support_frames` 5, `width_range_m` [2.2, 4.5], `snap_to_paint`, `snap_follows_bends`, `valid_needs_paint`, `valid_from_paint` |
 //! | danescu-stereo | `adjacent_lanes`, `start_iterations` 10, `valid_distance_m` 0.03 |
 //! | lee-cpf | `relock_share` 0.05, `curvature_prior_sd` 0.004, `adjacent_lanes`, `valid_support_frames` 5, `side_search_share` 0.2, `kalman_process_sd` three times its defaults (ten times on the width), `reacquire_near_m` 4, `snap_to_paint`, `snap_follows_bends`, `valid_needs_paint`, `valid_from_paint` |
 //! | liu-ppf | `top_view_resolved`, `reacquire_near_m` 4, `mode_candidates` 32, `valid_support_frames` 2, `snap_to_paint`, `snap_follows_bends`, `adjacent_lanes`, `valid_needs_paint`, `valid_from_paint` |
@@ -187,6 +187,21 @@ const SNAP_FOLLOWS_BENDS: bool = true;
 /// off.
 const VALID_FROM_PAINT: bool = true;
 
+/// danescu-mono's `width_range_m`: the lane widths (between the markings' inner edges) its
+/// validation accepts, metres. The paper zeroes the weight of a particle whose lane is "too
+/// narrow, too wide" (Sec. VII-D) and gives no limits; the default's 5.0 lets the cloud jump
+/// to a wrong, two-lane-wide pair after a gap in the sequence, and 4.5 m is the widest lane in
+/// common use (a 15 ft US kerb lane with its markings; lee-cpf's limit too). Measured
+/// 2026-12-01 (session 38), `real-roads` with [2.2, 5.0] and with [2.2, 4.5]: Caltech tracker
+/// seeds 1-5 ego lanes 95.3 / 3.3 -> 96.6 / 2.6 %, all lanes 74.4 -> 75.8 (after the
+/// sequence's gaps, 123 and 128, the filter had jumped to lanes 4.8-5.5 m wide: both now held
+/// on every seed, 128 but on seed 5); `option_compare`'s synthetic seeds 201-213 boundaries
+/// 88.0 -> 87.9 %, 214-239 89.9 -> 89.8; TuSimple unchanged; CULane F1 (auto camera, tracker
+/// seed 1) 0.305 -> 0.303; `no_lane_eval` unchanged within a frame or two. 4.2 measured alike
+/// on Caltech (96.6 / 2.4) but would reject `width-change`'s 4.5 m lane (4.35 m between the
+/// inner edges).
+const DANESCU_WIDTH_RANGE_M: [f64; 2] = [2.2, 4.5];
+
 /// liu-ppf's `adjacent_lanes` (its partitions give the ego pair and one neighbour; the option
 /// adds the other side's). Measured 2026-11-30, `real-roads` with and without, tracker seed 1
 /// unless stated: TuSimple 82.4 -> 87.9 (FN 0.38 -> 0.17); CULane F1 55.9 -> 55.8 (TP / FP
@@ -219,6 +234,7 @@ pub(crate) fn real_roads(defaults: TrackerOptions) -> TrackerOptions {
             start_iterations: DANESCU_START_ITERATIONS,
             valid_distance_m: DANESCU_VALID_DISTANCE_M,
             valid_support_frames: DANESCU_VALID_SUPPORT_FRAMES,
+            width_range_m: DANESCU_WIDTH_RANGE_M,
             snap_to_paint: SNAP_TO_PAINT,
             snap_follows_bends: SNAP_FOLLOWS_BENDS,
             valid_needs_paint: VALID_NEEDS_PAINT,
@@ -322,6 +338,9 @@ mod tests {
             "kalman_process_sd",
             // lee-cpf's, adachi-mmpf's and liu-ppf's validity after a loss: ours.
             "reacquire_near_m",
+            // danescu-mono's validation: the paper rejects a lane "too wide" but names no
+            // limit; ours.
+            "width_range_m",
             // liu-ppf's top view: the paper names no range; ours.
             "top_view_resolved",
             // liu-ppf's estimate: the paper does not say how it reads it off; ours.

@@ -48,7 +48,8 @@ pub struct DanescuConfig {
     /// The generic initialisation distribution: uniform |Y_0| up to this, metres (stereo only).
     pub init_height_m: f64,
     /// Validation (Sec. VII-D): the lane width W(Z) must stay in this range over the mapped
-    /// distances, metres.
+    /// distances, metres (the paper rejects a lane "too narrow, too wide" and gives no
+    /// limits; [2.2, 4.5] in `real-roads` for danescu-mono).
     pub width_range_m: [f64; 2],
     /// Validation: the car may be at most this far outside the lane, |X_CW| <= W_0/2 + margin.
     pub offset_margin_m: f64,

@@ -841,3 +841,5 @@ mod marking_support_tests;
 mod start_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod width_range_tests;

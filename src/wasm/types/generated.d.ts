@@ -823,7 +823,8 @@ export interface DanescuOptions {
   init_height_m?: number;
   /**
    * Validation (Sec. VII-D): the lane width W(Z) must stay in this range over the mapped
-   * distances, metres.
+   * distances, metres (the paper rejects a lane "too narrow, too wide" and gives no
+   * limits; [2.2, 4.5] in `real-roads` for danescu-mono).
    *
    * Range: 0 to 20 (each entry).
    * @defaultValue `[2.2, 5]`
