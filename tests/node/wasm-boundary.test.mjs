@@ -109,7 +109,7 @@ test('a preset is a tracker\'s options: paper its defaults, real-roads ours besi
     const changed = Object.keys(roads).filter((k) => JSON.stringify(roads[k]) !== JSON.stringify(trackerDefaults(id)[k]));
     // (liu-ppf-nokernel's real-roads is its paper's filter: it is the paper's baseline.)
     assert.equal(changed.length > 0, id !== 'liu-ppf-nokernel', `${id}: ${changed}`);
-    for (const k of changed) assert.ok(['relock_share', 'curvature_prior_sd', 'adjacent_lanes', 'start_iterations', 'valid_distance_m', 'valid_support_frames', 'paired_edges', 'width_scaled_threshold', 'kalman_process_sd', 'top_view_resolved', 'side_search_share', 'reacquire_near_m', 'mode_candidates', 'snap_to_paint', 'snap_follows_bends', 'valid_needs_paint', 'valid_from_paint'].includes(k), `${id}: ${k}`);
+    for (const k of changed) assert.ok(['relock_share', 'curvature_prior_sd', 'adjacent_lanes', 'start_iterations', 'valid_distance_m', 'valid_support_frames', 'paired_edges', 'width_scaled_threshold', 'kalman_process_sd', 'top_view_resolved', 'side_search_share', 'reacquire_near_m', 'mode_candidates', 'width_range_m', 'snap_to_paint', 'snap_follows_bends', 'valid_needs_paint', 'valid_from_paint'].includes(k), `${id}: ${k}`);
     const tracker = new Tracker(id, { ...roads, camera, particles: 50 });
     tracker.free();
   }
