@@ -188,18 +188,17 @@ const SNAP_FOLLOWS_BENDS: bool = true;
 const VALID_FROM_PAINT: bool = true;
 
 /// danescu-mono's `width_range_m`: the lane widths (between the markings' inner edges) its
-/// validation accepts, metres. The paper zeroes the weight of a particle whose lane is "too
-/// narrow, too wide" (Sec. VII-D) and gives no limits; the default's 5.0 lets the cloud jump
-/// to a wrong, two-lane-wide pair after a gap in the sequence, and 4.5 m is the widest lane in
-/// common use (a 15 ft US kerb lane with its markings; lee-cpf's limit too). Measured
-/// 2026-12-01 (session 38), `real-roads` with [2.2, 5.0] and with [2.2, 4.5]: Caltech tracker
-/// seeds 1-5 ego lanes 95.3 / 3.3 -> 96.6 / 2.6 %, all lanes 74.4 -> 75.8 (after the
-/// sequence's gaps, 123 and 128, the filter had jumped to lanes 4.8-5.5 m wide: both now held
-/// on every seed, 128 but on seed 5); `option_compare`'s synthetic seeds 201-213 boundaries
-/// 88.0 -> 87.9 %, 214-239 89.9 -> 89.8; TuSimple unchanged; CULane F1 (auto camera, tracker
-/// seed 1) 0.305 -> 0.303; `no_lane_eval` unchanged within a frame or two. 4.2 measured alike
-/// on Caltech (96.6 / 2.4) but would reject `width-change`'s 4.5 m lane (4.35 m between the
-/// inner edges).
+/// validation accepts, metres. The paper zeroes the weight of a particle whose lane is "too narrow,
+/// too wide" (Sec. VII-D) and gives no limits; the default's 5.0 let the cloud jump to a wrong pair
+/// (the kerb, a farther line) after a gap in Caltech's sequence, and 4.5 m is the widest lane in
+/// common use (a 15 ft US kerb lane with its markings; lee-cpf's limit too). Measured 2026-12-01
+/// (session 38), `real-roads` with [2.2, 5.0] and with [2.2, 4.5]: Caltech tracker seeds 1-5 ego
+/// lanes 95.3 / 3.3 -> 96.6 / 2.6 %, all lanes 74.4 -> 75.8 (after the sequence's gaps, 123 and
+/// 128, the filter had jumped to lanes 4.8-5.5 m wide: both now held on every seed, 128 but on seed
+/// 5); `option_compare`'s synthetic seeds 201-213 boundaries 88.0 -> 87.9 %, 214-239 89.9 -> 89.8;
+/// TuSimple unchanged; CULane F1 (auto camera, tracker seeds 1-3) 0.305 / 0.315 / 0.330 -> 0.303 /
+/// 0.320 / 0.333; `no_lane_eval` unchanged within a frame or two. 4.2 measured alike on Caltech
+/// (96.6 / 2.4) but would reject `width-change`'s 4.5 m lane (4.35 m between the inner edges).
 const DANESCU_WIDTH_RANGE_M: [f64; 2] = [2.2, 4.5];
 
 /// liu-ppf's `adjacent_lanes` (its partitions give the ego pair and one neighbour; the option

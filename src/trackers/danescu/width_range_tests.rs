@@ -52,12 +52,12 @@ fn matched_ego_lanes(dir: &Path, range: [f64; 2], seed: u64) -> Vec<(String, usi
         .collect()
 }
 
-/// Frames 123 and 128 follow gaps of 6 and 5 frames of the clip. With
-/// the default's 5.0 m the cloud jumped there to pairs 4.8-5.5 m wide (the kerb, a line a lane
-/// off) on tracker seeds 1-5, a boundary or two off the labels; with 4.5 m both frames match
-/// on seeds 1-3 (measured 2026-12-01 over the whole sequence: 128 on seeds 1-4, 123 on all
-/// five). Thresholds: [`LAST`] matched on both sides on each seed with the limit, and on none
-/// without it; every frame before the first gap matched as well with it as without.
+/// Frames 123 and 128 follow gaps of 6 and 5 frames of the clip. With the default's 5.0 m the cloud
+/// jumped there to pairs 4.8-5.5 m wide (the kerb, a farther line; widths as reported) on tracker
+/// seeds 1-5, a boundary or two off the labels; with 4.5 m both frames match on seeds 1-3 (measured
+/// 2026-12-01 over the whole sequence: 128 on seeds 1-4, 123 on all five). Thresholds: [`LAST`]
+/// matched on both sides on each seed with the limit, and not on both without it; the frames
+/// before the first gap matched as well with it as without.
 #[test]
 fn after_a_gap_in_caltechs_sequence_the_lane_stays_one_lane_wide() {
     let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data"))
