@@ -23,17 +23,21 @@ pub(super) fn real_roads_tracker(
     real_roads_tracker_with(id, camera, &[(option, on.into())])
 }
 
-/// Tracker `id` with its `real-roads` options and each of `set` (option, value), for
-/// `camera`, tracker seed 1.
-fn real_roads_tracker_with(id: &str, camera: &Camera, set: &[(&str, Value)]) -> Box<dyn Tracker> {
+/// Tracker `id` with its `real-roads` options and each of `set` (option, value; `seed` among
+/// them replaces tracker seed 1), for `camera`.
+pub(super) fn real_roads_tracker_with(
+    id: &str,
+    camera: &Camera,
+    set: &[(&str, Value)],
+) -> Box<dyn Tracker> {
     let serde_json::Value::Object(mut options) = preset_options(id, Preset::RealRoads).unwrap()
     else {
         panic!("{id}: the preset is not an object");
     };
+    options.insert("seed".into(), 1.into());
     for (option, value) in set {
         options.insert((*option).into(), value.clone());
     }
-    options.insert("seed".into(), 1.into());
     options.insert(
         "camera".into(),
         serde_json::to_value(camera.to_file()).unwrap(),

@@ -5,7 +5,8 @@
 use crate::camera::Camera;
 use crate::eval::caltech::{evaluate, read_labels};
 use crate::image::read_rgba;
-use crate::trackers::{create, preset_options, Preset, TrackerConfig};
+use crate::trackers::paint_output_tests::real_roads_tracker_with;
+use serde_json::json;
 use std::path::{Path, PathBuf};
 
 /// The last frame run: the second after a gap in the sequence (117 -> 123 -> 128).
@@ -16,20 +17,11 @@ const LAST: &str = "f00128.png";
 fn matched_ego_lanes(dir: &Path, range: [f64; 2], seed: u64) -> Vec<(String, usize)> {
     let labels = read_labels(&dir.join("labels.json")).unwrap();
     let camera = Camera::load(&dir.join("camera.json")).unwrap();
-    let serde_json::Value::Object(mut options) =
-        preset_options("danescu-mono", Preset::RealRoads).unwrap()
-    else {
-        panic!("the preset is not an object");
-    };
-    options.insert("width_range_m".into(), serde_json::json!(range));
-    options.insert("seed".into(), seed.into());
-    options.insert(
-        "camera".into(),
-        serde_json::to_value(camera.to_file()).unwrap(),
+    let mut tracker = real_roads_tracker_with(
+        "danescu-mono",
+        &camera,
+        &[("width_range_m", json!(range)), ("seed", seed.into())],
     );
-    let config =
-        TrackerConfig::from_json_str(&serde_json::Value::Object(options).to_string()).unwrap();
-    let mut tracker = create("danescu-mono", &config).unwrap();
     let end = labels.frames.iter().position(|f| f.frame == LAST).unwrap() + 1;
     let mut labels = labels;
     labels.frames.truncate(end);
